@@ -1,0 +1,167 @@
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <variant>
+
+#include "expose.hpp"
+#include "gyrostat/ensemble.hpp"
+#include "gyrostat/model/gyrostat.hpp"
+
+namespace py = pybind11;
+
+namespace gyrostat::bindings {
+
+namespace {
+
+/// A full model as Python holds it: the gyrostat with or without the attitude quaternion.
+struct FullModel {
+    std::variant<model::Gyrostat<false>, model::Gyrostat<true>> system;
+    int dim() const { return system.index() == 0 ? 3 : 7; }
+};
+
+/// Python torque objects → the core's torque values.
+std::vector<AnyTorque> torques_from(const py::sequence& objects) {
+    std::vector<AnyTorque> torques;
+    for (const py::handle& obj : objects) {
+        if (py::isinstance<torque::Constant>(obj)) {
+            torques.emplace_back(obj.cast<torque::Constant>());
+        } else if (py::isinstance<torque::LinearDamping>(obj)) {
+            torques.emplace_back(obj.cast<torque::LinearDamping>());
+        } else {
+            throw py::type_error("unknown torque: " + std::string(py::repr(obj)));
+        }
+    }
+    return torques;
+}
+
+FullModel make_model(const Body& body, const py::sequence& torque_objects, bool attitude) {
+    TorqueSet set(torques_from(torque_objects));
+    if (attitude) return {model::Gyrostat<true>(body, set)};
+    return {model::Gyrostat<false>(body, set)};
+}
+
+py::array_t<double> as_array(const std::vector<double>& flat, std::size_t rows, std::size_t cols) {
+    py::array_t<double> out({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
+    std::copy(flat.begin(), flat.end(), out.mutable_data());
+    return out;
+}
+
+integrate::Options make_options(const std::string& method, double rtol, double atol, std::vector<double> t_eval,
+                                bool every_step, long max_steps, double first_step, double max_step) {
+    integrate::Options o;
+    o.method = integrate::method_from_name(method);
+    o.rtol = rtol;
+    o.atol = atol;
+    o.t_eval = std::move(t_eval);
+    o.every_step = every_step;
+    o.max_steps = max_steps;
+    o.first_step = first_step;
+    o.max_step = max_step;
+    return o;
+}
+
+template <class System>
+typename System::State to_state(const Eigen::VectorXd& y0) {
+    if (y0.size() != System::dim)
+        throw std::invalid_argument("initial state has " + std::to_string(y0.size()) + " components; this model needs " +
+                                    std::to_string(System::dim));
+    return y0;
+}
+
+integrate::Result solve_model(const FullModel& model, const Eigen::VectorXd& y0, double t0, double t1,
+                              const integrate::Options& o) {
+    return std::visit(
+        [&](const auto& system) {
+            using System = std::decay_t<decltype(system)>;
+            return integrate::solve(system, t0, to_state<System>(y0), t1, o);
+        },
+        model.system);
+}
+
+template <class System>
+std::vector<integrate::Result> ensemble_of(const std::vector<const FullModel*>& models, const Eigen::MatrixXd& y0s,
+                                           double t0, double t1, const integrate::Options& o, int threads) {
+    std::vector<System> systems;
+    for (const FullModel* m : models) systems.push_back(std::get<System>(m->system));
+    std::vector<typename System::State> starts;
+    for (Eigen::Index i = 0; i < y0s.rows(); ++i) starts.push_back(to_state<System>(y0s.row(i).transpose()));
+    return solve_ensemble(systems, starts, t0, t1, o, threads);
+}
+
+}  // namespace
+
+void expose_integrate(py::module_& m) {
+    py::class_<FullModel>(m, "FullModel")
+        .def(py::init(&make_model), py::arg("body"), py::arg("torques"), py::arg("attitude") = false)
+        .def_property_readonly("dim", &FullModel::dim)
+        .def_property_readonly("attitude", [](const FullModel& fm) { return fm.system.index() == 1; })
+        .def("rhs",
+             [](const FullModel& fm, double t, const Eigen::VectorXd& y) {
+                 return std::visit(
+                     [&](const auto& s) -> Eigen::VectorXd {
+                         using S = std::decay_t<decltype(s)>;
+                         typename S::State dy;
+                         s.rhs(t, to_state<S>(y), dy);
+                         return dy;
+                     },
+                     fm.system);
+             },
+             py::arg("t"), py::arg("y"));
+
+    py::class_<integrate::Stats>(m, "Stats")
+        .def_readonly("steps", &integrate::Stats::steps)
+        .def_readonly("rhs_evals", &integrate::Stats::rhs_evals)
+        .def_readonly("rejected_steps", &integrate::Stats::rejected_steps)
+        .def_readonly("jacobian_evals", &integrate::Stats::jacobian_evals)
+        .def_readonly("nonlinear_conv_failures", &integrate::Stats::nonlinear_conv_failures)
+        .def_readonly("last_step", &integrate::Stats::last_step);
+
+    py::class_<integrate::Result>(m, "Result")
+        .def_readonly("method", &integrate::Result::method)
+        .def_property_readonly("t", [](const integrate::Result& r) { return as_array(r.t, r.t.size(), 1).attr("ravel")(); })
+        .def_property_readonly("y", [](const integrate::Result& r) { return as_array(r.y, r.t.size(), r.dim); })
+        .def_readonly("invariant_names", &integrate::Result::invariant_names)
+        .def_property_readonly("invariants", [](const integrate::Result& r) {
+            return as_array(r.invariants, r.t.size(), r.invariant_names.size());
+        })
+        .def_readonly("stats", &integrate::Result::stats)
+        .def_property_readonly("status", [](const integrate::Result& r) { return integrate::status_name(r.status); })
+        .def_readonly("message", &integrate::Result::message)
+        .def_property_readonly("success", &integrate::Result::success);
+
+    m.def(
+        "solve",
+        [](const FullModel& model, const Eigen::VectorXd& y0, double t0, double t1, const std::string& method, double rtol,
+           double atol, std::vector<double> t_eval, bool every_step, long max_steps, double first_step, double max_step) {
+            const auto o = make_options(method, rtol, atol, std::move(t_eval), every_step, max_steps, first_step, max_step);
+            py::gil_scoped_release release;
+            return solve_model(model, y0, t0, t1, o);
+        },
+        py::arg("model"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("method"), py::arg("rtol"),
+        py::arg("atol"), py::arg("t_eval"), py::arg("every_step"), py::arg("max_steps"), py::arg("first_step"),
+        py::arg("max_step"));
+
+    m.def(
+        "solve_ensemble",
+        [](const std::vector<const FullModel*>& models, const Eigen::MatrixXd& y0s, double t0, double t1,
+           const std::string& method, double rtol, double atol, std::vector<double> t_eval, bool every_step,
+           long max_steps, double first_step, double max_step, int threads) {
+            if (models.empty()) throw std::invalid_argument("solve_ensemble: no model given");
+            const int dim = models.front()->dim();
+            for (const FullModel* fm : models)
+                if (fm->dim() != dim)
+                    throw std::invalid_argument("solve_ensemble: all models must have the same state size (attitude on or off for all)");
+            const auto o = make_options(method, rtol, atol, std::move(t_eval), every_step, max_steps, first_step, max_step);
+            py::gil_scoped_release release;
+            if (dim == 3) return ensemble_of<model::Gyrostat<false>>(models, y0s, t0, t1, o, threads);
+            return ensemble_of<model::Gyrostat<true>>(models, y0s, t0, t1, o, threads);
+        },
+        py::arg("models"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("method"), py::arg("rtol"),
+        py::arg("atol"), py::arg("t_eval"), py::arg("every_step"), py::arg("max_steps"), py::arg("first_step"),
+        py::arg("max_step"), py::arg("threads"));
+
+    m.def("methods", &integrate::method_names);
+}
+
+}  // namespace gyrostat::bindings

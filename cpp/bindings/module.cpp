@@ -1,0 +1,12 @@
+// gyrostat._core: translation of types between Python and the C++ core; no physics here.
+#include "expose.hpp"
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "gyrostat C++ core: bodies, torques, models, integrators, ensembles";
+    gyrostat::bindings::expose_body(m);
+    gyrostat::bindings::expose_integrate(m);
+    gyrostat::bindings::expose_torque_free(m);
+#ifdef GYROSTAT_VERSION
+    m.attr("__version__") = GYROSTAT_VERSION;
+#endif
+}

@@ -1,0 +1,79 @@
+// One interface for every integrator: its options, its result, its statuses.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace gyrostat::integrate {
+
+enum class Method {
+    Dop853,          ///< fixed-size, allocation-free Dormand–Prince 8(5,3) with 7th-order dense output
+    CvodeBdf,        ///< CVODE variable-order BDF (stiff), Newton with dense Jacobian
+    CvodeAdams,      ///< CVODE variable-order Adams–Moulton (non-stiff), fixed-point iteration
+    ArkodeVerner6,   ///< ARKODE ERK, Verner 8-stage 6(5) table ARKODE_VERNER_8_5_6
+    ArkodeFehlberg8, ///< ARKODE ERK, Fehlberg 13-stage 8(7) table ARKODE_FEHLBERG_13_7_8
+};
+
+Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names
+const char* method_name(Method m);
+std::vector<std::string> method_names();
+bool method_is_explicit(Method m);
+
+struct Options {
+    Method method = Method::Dop853;
+    double rtol = 1e-8;
+    double atol = 1e-10;
+    /// Output times (monotone in the direction of integration, inside [t0, t1]). Empty: t0 and t1.
+    std::vector<double> t_eval;
+    /// Also record every accepted step (memory then grows with the steps: asked for explicitly).
+    bool every_step = false;
+    long max_steps = 1'000'000;                                   ///< over the whole run
+    double first_step = 0.0;                                      ///< 0: chosen by the method
+    double max_step = std::numeric_limits<double>::infinity();   ///< largest |h|
+};
+
+enum class Status {
+    Success = 0,
+    MaxStepsReached,     ///< the step budget ran out before t1
+    StepSizeUnderflow,   ///< the step fell below the resolution of t (or the method's minimum)
+    NonFiniteState,      ///< the state or its derivative became inf/NaN
+    SolverFailure,       ///< any other failure reported by SUNDIALS (convergence, setup)
+    InvalidInput,        ///< an ensemble member whose input was rejected (the others still run)
+};
+const char* status_name(Status s);
+
+struct Stats {
+    long steps = 0;
+    long rhs_evals = 0;
+    long rejected_steps = 0;   ///< error-test failures
+    long jacobian_evals = 0;
+    long nonlinear_conv_failures = 0;
+    double last_step = 0.0;    ///< size of the last accepted step (0 when none)
+};
+
+/// A trajectory: n output times, n×dim states (row-major), n×n_inv invariants.
+/// A failed run keeps everything up to the failure and says why in `message`.
+struct Result {
+    std::string method;
+    int dim = 0;
+    std::vector<double> t;
+    std::vector<double> y;
+    std::vector<std::string> invariant_names;
+    std::vector<double> invariants;
+    Stats stats;
+    Status status = Status::Success;
+    std::string message;
+
+    bool success() const { return status == Status::Success; }
+    std::size_t size() const { return t.size(); }
+};
+
+/// Checks rtol, atol, t0, t1, t_eval, max_steps, first_step, max_step; throws
+/// std::invalid_argument naming the bad value.
+void validate(const Options& options, double t0, double t1);
+
+/// The output times: t_eval or {t0, t1}.
+std::vector<double> output_times(const Options& options, double t0, double t1);
+
+}  // namespace gyrostat::integrate

@@ -1,0 +1,97 @@
+// What CVODE and ARKODE share: RAII ownership of SUNDIALS objects, the right-hand-side and
+// Jacobian adapters, an error handler that keeps SUNDIALS's messages, one flag checker.
+#pragma once
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "gyrostat/integrate/recorder.hpp"
+
+namespace gyrostat::integrate::sundials {
+
+/// Throws std::runtime_error("<call> failed with flag <flag>") when a set-up call fails.
+void check(int flag, const char* call);
+
+/// Owns a SUNContext.
+class Context {
+public:
+    Context();
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+    operator SUNContext() const { return ctx_; }
+
+private:
+    SUNContext ctx_ = nullptr;
+};
+
+struct VectorDeleter {
+    void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
+};
+using Vector = std::unique_ptr<_generic_N_Vector, VectorDeleter>;
+Vector make_vector(int n, SUNContext ctx);
+
+/// Collects SUNDIALS's error and warning messages instead of letting them reach stderr.
+struct ErrorLog {
+    std::string last_error;
+    long warnings = 0;
+    std::string last_warning;
+    bool step_below_resolution = false;  ///< SUNDIALS warned "t + h = t"
+    static void handler(int error_code, const char* module, const char* function, char* msg, void* data);
+};
+
+/// What the C callbacks see: the system and whether a non-finite derivative was met.
+template <class System>
+struct CallbackData {
+    const System* system = nullptr;
+    bool non_finite = false;
+    double t_non_finite = 0.0;
+};
+
+template <class System>
+using StateMap = Eigen::Map<const typename System::State>;
+
+/// y' = f(t, y) for SUNDIALS. A non-finite derivative is a recoverable failure (the solver retries
+/// with a smaller step); if it persists, the run ends with NonFiniteState.
+template <class System>
+int rhs_callback(double t, N_Vector y, N_Vector ydot, void* user_data) {
+    auto* data = static_cast<CallbackData<System>*>(user_data);
+    typename System::State dy;
+    data->system->rhs(t, StateMap<System>(N_VGetArrayPointer(y)), dy);
+    Eigen::Map<typename System::State>(N_VGetArrayPointer(ydot)) = dy;
+    if (!all_finite(dy)) {
+        data->non_finite = true;
+        data->t_non_finite = t;
+        return 1;
+    }
+    return 0;
+}
+
+/// Dense ∂f/∂y for CVODE's Newton iteration (SUNDenseMatrix is column-major, like Eigen).
+template <class System>
+int jacobian_callback(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user_data, N_Vector, N_Vector,
+                      N_Vector) {
+    auto* data = static_cast<CallbackData<System>*>(user_data);
+    typename System::Jacobian j;
+    data->system->jacobian(t, StateMap<System>(N_VGetArrayPointer(y)), j);
+    Eigen::Map<typename System::Jacobian>(SM_DATA_D(jac)) = j;
+    return all_finite(Eigen::Map<const Eigen::VectorXd>(j.data(), j.size())) ? 0 : 1;
+}
+
+/// Post-step projection (ARKODE): keeps constrained parts (a quaternion) on their manifold.
+template <class System>
+int project_callback(double /*t*/, N_Vector y, void* user_data) {
+    auto* data = static_cast<CallbackData<System>*>(user_data);
+    Eigen::Map<typename System::State> state(N_VGetArrayPointer(y));
+    typename System::State projected = state;
+    data->system->project(projected);
+    state = projected;
+    return 0;
+}
+
+}  // namespace gyrostat::integrate::sundials

@@ -1,0 +1,25 @@
+// A linear damping torque with a full 3x3 coefficient matrix.
+#pragma once
+
+#include "gyrostat/body.hpp"
+
+namespace gyrostat::torque {
+
+/// M = −D ω with a constant 3×3 matrix D in body axes (paper 001: D = ε diag(I1, I1, I3);
+/// paper 002: D = ε I with a full resistance tensor I).
+/// D need not be symmetric; its symmetric part decides whether energy is dissipated:
+/// d(ω·Jω/2)/dt = −ω·Dω. Assumptions: none; it does not need the attitude.
+struct LinearDamping {
+    Mat3 matrix = Mat3::Zero();
+
+    explicit LinearDamping(const Mat3& d) : matrix(d) {
+        require_finite(Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data()), "LinearDamping: matrix D (column-major)");
+    }
+
+    Vec3 operator()(double /*t*/, const Vec3& omega) const { return -matrix * omega; }
+    /// ∂M/∂ω = −D.
+    void add_jacobian(double /*t*/, const Vec3& /*omega*/, Mat3& dM_domega) const { dM_domega -= matrix; }
+    static constexpr const char* name = "linear_damping";
+};
+
+}  // namespace gyrostat::torque

@@ -1,0 +1,88 @@
+"""Plots of a scene's results (matplotlib, written to PNG files)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from gyrostat.solution import Solution  # noqa: E402
+
+
+def _finish(fig, path: Path) -> Path:
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def omega(solution: Solution, title: str, path: Path, reference: Solution | None = None) -> Path:
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for i, name in enumerate(("p", "q", "r")):
+        ax.plot(solution.t, solution.omega[:, i], label=f"{name} ({solution.method})")
+        if reference is not None:
+            ax.plot(reference.t, reference.omega[:, i], "k:", lw=1, label=f"{name} (closed form)" if i == 0 else None)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("angular velocity in body axes [rad/s]")
+    ax.set_title(title)
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(alpha=0.3)
+    return _finish(fig, path)
+
+
+def invariants(solution: Solution, title: str, path: Path) -> Path:
+    fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+    labels = {"angular_momentum_norm": ("|G|", "kg m²/s"), "kinetic_energy": ("T", "J")}
+    for ax, (name, values) in zip(axes, solution.invariants.items()):
+        symbol, unit = labels.get(name, (name, "1"))
+        ax.plot(solution.t, values, label=symbol)
+        ax.set_ylabel(f"{symbol} [{unit}]")
+        ax.grid(alpha=0.3)
+        ax.legend(loc="upper right", fontsize=8)
+    axes[-1].set_xlabel("t [s]")
+    axes[0].set_title(f"{title}: invariants")
+    return _finish(fig, path)
+
+
+def euler_angles(solution: Solution, title: str, path: Path) -> Path:
+    angles = np.unwrap(solution.euler_angles(), axis=0)
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for i, name in enumerate(("ψ (precession)", "θ (nutation)", "φ (proper rotation)")):
+        ax.plot(solution.t, angles[:, i], label=name)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("Euler angles z-x-z [rad]")
+    ax.set_title(f"{title}: attitude")
+    ax.legend(loc="upper left", fontsize=8)
+    ax.grid(alpha=0.3)
+    return _finish(fig, path)
+
+
+def error(solution: Solution, reference: Solution, title: str, path: Path) -> Path:
+    fig, ax = plt.subplots(figsize=(8, 4))
+    err = np.linalg.norm(solution.omega - reference.omega, axis=1)
+    ax.semilogy(solution.t, np.maximum(err, 1e-18), label=f"|ω − ω_closed form| ({solution.method})")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("error [rad/s]")
+    ax.set_title(f"{title}: error against the closed form")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    return _finish(fig, path)
+
+
+def draw_scene(scene, solution: Solution, folder: Path, reference: Solution | None = None) -> list[Path]:
+    files = []
+    for plot in scene.plots:
+        path = folder / f"{plot}.png"
+        if plot == "omega":
+            files.append(omega(solution, scene.title, path, reference))
+        elif plot == "invariants":
+            files.append(invariants(solution, scene.title, path))
+        elif plot == "euler_angles" and solution.y.shape[1] >= 7:
+            files.append(euler_angles(solution, scene.title, path))
+        elif plot == "error" and reference is not None:
+            files.append(error(solution, reference, scene.title, path))
+    return files

@@ -1,0 +1,142 @@
+"""Runs a scene: solves it with the model it needs, saves the arrays, draws the plots."""
+
+from __future__ import annotations
+
+import csv
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from gyrostat.scene import Scene
+from gyrostat.solution import Solution
+from gyrostat.solve import solve, torque_free
+
+UNITS = {
+    "t": "s",
+    "p": "rad/s", "q": "rad/s", "r": "rad/s",
+    "q_w": "1", "q_x": "1", "q_y": "1", "q_z": "1",
+    "angular_momentum_norm": "kg m^2/s",
+    "kinetic_energy": "J",
+    "psi": "rad", "theta": "rad", "phi": "rad",
+}
+PROGRESS_CHUNKS = 10
+
+
+def _progress(message: str) -> None:
+    print(message, file=sys.stderr, flush=True)
+
+
+def solve_scene(scene: Scene, progress: bool = True) -> tuple[Solution, dict]:
+    """Solves a scene with the cheapest adequate model; returns the solution and a report."""
+    choice, reason = scene.choose_model()
+    t_eval = np.linspace(scene.t_span[0], scene.t_span[1], scene.n_out)
+    started = time.perf_counter()
+    if choice == "closed_form":
+        solution = torque_free(scene.body, scene.omega0, t_eval)
+    else:
+        model = scene.model()
+        y0 = np.concatenate([scene.omega0, scene.attitude0 if scene.attitude0 is not None else [1.0, 0, 0, 0]]) \
+            if model.attitude else scene.omega0
+        solution = _solve_in_chunks(scene, model, y0, t_eval, progress)
+    elapsed = time.perf_counter() - started
+    report = {
+        "scene": scene.name,
+        "title": scene.title,
+        "model": choice,
+        "model_reason": reason,
+        "method": solution.method,
+        "rtol": scene.rtol,
+        "atol": scene.atol,
+        "status": solution.status,
+        "message": solution.message,
+        "stats": solution.stats,
+        "seconds": elapsed,
+        "invariant_relative_change": {
+            name: float((values[-1] - values[0]) / values[0]) if values[0] != 0 else float(values[-1])
+            for name, values in solution.invariants.items()
+        },
+        "notes": solution.notes,
+    }
+    return solution, report
+
+
+def _solve_in_chunks(scene, model, y0, t_eval, progress) -> Solution:
+    """One call for short runs; for long ones, chunks of outputs with progress lines on stderr.
+    Each chunk starts from the last state with the last step size, so the step sequence goes on."""
+    chunks = np.array_split(np.arange(t_eval.size), PROGRESS_CHUNKS) if t_eval.size >= 200 else [np.arange(t_eval.size)]
+    pieces: list[Solution] = []
+    state, first_step = y0, 0.0
+    for k, idx in enumerate(chunks):
+        times = t_eval[idx[0] - (1 if k else 0): idx[-1] + 1]
+        piece = solve(model, state, (times[0], times[-1]), method=scene.method, rtol=scene.rtol, atol=scene.atol,
+                      t_eval=times, first_step=first_step)
+        pieces.append(piece if k == 0 else _drop_first(piece))
+        if not piece.success or piece.t.size == 0:
+            break
+        state, first_step = piece.y[-1], piece.stats["last_step"]
+        if progress and len(chunks) > 1:
+            _progress(f"[{scene.name}] {100 * (k + 1) // len(chunks):3d}%  t = {times[-1]:.6g}")
+    return _concatenate(pieces)
+
+
+def _drop_first(s: Solution) -> Solution:
+    return Solution(s.t[1:], s.y[1:], {k: v[1:] for k, v in s.invariants.items()}, s.stats, s.status, s.message,
+                    s.method, s.notes)
+
+
+def _concatenate(pieces: list[Solution]) -> Solution:
+    last = pieces[-1]
+    stats = {key: sum(p.stats[key] for p in pieces) for key in last.stats if key != "last_step"}
+    stats["last_step"] = last.stats["last_step"]
+    return Solution(
+        t=np.concatenate([p.t for p in pieces]),
+        y=np.concatenate([p.y for p in pieces]),
+        invariants={k: np.concatenate([p.invariants[k] for p in pieces]) for k in last.invariants},
+        stats=stats, status=last.status, message=last.message, method=last.method, notes=last.notes,
+    )
+
+
+def save(solution: Solution, report: dict, names: tuple[str, ...], folder: Path) -> list[Path]:
+    """Writes result.csv (a column per quantity, units in the header), result.npz (the same
+    arrays by name, plus units) and report.json (model choice, solver statistics, status)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    columns = {"t": solution.t}
+    for i, name in enumerate(names):
+        columns[name] = solution.y[:, i]
+    columns.update(solution.invariants)
+    if solution.y.shape[1] >= 7:
+        for name, values in zip(("psi", "theta", "phi"), solution.euler_angles().T):
+            columns[name] = values
+    csv_path = folder / "result.csv"
+    with csv_path.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow([f"{name} [{UNITS.get(name, '1')}]" for name in columns])
+        writer.writerows(np.column_stack(list(columns.values())).tolist())
+    npz_path = folder / "result.npz"
+    np.savez(npz_path, **columns, units=json.dumps({name: UNITS.get(name, "1") for name in columns}))
+    json_path = folder / "report.json"
+    json_path.write_text(json.dumps(report, indent=2, default=float) + "\n")
+    return [csv_path, npz_path, json_path]
+
+
+def run_scene(path: str | Path, out_dir: str | Path, progress: bool = True) -> dict:
+    """Loads, solves, saves and plots one scene; returns its report."""
+    from gyrostat import plots
+
+    scene = Scene.from_toml(path)
+    solution, report = solve_scene(scene, progress=progress)
+    folder = Path(out_dir) / scene.name
+    names = ("p", "q", "r", "q_w", "q_x", "q_y", "q_z")[: solution.y.shape[1]]
+    files = save(solution, report, names, folder)
+    reference = None
+    if scene.reference == "closed_form":
+        reference = torque_free(scene.body, scene.omega0, solution.t)
+        error = np.max(np.linalg.norm(solution.omega - reference.omega, axis=1))
+        report["max_error_vs_closed_form"] = float(error)
+        (folder / "report.json").write_text(json.dumps(report, indent=2, default=float) + "\n")
+    files += plots.draw_scene(scene, solution, folder, reference=reference)
+    report["files"] = [str(f) for f in files]
+    return report

@@ -1,0 +1,89 @@
+"""Scenes and the command line: every shipped scene runs, saves named arrays with units, plots."""
+
+import csv
+import json
+
+import numpy as np
+import pytest
+
+import gyrostat as g
+from gyrostat.cli import example_scenes, main
+from gyrostat.scene import Scene
+from references import euler_poinsot
+
+
+def test_examples_run_and_write_results(tmp_path, capsys):
+    assert main(["examples", "--out", str(tmp_path), "--quiet"]) == 0
+    names = [p.stem for p in example_scenes()]
+    assert {"torque_free_triaxial", "torque_free_integrated", "forced_damped"} <= set(names)
+    for name in names:
+        folder = tmp_path / name
+        report = json.loads((folder / "report.json").read_text())
+        assert report["status"] == "success"
+        with (folder / "result.csv").open() as handle:
+            header = next(csv.reader(handle))
+        assert header[:4] == ["t [s]", "p [rad/s]", "q [rad/s]", "r [rad/s]"]
+        data = np.load(folder / "result.npz")
+        assert json.loads(str(data["units"]))["kinetic_energy"] == "J"
+        assert (folder / "omega.png").stat().st_size > 10_000
+    out = capsys.readouterr().out
+    assert "model: closed_form" in out
+
+
+def test_closed_form_scene_values(tmp_path):
+    main(["run", str(next(p for p in example_scenes() if p.stem == "torque_free_triaxial")), "--out", str(tmp_path),
+          "--quiet"])
+    data = np.load(tmp_path / "torque_free_triaxial" / "result.npz")
+    exact = euler_poinsot([1, 2, 3], [1.0, 0.5, -0.3], data["t"])
+    # closed form (GSL) against the test's SciPy closed form: rounding of the elliptic functions
+    assert np.max(np.abs(np.column_stack([data["p"], data["q"], data["r"]]) - exact)) < 1e-11
+
+
+def test_integrated_scene_reports_error_against_closed_form(tmp_path):
+    path = next(p for p in example_scenes() if p.stem == "torque_free_integrated")
+    main(["run", str(path), "--out", str(tmp_path), "--quiet"])
+    report = json.loads((tmp_path / "torque_free_integrated" / "report.json").read_text())
+    assert report["model"] == "full"
+    # 200 periods at rtol 1e-10 with dop853: measured 2.3e-7 (global error grows with the periods)
+    assert report["max_error_vs_closed_form"] < 1e-6
+
+
+def test_auto_model_choice():
+    base = {"body": {"moments": [1, 2, 3]}, "initial": {"omega": [1, 0, 0.1]},
+            "integration": {"t_span": [0, 1]}}
+    assert Scene.from_dict(base).choose_model()[0] == "closed_form"
+    forced = dict(base, torques=[{"type": "constant", "moment": [0, 0, 1]}])
+    choice, reason = Scene.from_dict(forced).choose_model()
+    assert choice == "full" and "1 torque" in reason
+    rotor = dict(base, body={"moments": [1, 2, 3], "rotor": [0, 0, 0.5]})
+    assert Scene.from_dict(rotor).choose_model()[0] == "full"
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"body": {"moments": [1, 2]}}, "body.moments must have 3 numbers"),
+        ({"body": {"moments": [1, 1, 5]}}, "triangle inequality"),
+        ({"torques": [{"type": "magnetic"}]}, "torques\\[0\\].type = 'magnetic'"),
+        ({"integration": {"t_span": [0, 1], "model": "averaged"}}, "integration.model = 'averaged'"),
+        ({"outputs": {"plots": ["spectrum"]}}, "'spectrum' is not one of"),
+    ],
+)
+def test_bad_scenes(change, message):
+    base = {"body": {"moments": [1, 2, 3]}, "initial": {"omega": [1, 0, 0.1]},
+            "integration": {"t_span": [0, 1]}}
+    base.update(change)
+    with pytest.raises(ValueError, match=message):
+        Scene.from_dict(base)
+
+
+def test_cli_reports_a_bad_file(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[body\nmoments = 1")
+    assert main(["run", str(bad), "--out", str(tmp_path)]) == 1
+    assert "not valid TOML" in capsys.readouterr().err
+
+
+def test_methods_command(capsys):
+    assert main(["methods"]) == 0
+    assert capsys.readouterr().out.split() == list(g.METHODS)
