@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
     const std::vector<double> tolerances =
         quick ? std::vector<double>{1e-6, 1e-10} : std::vector<double>{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
-    const std::vector<Method> all = {Method::Dop853, Method::CvodeAdams, Method::CvodeBdf, Method::ArkodeFehlberg8,
+    const std::vector<Method> all = {Method::Taylor, Method::Dop853, Method::CvodeAdams, Method::CvodeBdf, Method::ArkodeFehlberg8,
                                      Method::ArkodeVerner6};
     std::printf("problem,method,rtol,error,steps,rhs_evals,seconds\n");
 

@@ -49,7 +49,7 @@ def test_damping_decreases_momentum_and_energy():
     np.testing.assert_allclose(T - T[0], -integral, atol=1e-5)
 
 
-@pytest.mark.parametrize("method", ["dop853", "cvode_bdf", "arkode_fehlberg8"])
+@pytest.mark.parametrize("method", ["dop853", "taylor", "cvode_bdf", "arkode_fehlberg8"])
 def test_quaternion_norm_kept(method):
     sol = g.solve(g.Model(BODY, attitude=True), OMEGA0, (0, 200), method=method, rtol=1e-9)
     assert sol.success

@@ -20,6 +20,7 @@ constexpr NamedMethod kMethods[] = {
     {"cvode_adams", Method::CvodeAdams, false},
     {"arkode_verner6", Method::ArkodeVerner6, true},
     {"arkode_fehlberg8", Method::ArkodeFehlberg8, true},
+    {"taylor", Method::Taylor, true},
 };
 
 }  // namespace

@@ -14,7 +14,9 @@ from gyrostat.solution import Solution
 
 METHODS: tuple[str, ...] = tuple(_core.methods())
 """Integrators: ``dop853`` (fixed-size, allocation-free; the default for non-stiff problems),
-``cvode_bdf`` (stiff), ``cvode_adams``, ``arkode_verner6``, ``arkode_fehlberg8``."""
+``taylor`` (adaptive-order Taylor series for the polynomial right-hand sides of the gyrostat
+with constant and linear torques: the fastest at tight tolerances), ``cvode_bdf`` (stiff),
+``cvode_adams``, ``arkode_fehlberg8``, ``arkode_verner6`` (see docs/integrators.md)."""
 
 
 def _output_times(t_span, t_eval, n_out) -> tuple[float, float, list[float]]:

@@ -48,7 +48,7 @@ int main() {
     // times 10: a regression of one order of magnitude fails.
     const std::pair<Method, double> bounds[] = {{Method::Dop853, 4e-8},        {Method::CvodeBdf, 2.3e-6},
                                                 {Method::CvodeAdams, 3.5e-6},   {Method::ArkodeVerner6, 1.1e-4},
-                                                {Method::ArkodeFehlberg8, 8e-9}};
+                                                {Method::ArkodeFehlberg8, 8e-9},  {Method::Taylor, 8e-9}};
     for (const auto& [m, bound] : bounds) {
         integrate::Options o;
         o.method = m;

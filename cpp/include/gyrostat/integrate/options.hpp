@@ -13,6 +13,7 @@ enum class Method {
     CvodeAdams,      ///< CVODE variable-order Adams–Moulton (non-stiff), fixed-point iteration
     ArkodeVerner6,   ///< ARKODE ERK, Verner 8-stage 6(5) table ARKODE_VERNER_8_5_6
     ArkodeFehlberg8, ///< ARKODE ERK, Fehlberg 13-stage 8(7) table ARKODE_FEHLBERG_13_7_8
+    Taylor,          ///< Taylor series of adaptive order (polynomial right-hand sides only)
 };
 
 Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names

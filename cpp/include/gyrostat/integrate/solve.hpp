@@ -4,6 +4,7 @@
 #include "gyrostat/integrate/arkode.hpp"
 #include "gyrostat/integrate/cvode.hpp"
 #include "gyrostat/integrate/dop853.hpp"
+#include "gyrostat/integrate/taylor.hpp"
 
 namespace gyrostat::integrate {
 
@@ -18,6 +19,7 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
         case Method::ArkodeVerner6: return arkode_erk(system, t0, y0, t1, options, ARKODE_VERNER_8_5_6, options.method);
         case Method::ArkodeFehlberg8:
             return arkode_erk(system, t0, y0, t1, options, ARKODE_FEHLBERG_13_7_8, options.method);
+        case Method::Taylor: return taylor(system, t0, y0, t1, options);
     }
     throw std::invalid_argument("unknown integration method");
 }

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <array>
+#include <string>
+#include <utility>
 #include <cmath>
+#include <stdexcept>
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/set.hpp"
@@ -34,6 +37,7 @@ public:
     static constexpr int dim = WithAttitude ? 7 : 3;
     static constexpr bool has_jacobian = true;
     static constexpr bool has_projection = WithAttitude;
+    static constexpr bool has_taylor = true;  // the right-hand side is a quadratic polynomial
     static constexpr int n_invariants = 2;
     using State = Eigen::Matrix<double, dim, 1>;
     using Jacobian = Eigen::Matrix<double, dim, dim>;
@@ -77,6 +81,96 @@ public:
             // d(q̇)/d(q): ½ right-multiplication matrix of (0, ω)
             jac.template block<4, 4>(3, 3) << 0, -p, -q, -r, p, 0, r, -q, q, -r, 0, p, r, q, -p, 0;
             jac.template block<4, 4>(3, 3) *= 0.5;
+        }
+    }
+
+    /// Taylor coefficients y[0..order] of the solution through y(t): y(t + h) = Σ y[n] hⁿ.
+    /// The right-hand side is quadratic, so each order is a Cauchy product of earlier ones.
+    /// In Euler's form, with (i, j, k) cyclic and P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m]:
+    ///   A_i ω_i[n+1] = ((A_j − A_k) P_jk[n] − (ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}) / (n + 1)
+    ///   (torques affine in ω: M = M0 − D ω),
+    ///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
+    /// `coefficients` has room for order + 1 states; coefficients[0] = y. The order is a
+    /// compile-time constant, so the short nested loops unroll completely.
+    static constexpr int max_taylor_order = 30;
+
+    template <int order>
+    void taylor_coefficients(double /*t*/, const State& y, State* coefficients) const {
+        const Vec3& J = body_.moments();
+        const Vec3& J_inv = body_.inverse_moments();
+        const Vec3& k = body_.rotor();
+        const bool damped = torques_.has_damping();
+        const Mat3 D = damped ? Mat3(-torques_.jacobian(0.0, Vec3::Zero())) : Mat3::Zero();
+        const Vec3 M0 = torques_.total(0.0, Vec3::Zero());
+        const double a1 = J[1] - J[2], a2 = J[2] - J[0], a3 = J[0] - J[1];
+        const bool has_rotor = k.squaredNorm() != 0.0;
+        double w1[order + 1], w2[order + 1], w3[order + 1];
+        w1[0] = y[0], w2[0] = y[1], w3[0] = y[2];
+        coefficients[0] = y;
+#pragma GCC unroll 32
+        for (int n = 0; n < order; ++n) {
+            // Products j·k summed in pairs from both ends (terms m and n − m share their
+            // factors' loads), with two partial sums to shorten the chain of dependent additions.
+            double p23 = 0.0, p31 = 0.0, p12 = 0.0, q23 = 0.0, q31 = 0.0, q12 = 0.0;
+#pragma GCC unroll 16
+            for (int m = 0; m < (n + 1) / 2; ++m) {
+                const int r = n - m;
+                p23 += w2[m] * w3[r];
+                q23 += w2[r] * w3[m];
+                p31 += w3[m] * w1[r];
+                q31 += w3[r] * w1[m];
+                p12 += w1[m] * w2[r];
+                q12 += w1[r] * w2[m];
+            }
+            if (n % 2 == 0) {  // the middle term m = n/2
+                const int m = n / 2;
+                p23 += w2[m] * w3[m];
+                p31 += w3[m] * w1[m];
+                p12 += w1[m] * w2[m];
+            }
+            p23 += q23;
+            p31 += q31;
+            p12 += q12;
+            // Scalar code: Eigen temporaries here cost store-forwarding stalls in this hot loop.
+            const double w_n[3] = {w1[n], w2[n], w3[n]};
+            double r1 = a1 * p23, r2 = a2 * p31, r3 = a3 * p12;
+            if (has_rotor) {  // − ω[n] × k
+                r1 -= w_n[1] * k[2] - w_n[2] * k[1];
+                r2 -= w_n[2] * k[0] - w_n[0] * k[2];
+                r3 -= w_n[0] * k[1] - w_n[1] * k[0];
+            }
+            if (damped) {  // − D ω[n]
+                r1 -= D(0, 0) * w_n[0] + D(0, 1) * w_n[1] + D(0, 2) * w_n[2];
+                r2 -= D(1, 0) * w_n[0] + D(1, 1) * w_n[1] + D(1, 2) * w_n[2];
+                r3 -= D(2, 0) * w_n[0] + D(2, 1) * w_n[1] + D(2, 2) * w_n[2];
+            }
+            if (n == 0) r1 += M0[0], r2 += M0[1], r3 += M0[2];
+            const double inv = 1.0 / (n + 1);
+            w1[n + 1] = r1 * J_inv[0] * inv;
+            w2[n + 1] = r2 * J_inv[1] * inv;
+            w3[n + 1] = r3 * J_inv[2] * inv;
+            State& next = coefficients[n + 1];
+            next[0] = w1[n + 1];
+            next[1] = w2[n + 1];
+            next[2] = w3[n + 1];
+            if constexpr (WithAttitude) {
+                double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+                for (int m = 0; m <= n; ++m) {
+                    const State& qm = coefficients[m];
+                    const State& wm = coefficients[n - m];
+                    const double qw = qm[3], qx = qm[4], qy = qm[5], qz = qm[6];
+                    const double p = wm[0], q = wm[1], r = wm[2];
+                    s0 += -qx * p - qy * q - qz * r;
+                    s1 += qw * p + qy * r - qz * q;
+                    s2 += qw * q + qz * p - qx * r;
+                    s3 += qw * r + qx * q - qy * p;
+                }
+                const double half = 0.5 * inv;
+                coefficients[n + 1][3] = half * s0;
+                coefficients[n + 1][4] = half * s1;
+                coefficients[n + 1][5] = half * s2;
+                coefficients[n + 1][6] = half * s3;
+            }
         }
     }
 

@@ -1,0 +1,150 @@
+// Taylor-series integrator for systems whose right-hand side is polynomial, so that the Taylor
+// coefficients of the solution follow from a recursion (automatic differentiation) instead of
+// stage evaluations. Order and step size as in Jorba & Zou (2005), "A software package for the
+// numerical integration of ODEs by means of high-order Taylor methods", §3.2 (as heyoka does):
+//   order p = ⌈−½ ln ε⌉ + 1,
+//   ρ_m = (1/‖y[m]‖∞)^{1/m}       (absolute mode, rtol·‖y‖∞ ≤ atol, ε = atol),
+//   ρ_m = (‖y‖∞/‖y[m]‖∞)^{1/m}    (relative mode, ε = rtol),
+//   h = min(ρ_{p−1}, ρ_p) / e² · exp(−0.7/(p − 1)).
+// No step is rejected; outputs inside a step evaluate the Taylor polynomial (Horner).
+// A system opts in with `has_taylor = true`, `max_taylor_order` and
+//   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "gyrostat/integrate/options.hpp"
+#include "gyrostat/integrate/recorder.hpp"
+
+namespace gyrostat::integrate {
+
+namespace taylor_detail {
+
+/// min(ρ_{p−1}, ρ_p)·safety with ρ_m = (s/c_m)^{1/m}, in base-2 logarithms (log2 and exp2 are
+/// several times cheaper than pow, which otherwise dominates a step of a small system).
+inline double step_size(double scale, double c_low, double c_high, int order, double safety) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const double log_scale = std::log2(scale);
+    const double low = c_low == 0.0 ? inf : (log_scale - std::log2(c_low)) / (order - 1);
+    const double high = c_high == 0.0 ? inf : (log_scale - std::log2(c_high)) / order;
+    return safety * std::exp2(std::min(low, high));
+}
+
+/// One step of fixed order: coefficients, step size, outputs inside the step, the new state.
+/// Returns false when the coefficients are not finite (h then holds NaN).
+template <int Order, class System>
+struct Step {
+    using State = typename System::State;
+    static bool run(const System& system, double t, State& y, double t1, double direction, double scale,
+                    double safety, double max_step, double& h, const std::vector<double>& outputs, std::size_t& next,
+                    Recorder<System>& record) {
+        State c[Order + 1];
+        system.template taylor_coefficients<Order>(t, y, c);
+        h = step_size(scale, c[Order - 1].cwiseAbs().maxCoeff(), c[Order].cwiseAbs().maxCoeff(), Order, safety);
+        if (!all_finite(c[Order]) || std::isnan(h)) {
+            h = std::numeric_limits<double>::quiet_NaN();
+            return false;
+        }
+        h = std::min({h, max_step, std::abs(t1 - t)});
+        auto evaluate = [&](double dt) {
+            State value = c[Order];
+#pragma GCC unroll 32
+            for (int n = Order - 1; n >= 0; --n) value = value * dt + c[n];
+            return value;
+        };
+        const double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
+        while (next < outputs.size() && direction * (outputs[next] - t_new) < 0.0) {
+            record.push(outputs[next], evaluate(outputs[next] - t));
+            ++next;
+        }
+        y = evaluate(t_new - t);
+        h = t_new - t;
+        return true;
+    }
+};
+
+template <class System, int... Orders>
+constexpr auto step_table(std::integer_sequence<int, Orders...>) {
+    using Fn = decltype(&Step<2, System>::run);
+    return std::array<Fn, sizeof...(Orders)>{&Step<(Orders < 2 ? 2 : Orders), System>::run...};
+}
+
+}  // namespace taylor_detail
+
+template <class System>
+Result taylor(const System& system, double t0, const typename System::State& y0, double t1, const Options& options) {
+    using State = typename System::State;
+    validate(options, t0, t1);
+    require_finite(y0, "initial state y0");
+    Result result;
+    result.method = method_name(Method::Taylor);
+    if constexpr (!System::has_taylor) {
+        throw std::invalid_argument("method 'taylor' needs a model with a polynomial right-hand side that provides "
+                                    "Taylor coefficients; use dop853 for this model");
+    } else {
+        constexpr int max_order = System::max_taylor_order;
+        static constexpr auto steps =
+            taylor_detail::step_table<System>(std::make_integer_sequence<int, max_order + 1>{});
+        const std::vector<double> outputs = output_times(options, t0, t1);
+        Recorder<System> record(system, result, outputs.size());
+        std::size_t next = 0;
+        const double direction = t1 >= t0 ? 1.0 : -1.0;
+        Stats& stats = result.stats;
+        double t = t0;
+        State y = y0;
+        system.project(y);
+        while (next < outputs.size() && outputs[next] == t0) record.push(t0, y), ++next;
+        int order = 0;
+        double eps_of_order = -1.0, safety = 0.0;
+
+        while (direction * (t - t1) < 0.0) {
+            if (stats.steps >= options.max_steps) {
+                result.status = Status::MaxStepsReached;
+                result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
+                                 " before t1 = " + format_number(t1) + ".";
+                return result;
+            }
+            const double norm = y.cwiseAbs().maxCoeff();
+            const bool relative = options.rtol * norm > options.atol;
+            const double eps = std::max(relative ? options.rtol : options.atol, 1e-300);
+            if (eps != eps_of_order) {  // changes only when the mode (absolute/relative) switches
+                order = std::clamp(static_cast<int>(std::ceil(-0.5 * std::log(eps))) + 1, 2, max_order);
+                safety = std::exp(-0.7 / (order - 1)) / (M_E * M_E);
+                eps_of_order = eps;
+            }
+            const double t_before = t;
+            const State y_before = y;
+            double h = 0.0;
+            if (!steps[order](system, t, y, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
+                              next, record)) {
+                result.status = Status::NonFiniteState;
+                result.message = "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(t, 17) +
+                                 ": the solution overflows or leaves the model's domain there";
+                return result;
+            }
+            ++stats.rhs_evals;  // one evaluation of the coefficient recursion per step
+            const double min_step = 10.0 * std::abs(std::nextafter(t, direction * std::numeric_limits<double>::infinity()) - t);
+            if (std::abs(h) < min_step && t + h != t1) {
+                y = y_before;
+                result.status = Status::StepSizeUnderflow;
+                result.message = "step size underflow at t = " + format_number(t_before, 17) + ": the step needed (" +
+                                 format_number(std::abs(h)) + ") is below the resolution of t.";
+                return result;
+            }
+            system.project(y);
+            ++stats.steps;
+            stats.last_step = std::abs(h);
+            t = (std::abs(t1 - t) <= std::abs(h)) ? t1 : t + h;
+            bool recorded = false;
+            while (next < outputs.size() && outputs[next] == t) record.push(t, y), ++next, recorded = true;
+            if (options.every_step && !recorded) record.push(t, y);
+        }
+    }
+    return result;
+}
+
+}  // namespace gyrostat::integrate
