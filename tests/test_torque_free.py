@@ -17,7 +17,7 @@ OMEGA0 = [1.0, 0.5, -0.3]
 #   dop853: K ≈ 1.3 (short) … 160 (long; its local error estimate is sharp);
 #   cvode_*: variable-order multistep with looser error control, K up to 2.8e4 at 2000 periods;
 #   arkode_fehlberg8: K ≤ 24;
-#   taylor: K ≤ 4.9 (Jorba–Zou step control is conservative);
+#   taylor: K ≤ 274 (steps sized for a local error of rtol: docs/integrators.md);
 #   arkode_verner6: the ARKODE_VERNER_8_5_6 table of SUNDIALS 6.4 converges at order 3, not 6
 #     (docs/integrators.md), hence K up to 1e6 at tight tolerances.
 PER_PERIOD_FACTOR = {
@@ -26,7 +26,7 @@ PER_PERIOD_FACTOR = {
     "cvode_adams": 5e4,
     "arkode_verner6": 5e6,
     "arkode_fehlberg8": 2e2,
-    "taylor": 30,  # measured K ≤ 4.9 (2000 periods, rtol 1e-6)
+    "taylor": 1.5e3,  # measured K ≤ 274 (2000 periods, rtol 1e-12)
 }
 
 
