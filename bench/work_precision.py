@@ -139,13 +139,15 @@ def chart(rows, problem, path, title):
 
     fig, ax = plt.subplots(figsize=(8.5, 5.5))
     methods = sorted({r["method"] for r in rows if r["problem"] == problem})
-    for method in methods:
+    colors = plt.cm.tab20(np.linspace(0, 1, 20))
+    for index, method in enumerate(methods):
         pts = sorted((r["error"], r["seconds"]) for r in rows if r["problem"] == problem and r["method"] == method
                      and r["error"] > 0)
         if not pts:
             continue
         style = "-o" if not method.startswith(("scipy", "heyoka")) else "--s"
-        ax.loglog([p[0] for p in pts], [p[1] for p in pts], style, ms=4, label=method)
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], style, ms=4, label=method,
+                  color=colors[(2 * index) % 20 + (index // 10)])
     ax.set_xlabel("error of the final state (max norm)")
     ax.set_ylabel("time per trajectory [s] (best of repeats)")
     ax.set_title(title)
@@ -156,14 +158,27 @@ def chart(rows, problem, path, title):
     plt.close(fig)
 
 
+def draw_charts(rows, out: Path) -> None:
+    chart(rows, "torque_free", out / "work_precision_torque_free.png",
+          "Torque-free triaxial body, 100 periods: work against precision")
+    chart(rows, "forced", out / "work_precision_forced.png", "Forced damped gyrostat with attitude, t = 200")
+    chart(rows, "stiff", out / "work_precision_stiff.png", "Stiff damping (D = 1e3 I), t = 10")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--bench-exe", default=str(HERE.parent / "build" / "bench" / "gyrostat_bench"))
     parser.add_argument("--quick", action="store_true", help="two tolerances only (a smoke run)")
     parser.add_argument("--out", default=str(HERE / "out"))
+    parser.add_argument("--replot", metavar="ROWS_CSV", help="only redraw the charts from a rows.csv of an earlier run")
     args = parser.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.replot:
+        with open(args.replot) as handle:
+            rows = [dict(r, error=float(r["error"]), seconds=float(r["seconds"])) for r in csv.DictReader(handle)]
+        draw_charts(rows, out)
+        return
 
     rows, references, comments = run_executable(args.bench_exe, args.quick)
     for c in comments:
@@ -177,10 +192,7 @@ def main():
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
-    chart(rows, "torque_free", out / "work_precision_torque_free.png",
-          "Torque-free triaxial body, 100 periods: work against precision")
-    chart(rows, "forced", out / "work_precision_forced.png", "Forced damped gyrostat with attitude, t = 200")
-    chart(rows, "stiff", out / "work_precision_stiff.png", "Stiff damping (D = 1e3 I), t = 10")
+    draw_charts(rows, out)
 
     # Ratios at equal error, anchored at the fastest of gyrostat's integrators at rtol 1e-10 on
     # the torque-free body (the error it reaches there is the "equal error").
