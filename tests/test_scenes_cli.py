@@ -65,7 +65,7 @@ def test_auto_model_choice():
         ({"body": {"moments": [1, 2]}}, "body.moments must have 3 numbers"),
         ({"body": {"moments": [1, 1, 5]}}, "triangle inequality"),
         ({"torques": [{"type": "magnetic"}]}, "torques\\[0\\].type = 'magnetic'"),
-        ({"integration": {"t_span": [0, 1], "model": "averaged"}}, "integration.model = 'averaged'"),
+        ({"integration": {"t_span": [0, 1], "model": "reduced"}}, "integration.model = 'reduced'"),
         ({"outputs": {"plots": ["spectrum"]}}, "'spectrum' is not one of"),
     ],
 )

@@ -9,6 +9,21 @@ namespace py = pybind11;
 
 namespace gyrostat::bindings {
 
+namespace {
+/// What every torque shares in Python: evaluation, its averaged contribution, its name.
+template <class Torque>
+py::class_<Torque> expose_torque(py::module_& m, const char* python_name) {
+    return py::class_<Torque>(m, python_name)
+        .def("__call__", [](const Torque& x, double t, const Vec3& w, const Vec3& moments) { return x(t, w, moments); },
+             py::arg("t"), py::arg("omega"), py::arg("moments"), "The torque in body axes at (t, omega) on a body with these moments.")
+        .def("averaged",
+             [](const Torque& x, double t, double a, double r, double A, double C) { return x.averaged(t, a, r, A, C); },
+             py::arg("t"), py::arg("a"), py::arg("r"), py::arg("A"), py::arg("C"),
+             "Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.")
+        .def_property_readonly_static("kind", [](py::object) { return std::string(Torque::name); });
+}
+}  // namespace
+
 void expose_body(py::module_& m) {
     py::class_<Body>(m, "Body")
         .def(py::init<const Vec3&, const Vec3&>(), py::arg("moments"), py::arg("rotor") = Vec3::Zero())
@@ -16,22 +31,36 @@ void expose_body(py::module_& m) {
         .def_property_readonly("rotor", &Body::rotor)
         .def("__repr__", &Body::describe);
 
-    py::class_<torque::Constant>(m, "ConstantTorque")
+    expose_torque<torque::Constant>(m, "ConstantTorque")
         .def(py::init<const Vec3&>(), py::arg("moment"))
-        .def_readonly("moment", &torque::Constant::moment)
-        .def("__call__", [](const torque::Constant& t, double time, const Vec3& w) { return t(time, w); },
-             py::arg("t"), py::arg("omega"))
-        .def("__repr__", [](const torque::Constant& t) {
-            return "ConstantTorque([" + std::to_string(t.moment[0]) + ", " + std::to_string(t.moment[1]) + ", " +
-                   std::to_string(t.moment[2]) + "])";
-        });
+        .def_readonly("moment", &torque::Constant::moment);
 
-    py::class_<torque::LinearDamping>(m, "LinearDamping")
+    expose_torque<torque::LinearDamping>(m, "LinearDamping")
         .def(py::init<const Mat3&>(), py::arg("matrix"))
-        .def_readonly("matrix", &torque::LinearDamping::matrix)
-        .def("__call__", [](const torque::LinearDamping& t, double time, const Vec3& w) { return t(time, w); },
-             py::arg("t"), py::arg("omega"))
-        .def("__repr__", [](const torque::LinearDamping&) { return std::string("LinearDamping(matrix=...)"); });
+        .def_readonly("matrix", &torque::LinearDamping::matrix);
+
+    expose_torque<torque::ResistiveMedium>(m, "ResistiveMedium")
+        .def(py::init<std::vector<Mat3>>(), py::arg("coefficients"))
+        .def_readonly("coefficients", &torque::ResistiveMedium::coefficients)
+        .def("at", &torque::ResistiveMedium::at, py::arg("t"));
+
+    expose_torque<torque::ViscousCavity>(m, "ViscousCavity")
+        .def(py::init<double, double, double>(), py::arg("density"), py::arg("viscosity"), py::arg("p0"))
+        .def_static("sphere", &torque::ViscousCavity::sphere, py::arg("density"), py::arg("viscosity"), py::arg("radius"))
+        .def_readonly("density", &torque::ViscousCavity::density)
+        .def_readonly("viscosity", &torque::ViscousCavity::viscosity)
+        .def_readonly("p0", &torque::ViscousCavity::p0)
+        .def_property_readonly("kappa", &torque::ViscousCavity::kappa)
+        .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius);
+
+    expose_torque<torque::MovingMassDamper>(m, "MovingMassDamper")
+        .def(py::init<double, double, double, double>(), py::arg("mass"), py::arg("arm"), py::arg("frequency"),
+             py::arg("damping"))
+        .def_readonly("mass", &torque::MovingMassDamper::mass)
+        .def_readonly("arm", &torque::MovingMassDamper::arm)
+        .def_readonly("frequency", &torque::MovingMassDamper::frequency)
+        .def_readonly("damping", &torque::MovingMassDamper::damping)
+        .def("S", &torque::MovingMassDamper::S, py::arg("A"), py::arg("C"));
 }
 
 }  // namespace gyrostat::bindings

@@ -6,21 +6,29 @@ arrays back. Scenes (TOML files) bundle all of that with outputs and plots; ``gy
 runs one from the command line.
 """
 
-from gyrostat._core import Body, ConstantTorque, LinearDamping, TorqueFreeSolution
-from gyrostat.model import Model
+from gyrostat._core import (Body, ConstantTorque, LinearDamping, MovingMassDamper, ResistiveMedium,
+                            TorqueFreeSolution, ViscousCavity)
+from gyrostat.model import AveragedModel, Model, MovingMassModel
 from gyrostat.solution import Solution
 from gyrostat.solve import METHODS, solve, solve_ensemble, torque_free
+from gyrostat.validity import ValidityWarning
 
 __all__ = [
     "Body",
     "ConstantTorque",
     "LinearDamping",
+    "ResistiveMedium",
+    "ViscousCavity",
+    "MovingMassDamper",
     "TorqueFreeSolution",
     "Model",
+    "AveragedModel",
+    "MovingMassModel",
     "Solution",
     "METHODS",
     "solve",
     "solve_ensemble",
     "torque_free",
+    "ValidityWarning",
 ]
 __version__ = "0.1.0"

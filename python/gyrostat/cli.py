@@ -15,16 +15,21 @@ def example_scenes() -> list[Path]:
 
 
 def _print_report(report: dict) -> None:
-    status = report["status"]
     print(f"{report['scene']}: {report['title']}")
-    print(f"  model: {report['model']} ({report['model_reason']}); method: {report['method']}; status: {status}")
-    if report.get("message"):
-        print(f"  message: {report['message']}")
-    stats = report["stats"]
-    print(f"  steps: {stats['steps']}, rhs evaluations: {stats['rhs_evals']}, "
-          f"rejected: {stats['rejected_steps']}, time: {report['seconds']:.3g} s")
-    drift = ", ".join(f"{k}: {v:+.3e}" for k, v in report["invariant_relative_change"].items())
-    print(f"  relative change of invariants over the run: {drift}")
+    print(f"  model: {report['model']} ({report['model_reason']}); status: {report['status']}; "
+          f"time: {report['seconds']:.3g} s")
+    for name, run in report["runs"].items():
+        stats = run["stats"]
+        drift = ", ".join(f"{k} {v:+.3e}" for k, v in run["invariant_relative_change"].items())
+        print(f"  {name}: {run['method']}, {run['status']}; steps {stats['steps']}, rhs evaluations "
+              f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}; relative change: {drift}")
+        if run["message"]:
+            print(f"    message: {run['message']}")
+    if "averaged_vs_full" in report:
+        diff = report["averaged_vs_full"]
+        print(f"  averaged vs full: max |Δa| = {diff['max_abs_error_a']:.3e}, max |Δr| = {diff['max_abs_error_r']:.3e}")
+    for broken in report["broken_assumptions"]:
+        print(f"  WARNING assumption broken: {broken}")
     if "max_error_vs_closed_form" in report:
         print(f"  max |omega - closed form| = {report['max_error_vs_closed_form']:.3e}")
     for f in report.get("files", []):
@@ -50,13 +55,18 @@ def main(argv: list[str] | None = None) -> int:
         print("\n".join(METHODS))
         return 0
 
+    import warnings
+
     from gyrostat.runner import run_scene
+    from gyrostat.validity import ValidityWarning
 
     paths = args.scenes if args.command == "run" else example_scenes()
     failures = 0
     for path in paths:
         try:
-            report = run_scene(path, args.out, progress=not args.quiet)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ValidityWarning)  # printed in the report below
+                report = run_scene(path, args.out, progress=not args.quiet)
         except (ValueError, OSError) as error:
             print(f"{path}: error: {error}", file=sys.stderr)
             failures += 1

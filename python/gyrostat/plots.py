@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -14,6 +15,10 @@ from gyrostat.solution import Solution  # noqa: E402
 
 
 def _finish(fig, path: Path) -> Path:
+    for ax in fig.axes:  # long scene titles wrap instead of running off the figure
+        title = ax.get_title()
+        if len(title) > 60:
+            ax.set_title(textwrap.fill(title, 60), fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -73,16 +78,64 @@ def error(solution: Solution, reference: Solution, title: str, path: Path) -> Pa
     return _finish(fig, path)
 
 
-def draw_scene(scene, solution: Solution, folder: Path, reference: Solution | None = None) -> list[Path]:
+def slow_curves(solutions: dict[str, Solution], title: str, path: Path, kind: str) -> Path:
+    """x = a², y = r² (kind "xy") or a and signed r (kind "slow") over time; the averaged model
+    solid, the full model's a = √(p²+q²), r thin."""
+    from gyrostat.averaged import slow_variables
+
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    styles = {"averaged": dict(lw=2.0), "full": dict(lw=0.8, ls="--")}
+    for name in ("full", "averaged"):
+        if name not in solutions:
+            continue
+        a, r = slow_variables(solutions[name])
+        first, second = (a**2, r**2) if kind == "xy" else (a, r)
+        labels = ("x = a²", "y = r²") if kind == "xy" else ("a", "r")
+        ax.plot(solutions[name].t, first, color="tab:blue", label=f"{labels[0]} ({name})", **styles[name])
+        ax.plot(solutions[name].t, second, color="tab:red", label=f"{labels[1]} ({name})", **styles[name])
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("x = a², y = r² [rad²/s²]" if kind == "xy" else "a, r [rad/s]")
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return _finish(fig, path)
+
+
+def phase(solutions: dict[str, Solution], title: str, path: Path) -> Path:
+    """The phase curve a² against r² (paper 002's y against x)."""
+    from gyrostat.averaged import slow_variables
+
+    fig, ax = plt.subplots(figsize=(6.5, 5.5))
+    for name, style in (("full", dict(lw=0.8, ls="--")), ("averaged", dict(lw=2.0))):
+        if name in solutions:
+            a, r = slow_variables(solutions[name])
+            ax.plot(r**2, a**2, label=name, **style)
+            ax.plot(r[:1] ** 2, a[:1] ** 2, "ko", ms=4)
+    ax.set_xlabel("r² (paper 002: x) [rad²/s²]")
+    ax.set_ylabel("a² = p² + q² (paper 002: y) [rad²/s²]")
+    ax.set_title(f"{title}: phase curve")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return _finish(fig, path)
+
+
+def draw_scene(scene, solutions: dict[str, Solution], folder: Path, reference: Solution | None = None) -> list[Path]:
     files = []
+    main = solutions.get("full", solutions.get("closed_form"))
     for plot in scene.plots:
         path = folder / f"{plot}.png"
-        if plot == "omega":
-            files.append(omega(solution, scene.title, path, reference))
+        if plot in ("xy", "slow"):
+            files.append(slow_curves(solutions, scene.title, path, plot))
+        elif plot == "phase":
+            files.append(phase(solutions, scene.title, path))
+        elif main is None:
+            continue
+        elif plot == "omega":
+            files.append(omega(main, scene.title, path, reference))
         elif plot == "invariants":
-            files.append(invariants(solution, scene.title, path))
-        elif plot == "euler_angles" and solution.y.shape[1] >= 7:
-            files.append(euler_angles(solution, scene.title, path))
+            files.append(invariants(main, scene.title, path))
+        elif plot == "euler_angles" and main.y.shape[1] >= 7:
+            files.append(euler_angles(main, scene.title, path))
         elif plot == "error" and reference is not None:
-            files.append(error(solution, reference, scene.title, path))
+            files.append(error(main, reference, scene.title, path))
     return files

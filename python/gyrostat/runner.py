@@ -29,38 +29,67 @@ def _progress(message: str) -> None:
     print(message, file=sys.stderr, flush=True)
 
 
-def solve_scene(scene: Scene, progress: bool = True) -> tuple[Solution, dict]:
-    """Solves a scene with the cheapest adequate model; returns the solution and a report."""
+def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution], dict]:
+    """Solves a scene with the model(s) it asks for (or the cheapest adequate one); returns the
+    solutions by model name ("closed_form", "full", "averaged") and a report."""
+    from gyrostat import validity
+    from gyrostat.averaged import slow_variables
+
     choice, reason = scene.choose_model()
     t_eval = np.linspace(scene.t_span[0], scene.t_span[1], scene.n_out)
     started = time.perf_counter()
+    solutions: dict[str, Solution] = {}
+    checks = []
     if choice == "closed_form":
-        solution = torque_free(scene.body, scene.omega0, t_eval)
-    else:
+        solutions["closed_form"] = torque_free(scene.body, scene.omega0, t_eval)
+    if choice in ("full", "compare"):
         model = scene.model()
         y0 = np.concatenate([scene.omega0, scene.attitude0 if scene.attitude0 is not None else [1.0, 0, 0, 0]]) \
             if model.attitude else scene.omega0
-        solution = _solve_in_chunks(scene, model, y0, t_eval, progress)
+        solutions["full"] = _solve_in_chunks(scene, model, y0, t_eval, progress)
+        checks += validity.check(model, solutions["full"].y, solutions["full"].t, warn=False)
+    if choice in ("averaged", "compare"):
+        averaged = scene.averaged_model()
+        solutions["averaged"] = _solve_in_chunks(scene, averaged, scene.slow0, t_eval, progress)
+        checks += validity.check(averaged, solutions["averaged"].y, solutions["averaged"].t, warn=False)
     elapsed = time.perf_counter() - started
+    unique = {}
+    for assumption in checks:  # torques checked under both models appear once
+        unique.setdefault(str(assumption), assumption)
+    checks = list(unique.values())
     report = {
         "scene": scene.name,
         "title": scene.title,
         "model": choice,
         "model_reason": reason,
+        "seconds": elapsed,
+        "runs": {name: _run_report(solution) for name, solution in solutions.items()},
+        "assumptions": [dict(part=a.part, statement=a.statement, value=a.value, limit=a.limit, holds=a.holds,
+                             note=a.note) for a in checks],
+        "broken_assumptions": [str(a) for a in checks if not a.holds],
+    }
+    if "full" in solutions and "averaged" in solutions:
+        a_full, r_full = slow_variables(solutions["full"])
+        a_avg, r_avg = slow_variables(solutions["averaged"])
+        n = min(len(a_full), len(a_avg))
+        report["averaged_vs_full"] = {"max_abs_error_a": float(np.max(np.abs(a_full[:n] - a_avg[:n]))),
+                                      "max_abs_error_r": float(np.max(np.abs(r_full[:n] - r_avg[:n])))}
+    report["status"] = "success" if all(s.success for s in solutions.values()) else "failed"
+    return solutions, report
+
+
+def _run_report(solution: Solution) -> dict:
+    return {
         "method": solution.method,
-        "rtol": scene.rtol,
-        "atol": scene.atol,
         "status": solution.status,
         "message": solution.message,
         "stats": solution.stats,
-        "seconds": elapsed,
         "invariant_relative_change": {
             name: float((values[-1] - values[0]) / values[0]) if values[0] != 0 else float(values[-1])
             for name, values in solution.invariants.items()
         },
         "notes": solution.notes,
     }
-    return solution, report
 
 
 def _solve_in_chunks(scene, model, y0, t_eval, progress) -> Solution:
@@ -99,9 +128,9 @@ def _concatenate(pieces: list[Solution]) -> Solution:
     )
 
 
-def save(solution: Solution, report: dict, names: tuple[str, ...], folder: Path) -> list[Path]:
-    """Writes result.csv (a column per quantity, units in the header), result.npz (the same
-    arrays by name, plus units) and report.json (model choice, solver statistics, status)."""
+def save(solution: Solution, names: tuple[str, ...], folder: Path, stem: str = "result") -> list[Path]:
+    """Writes STEM.csv (a column per quantity, units in the header) and STEM.npz (the same arrays
+    by name, plus their units as JSON)."""
     folder.mkdir(parents=True, exist_ok=True)
     columns = {"t": solution.t}
     for i, name in enumerate(names):
@@ -110,33 +139,45 @@ def save(solution: Solution, report: dict, names: tuple[str, ...], folder: Path)
     if solution.y.shape[1] >= 7:
         for name, values in zip(("psi", "theta", "phi"), solution.euler_angles().T):
             columns[name] = values
-    csv_path = folder / "result.csv"
+    if names[:2] == ("a", "r"):
+        columns["x"] = solution.y[:, 0] ** 2
+        columns["y"] = solution.y[:, 1] ** 2
+    csv_path = folder / f"{stem}.csv"
     with csv_path.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow([f"{name} [{UNITS.get(name, '1')}]" for name in columns])
         writer.writerows(np.column_stack(list(columns.values())).tolist())
-    npz_path = folder / "result.npz"
+    npz_path = folder / f"{stem}.npz"
     np.savez(npz_path, **columns, units=json.dumps({name: UNITS.get(name, "1") for name in columns}))
-    json_path = folder / "report.json"
-    json_path.write_text(json.dumps(report, indent=2, default=float) + "\n")
-    return [csv_path, npz_path, json_path]
+    return [csv_path, npz_path]
 
 
 def run_scene(path: str | Path, out_dir: str | Path, progress: bool = True) -> dict:
-    """Loads, solves, saves and plots one scene; returns its report."""
+    """Loads, solves, saves and plots one scene; returns its report (also written as
+    report.json). Broken assumptions are warned about (gyrostat.ValidityWarning)."""
+    import warnings
+
     from gyrostat import plots
+    from gyrostat.validity import ValidityWarning
 
     scene = Scene.from_toml(path)
-    solution, report = solve_scene(scene, progress=progress)
+    solutions, report = solve_scene(scene, progress=progress)
+    for broken in report["broken_assumptions"]:
+        warnings.warn(f"{scene.name}: {broken}", ValidityWarning, stacklevel=2)
     folder = Path(out_dir) / scene.name
-    names = ("p", "q", "r", "q_w", "q_x", "q_y", "q_z")[: solution.y.shape[1]]
-    files = save(solution, report, names, folder)
+    files: list[Path] = []
+    state_names = {"full": ("p", "q", "r", "q_w", "q_x", "q_y", "q_z"), "closed_form": ("p", "q", "r"),
+                   "averaged": ("a", "r")}
+    for name, solution in solutions.items():
+        stem = "result" if len(solutions) == 1 else f"result_{name}"
+        files += save(solution, state_names[name][: solution.y.shape[1]], folder, stem)
     reference = None
-    if scene.reference == "closed_form":
-        reference = torque_free(scene.body, scene.omega0, solution.t)
-        error = np.max(np.linalg.norm(solution.omega - reference.omega, axis=1))
-        report["max_error_vs_closed_form"] = float(error)
-        (folder / "report.json").write_text(json.dumps(report, indent=2, default=float) + "\n")
-    files += plots.draw_scene(scene, solution, folder, reference=reference)
-    report["files"] = [str(f) for f in files]
+    main = solutions.get("full", solutions.get("closed_form"))
+    if scene.reference == "closed_form" and main is not None:
+        reference = torque_free(scene.body, scene.omega0, main.t)
+        report["max_error_vs_closed_form"] = float(np.max(np.linalg.norm(main.omega - reference.omega, axis=1)))
+    files += plots.draw_scene(scene, solutions, folder, reference=reference)
+    json_path = folder / "report.json"
+    report["files"] = [str(f) for f in files + [json_path]]
+    json_path.write_text(json.dumps(report, indent=2, default=float) + "\n")
     return report

@@ -25,6 +25,14 @@ A scene file looks like::
     [outputs]
     plots = ["omega", "invariants", "euler_angles"]
     reference = "closed_form"        # optional: draw and measure against the closed form
+
+Other torques: ``viscous_cavity`` (density, viscosity, radius | p0), ``resistive_medium``
+(coefficients = [D_0, D_1, ...], D(t) = Σ D_k t^k), ``moving_mass_damper`` (mass, arm,
+frequency, damping). ``model = "averaged"`` solves the system averaged over the symmetric
+Euler–Poinsot motion in (a, r); ``model = "compare"`` solves the full and the averaged model
+side by side and reports their difference. Plots ``xy`` (x = a², y = r² over time), ``slow``
+(a and signed r), ``phase`` (a² against r²) serve the averaged scenes. Every scene's
+assumptions are checked (gyrostat.validity) and broken ones reported.
 """
 
 from __future__ import annotations
@@ -39,8 +47,8 @@ import numpy as np
 from gyrostat import _core
 from gyrostat.model import Model
 
-KNOWN_PLOTS = ("omega", "invariants", "euler_angles", "error")
-KNOWN_MODELS = ("auto", "full", "closed_form")
+KNOWN_PLOTS = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase")
+KNOWN_MODELS = ("auto", "full", "closed_form", "averaged", "compare")
 
 
 def _vector(table: dict, key: str, size: int, where: str) -> np.ndarray:
@@ -67,7 +75,31 @@ def _torque(spec: dict, index: int):
         else:
             raise ValueError(f"{where}: linear_damping needs 'matrix' (3x3) or 'diagonal' (3)")
         return _core.LinearDamping(matrix)
-    raise ValueError(f"{where}.type = {kind!r} is not a known torque (constant, linear_damping)")
+    if kind == "resistive_medium":
+        if "coefficients" not in spec:
+            raise ValueError(f"{where}: resistive_medium needs 'coefficients' (a list of 3x3 matrices, D(t) = sum D_k t^k)")
+        matrices = [np.asarray(c, dtype=float) for c in spec["coefficients"]]
+        for k, matrix in enumerate(matrices):
+            if matrix.shape != (3, 3):
+                raise ValueError(f"{where}.coefficients[{k}] must be 3x3")
+        return _core.ResistiveMedium(matrices)
+    if kind == "viscous_cavity":
+        for key in ("density", "viscosity"):
+            if key not in spec:
+                raise ValueError(f"{where}: viscous_cavity needs '{key}'")
+        if "radius" in spec:
+            return _core.ViscousCavity.sphere(float(spec["density"]), float(spec["viscosity"]), float(spec["radius"]))
+        if "p0" in spec:
+            return _core.ViscousCavity(float(spec["density"]), float(spec["viscosity"]), float(spec["p0"]))
+        raise ValueError(f"{where}: viscous_cavity needs 'radius' (sphere) or 'p0' (P = P0 I)")
+    if kind == "moving_mass_damper":
+        for key in ("mass", "arm", "frequency", "damping"):
+            if key not in spec:
+                raise ValueError(f"{where}: moving_mass_damper needs '{key}'")
+        return _core.MovingMassDamper(float(spec["mass"]), float(spec["arm"]), float(spec["frequency"]),
+                                      float(spec["damping"]))
+    raise ValueError(f"{where}.type = {kind!r} is not a known torque (constant, linear_damping, resistive_medium, "
+                     "viscous_cavity, moving_mass_damper)")
 
 
 @dataclass
@@ -157,6 +189,16 @@ class Scene:
     def model(self) -> Model:
         return Model(self.body, self.torques, attitude=self.needs_attitude)
 
+    def averaged_model(self):
+        from gyrostat.model import AveragedModel
+
+        return AveragedModel(self.body, self.torques)
+
+    @property
+    def slow0(self) -> np.ndarray:
+        """(a, r) of the initial state: a = √(p² + q²), r signed."""
+        return np.array([math.hypot(self.omega0[0], self.omega0[1]), self.omega0[2]])
+
     def choose_model(self) -> tuple[str, str]:
         """The cheapest model that answers the scene, and the reason for the choice."""
         free = not self.torques and not np.any(np.asarray(self.body.rotor))
@@ -166,8 +208,8 @@ class Scene:
             if self.needs_attitude:
                 raise ValueError("integration.model = 'closed_form' gives omega only; the scene asks for attitude")
             return "closed_form", "asked for by the scene"
-        if self.model_choice == "full":
-            return "full", "asked for by the scene"
+        if self.model_choice in ("full", "averaged", "compare"):
+            return self.model_choice, "asked for by the scene"
         if free and not self.needs_attitude:
             return "closed_form", "no torque, no rotor, no attitude asked for: the closed form needs no integration"
         reasons = []

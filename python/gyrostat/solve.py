@@ -38,7 +38,7 @@ def _output_times(t_span, t_eval, n_out) -> tuple[float, float, list[float]]:
     return t0, t1, t_eval.tolist()
 
 
-def _state(model: Model, y0) -> np.ndarray:
+def _state(model, y0) -> np.ndarray:
     y0 = np.asarray(y0, dtype=float).ravel()
     if model.attitude and y0.size == 3:
         y0 = np.concatenate([y0, [1.0, 0.0, 0.0, 0.0]])
@@ -78,7 +78,7 @@ def _check_method(method: str) -> None:
 
 
 def solve(
-    model: Model,
+    model,
     y0,
     t_span,
     *,
@@ -92,7 +92,8 @@ def solve(
     first_step: float = 0.0,
     max_step: float = math.inf,
 ) -> Solution:
-    """Integrates a model from y0 over t_span = (t0, t1).
+    """Integrates a model (:class:`Model`, :class:`AveragedModel`, :class:`MovingMassModel`)
+    from y0 over t_span = (t0, t1).
 
     Outputs are at ``t_eval`` or, by default, at ``n_out`` = 1001 evenly spaced times (dense
     output between steps, so memory grows with the outputs, not with the steps). With
@@ -134,7 +135,7 @@ def solve_ensemble(
     ``threads`` ≤ 0 uses every hardware thread.
     """
     _check_method(method)
-    if isinstance(models, Model):
+    if not isinstance(models, (list, tuple)):
         models = [models]
     models = list(models)
     if not models:

@@ -91,6 +91,9 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         throw std::invalid_argument("method 'taylor' needs a model with a polynomial right-hand side that provides "
                                     "Taylor coefficients; use dop853 for this model");
     } else {
+        if (!system.supports_taylor())
+            throw std::invalid_argument("method 'taylor' covers constant and linear torques only (a quadratic "
+                                        "right-hand side); this model has other torques: use dop853");
         constexpr int max_order = System::max_taylor_order;
         static constexpr auto steps =
             taylor_detail::step_table<System>(std::make_integer_sequence<int, max_order + 1>{});

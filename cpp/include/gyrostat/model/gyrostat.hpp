@@ -37,7 +37,7 @@ public:
     static constexpr int dim = WithAttitude ? 7 : 3;
     static constexpr bool has_jacobian = true;
     static constexpr bool has_projection = WithAttitude;
-    static constexpr bool has_taylor = true;  // the right-hand side is a quadratic polynomial
+    static constexpr bool has_taylor = true;  // when the torques are affine: see supports_taylor()
     static constexpr int n_invariants = 2;
     using State = Eigen::Matrix<double, dim, 1>;
     using Jacobian = Eigen::Matrix<double, dim, dim>;
@@ -45,6 +45,8 @@ public:
     Gyrostat(Body body, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)) {}
 
     const Body& body() const { return body_; }
+    /// The Taylor recursion covers constant and linear torques (a quadratic right-hand side).
+    bool supports_taylor() const { return torques_.is_affine(); }
     const TorqueSet& torques() const { return torques_; }
 
     /// ω̇ = J⁻¹ (ΣM − ω × (Jω + k));  q̇ = ½ q ⊗ (0, ω).
@@ -52,7 +54,7 @@ public:
         const Vec3 omega = y.template head<3>();
         const Vec3 momentum = body_.moments().cwiseProduct(omega) + body_.rotor();
         dy.template head<3>() =
-            body_.inverse_moments().cwiseProduct(torques_.total(t, omega) - omega.cross(momentum));
+            body_.inverse_moments().cwiseProduct(torques_.total(t, omega, body_.moments()) - omega.cross(momentum));
         if constexpr (WithAttitude) {
             const double w = y[3], x = y[4], yy = y[5], z = y[6];
             const double p = omega.x(), q = omega.y(), r = omega.z();
@@ -69,7 +71,7 @@ public:
         const Vec3 omega = y.template head<3>();
         const Vec3 momentum = body_.moments().cwiseProduct(omega) + body_.rotor();
         const Mat3 d_omega = body_.inverse_moments().asDiagonal() *
-                             (torques_.jacobian(t, omega) - skew(omega) * body_.moments().asDiagonal() +
+                             (torques_.jacobian(t, omega, body_.moments()) - skew(omega) * body_.moments().asDiagonal() +
                               skew(momentum));
         jac.template topLeftCorner<3, 3>() = d_omega;
         if constexpr (WithAttitude) {
@@ -100,8 +102,8 @@ public:
         const Vec3& J_inv = body_.inverse_moments();
         const Vec3& k = body_.rotor();
         const bool damped = torques_.has_damping();
-        const Mat3 D = damped ? Mat3(-torques_.jacobian(0.0, Vec3::Zero())) : Mat3::Zero();
-        const Vec3 M0 = torques_.total(0.0, Vec3::Zero());
+        const Mat3& D = torques_.damping_part();
+        const Vec3& M0 = torques_.constant_part();
         const double a1 = J[1] - J[2], a2 = J[2] - J[0], a3 = J[0] - J[1];
         const bool has_rotor = k.squaredNorm() != 0.0;
         double w1[order + 1], w2[order + 1], w3[order + 1];

@@ -1,6 +1,8 @@
 // A linear damping torque with a full 3x3 coefficient matrix.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "gyrostat/body.hpp"
 
 namespace gyrostat::torque {
@@ -9,6 +11,10 @@ namespace gyrostat::torque {
 /// paper 002: D = ε I with a full resistance tensor I).
 /// D need not be symmetric; its symmetric part decides whether energy is dissipated:
 /// d(ω·Jω/2)/dt = −ω·Dω. Assumptions: none; it does not need the attitude.
+///
+/// Averaged over the symmetric Euler–Poinsot motion:
+///   ȧ = −(D11 + D22) a / (2A),   ṙ = −D33 r / C;
+/// the off-diagonal entries and D11 − D22 average out (docs/papers/000_002_cavity_and_medium.md).
 struct LinearDamping {
     Mat3 matrix = Mat3::Zero();
 
@@ -16,9 +22,14 @@ struct LinearDamping {
         require_finite(Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data()), "LinearDamping: matrix D (column-major)");
     }
 
-    Vec3 operator()(double /*t*/, const Vec3& omega) const { return -matrix * omega; }
+    Vec3 operator()(double /*t*/, const Vec3& omega, const Vec3& /*moments*/) const { return -matrix * omega; }
     /// ∂M/∂ω = −D.
-    void add_jacobian(double /*t*/, const Vec3& /*omega*/, Mat3& dM_domega) const { dM_domega -= matrix; }
+    void add_jacobian(double /*t*/, const Vec3& /*omega*/, const Vec3& /*moments*/, Mat3& dM_domega) const {
+        dM_domega -= matrix;
+    }
+    Eigen::Vector2d averaged(double /*t*/, double a, double r, double A, double C) const {
+        return {-(matrix(0, 0) + matrix(1, 1)) * a / (2.0 * A), -matrix(2, 2) * r / C};
+    }
     static constexpr const char* name = "linear_damping";
 };
 

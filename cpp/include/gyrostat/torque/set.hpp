@@ -1,24 +1,36 @@
 // A set of perturbation torques acting on one body: composition without virtual calls.
 #pragma once
 
+#include <Eigen/Core>
 #include <variant>
 #include <vector>
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/constant.hpp"
 #include "gyrostat/torque/linear_damping.hpp"
+#include "gyrostat/torque/moving_mass_damper.hpp"
+#include "gyrostat/torque/resistive_medium.hpp"
+#include "gyrostat/torque/viscous_cavity.hpp"
 
 namespace gyrostat {
 
-/// Every torque type the library knows. Each is a small value type with
-///   Vec3 operator()(t, ω)                  the torque in body axes,
-///   void add_jacobian(t, ω, Mat3& dM_dω)   its derivative with respect to ω,
+/// Every torque the library knows. Each is a small value type with
+///   Vec3 operator()(t, ω, J)                       the torque in body axes (J: principal moments),
+///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω,
+///   Vector2d averaged(t, a, r, A, C)               its contribution (ȧ, ṙ) to the system averaged
+///                                                  over the symmetric Euler–Poinsot motion,
 ///   static name.
-using AnyTorque = std::variant<torque::Constant, torque::LinearDamping>;
+using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
+                               torque::ViscousCavity, torque::MovingMassDamper>;
 
-/// The torques on a body. Torques that are affine in ω (constant, linear damping) are folded at
-/// construction into one M0 − D ω, so the hot path costs one 3×3 product whatever their number;
-/// the list of parts is kept for reporting and for averaging.
+inline const char* torque_name(const AnyTorque& t) {
+    return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::name; }, t);
+}
+
+/// The torques on a body. Torques affine in ω with constant coefficients (constant, linear
+/// damping) are folded at construction into one M0 − D ω, so the hot path costs one 3×3 product
+/// whatever their number; the others are evaluated one by one. First-order averaging is linear
+/// in the torques: the averaged right-hand side is the sum of each part's contribution.
 class TorqueSet {
 public:
     TorqueSet() = default;
@@ -29,31 +41,46 @@ public:
     const std::vector<AnyTorque>& parts() const { return parts_; }
     bool empty() const { return parts_.empty(); }
     bool has_damping() const { return has_damping_; }
+    /// Only constant and linear torques: the right-hand side is a quadratic polynomial.
+    bool is_affine() const { return others_.empty(); }
 
     /// Σ M_i(t, ω).
-    Vec3 total(double /*t*/, const Vec3& omega) const {
-        if (has_damping_) return constant_ - damping_ * omega;
-        return constant_;
+    Vec3 total(double t, const Vec3& omega, const Vec3& moments) const {
+        Vec3 m = has_damping_ ? Vec3(constant_ - damping_ * omega) : constant_;
+        for (const auto& part : others_) m += std::visit([&](const auto& x) { return x(t, omega, moments); }, part);
+        return m;
     }
     /// Σ ∂M_i/∂ω.
-    Mat3 jacobian(double /*t*/, const Vec3& /*omega*/) const { return -damping_; }
+    Mat3 jacobian(double t, const Vec3& omega, const Vec3& moments) const {
+        Mat3 d = -damping_;
+        for (const auto& part : others_) std::visit([&](const auto& x) { x.add_jacobian(t, omega, moments, d); }, part);
+        return d;
+    }
+    /// The folded affine part: M = M0 − D ω (for the Taylor recursion).
+    const Vec3& constant_part() const { return constant_; }
+    const Mat3& damping_part() const { return damping_; }
+
+    /// Σ (ȧ, ṙ)_i over the symmetric Euler–Poinsot motion with moments (A, A, C).
+    Eigen::Vector2d averaged(double t, double a, double r, double A, double C) const {
+        Eigen::Vector2d rates = Eigen::Vector2d::Zero();
+        for (const auto& part : parts_) rates += std::visit([&](const auto& x) { return x.averaged(t, a, r, A, C); }, part);
+        return rates;
+    }
 
 private:
     void fold(const AnyTorque& part) {
-        std::visit(
-            [this](const auto& t) {
-                using T = std::decay_t<decltype(t)>;
-                if constexpr (std::is_same_v<T, torque::Constant>) {
-                    constant_ += t.moment;
-                } else if constexpr (std::is_same_v<T, torque::LinearDamping>) {
-                    damping_ += t.matrix;
-                    has_damping_ = true;
-                }
-            },
-            part);
+        if (const auto* c = std::get_if<torque::Constant>(&part)) {
+            constant_ += c->moment;
+        } else if (const auto* d = std::get_if<torque::LinearDamping>(&part)) {
+            damping_ += d->matrix;
+            has_damping_ = true;
+        } else {
+            others_.push_back(part);
+        }
     }
 
     std::vector<AnyTorque> parts_;
+    std::vector<AnyTorque> others_;
     Vec3 constant_ = Vec3::Zero();
     Mat3 damping_ = Mat3::Zero();
     bool has_damping_ = false;

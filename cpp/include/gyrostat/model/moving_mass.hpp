@@ -1,0 +1,142 @@
+// The explicit model behind the damper reduction: a rigid carrier plus a point mass on a spring
+// with a viscous damper. Stiff when the damper is strong: the standard stiff test case.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "gyrostat/body.hpp"
+#include "gyrostat/torque/set.hpp"
+
+namespace gyrostat::model {
+
+/// Carrier with principal moments J_B = diag(A1 − μρ², A2 − μρ², A3) about its own centre of
+/// mass, so that (A1, A2, A3) are the system's moments with the mass at rest; a point mass μ
+/// (reduced mass mM/(m + M)) attached at d0 = ρ e3 by an isotropic spring (Ω² = c/μ) and a
+/// viscous damper (λ = δ/μ), displaced by u. State (body axes):
+///   y = (ω, u, v),  v = u̇ (velocity of the mass relative to the carrier).
+/// Derived in docs/papers/001_moving_mass.md §C:
+///   d = d0 + u,  s = ω × d + v,  K = J_B ω + μ d × s                  (total angular momentum)
+///   R = −2 ω × v − ω × (ω × d) − Ω² u − λ v
+///   J_B ω̇ = M_ext − ω × K − μ [2 (d·v) ω − v (d·ω) − d (v·ω)] − μ d × R
+///   u̇ = v,   v̇ = R − ω̇ × d
+/// (the Schur complement of the implicit (ω̇, v̇) system is exactly J_B: no linear solve).
+/// M_ext: the torques of the set, acting on the carrier. Invariants: |K| (conserved without
+/// M_ext) and E = ½ ω·J_B ω + ½ μ |s|² + ½ μ Ω² |u|² (dE/dt = ω·M_ext − μλ|v|² ≤ 0).
+/// Eigenvalues of the (u, v) block ≈ −λ/2 ± √(λ²/4 − Ω²): stiff for λ h ≫ 1 (use cvode_bdf).
+class MovingMass {
+public:
+    static constexpr int dim = 9;
+    static constexpr bool has_jacobian = false;  // CVODE builds it by difference quotients
+    static constexpr bool has_projection = false;
+    static constexpr bool has_taylor = false;
+    static constexpr int max_taylor_order = 0;
+    static constexpr int n_invariants = 2;
+    using State = Eigen::Matrix<double, 9, 1>;
+    using Jacobian = Eigen::Matrix<double, 9, 9>;
+
+    MovingMass(Body system_body, double mass, double arm, double frequency, double damping, TorqueSet external)
+        : body_(std::move(system_body)), torques_(std::move(external)), mu_(mass), rho_(arm),
+          omega2_(frequency * frequency), lambda_(damping) {
+        // the parameters are validated as those of the reduced torque
+        torque::MovingMassDamper check(mass, arm, frequency, damping);
+        (void)check;
+        const double shift = mu_ * rho_ * rho_;
+        carrier_ = Vec3(body_.moments()[0] - shift, body_.moments()[1] - shift, body_.moments()[2]);
+        if (!(carrier_[0] > 0.0) || !(carrier_[1] > 0.0))
+            throw std::invalid_argument("MovingMass: the carrier's moments A1 − μρ² = " + format_value(carrier_[0]) +
+                                        ", A2 − μρ² = " + format_value(carrier_[1]) +
+                                        " must be positive (μρ² = " + format_value(shift) + ")");
+        Body carrier_check(carrier_);  // triangle inequality of the carrier alone
+        (void)carrier_check;
+    }
+
+    const Body& body() const { return body_; }
+    const Vec3& carrier_moments() const { return carrier_; }
+
+    void rhs(double t, const State& y, State& dy) const {
+        const double p = y[0], q = y[1], r = y[2], u1 = y[3], u2 = y[4], u3 = y[5], v1 = y[6], v2 = y[7], v3 = y[8];
+        const double mu = mu_;
+        const double d1 = u1, d2 = u2, d3 = rho_ + u3;
+        const double s1 = q * d3 - r * d2 + v1, s2 = r * d1 - p * d3 + v2, s3 = p * d2 - q * d1 + v3;
+        const double K1 = carrier_[0] * p + mu * (d2 * s3 - d3 * s2);
+        const double K2 = carrier_[1] * q + mu * (d3 * s1 - d1 * s3);
+        const double K3 = carrier_[2] * r + mu * (d1 * s2 - d2 * s1);
+        const double wd = p * d1 + q * d2 + r * d3, ww = p * p + q * q + r * r;
+        const double R1 = -2 * (q * v3 - r * v2) - (p * wd - d1 * ww) - omega2_ * u1 - lambda_ * v1;
+        const double R2 = -2 * (r * v1 - p * v3) - (q * wd - d2 * ww) - omega2_ * u2 - lambda_ * v2;
+        const double R3 = -2 * (p * v2 - q * v1) - (r * wd - d3 * ww) - omega2_ * u3 - lambda_ * v3;
+        const double dv = d1 * v1 + d2 * v2 + d3 * v3, vw = v1 * p + v2 * q + v3 * r;
+        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, Vec3(p, q, r), body_.moments());
+        const double f1 = M[0] - (q * K3 - r * K2) - mu * (2 * dv * p - v1 * wd - d1 * vw) - mu * (d2 * R3 - d3 * R2);
+        const double f2 = M[1] - (r * K1 - p * K3) - mu * (2 * dv * q - v2 * wd - d2 * vw) - mu * (d3 * R1 - d1 * R3);
+        const double f3 = M[2] - (p * K2 - q * K1) - mu * (2 * dv * r - v3 * wd - d3 * vw) - mu * (d1 * R2 - d2 * R1);
+        const double a1 = f1 / carrier_[0], a2 = f2 / carrier_[1], a3 = f3 / carrier_[2];
+        dy << a1, a2, a3, v1, v2, v3, R1 - (a2 * d3 - a3 * d2), R2 - (a3 * d1 - a1 * d3), R3 - (a1 * d2 - a2 * d1);
+    }
+    void jacobian(double, const State&, Jacobian&) const {}
+    void project(State&) const {}
+    template <int Order>
+    void taylor_coefficients(double, const State&, State*) const {}
+    bool supports_taylor() const { return false; }
+
+    /// |K| and E (see above).
+    static constexpr std::array<const char*, n_invariants> invariant_names{"angular_momentum_norm", "energy"};
+    void invariants(double, const State& y, double* out) const {
+        const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
+        const Vec3 d = Vec3(0, 0, rho_) + u;
+        const Vec3 s = w.cross(d) + v;
+        out[0] = (carrier_.cwiseProduct(w) + mu_ * d.cross(s)).norm();
+        out[1] = 0.5 * w.dot(carrier_.cwiseProduct(w)) + 0.5 * mu_ * s.squaredNorm() + 0.5 * mu_ * omega2_ * u.squaredNorm();
+    }
+
+    /// (u, v) of the forced quasi-static motion for a given ω (docs/papers/001 §C): the initial
+    /// state that starts the mass without a free oscillation. Elastic part
+    /// u1 = −Ω⁻² [ω (ω·d0) − d0 |ω|² + ω̇ × d0] with ω̇ from the torque-free Euler equations of
+    /// the system, damper part u2 = −λ Ω⁻² u̇1; v = u̇1 + u̇2 from the same series.
+    State quasi_static_state(const Vec3& omega) const;
+
+private:
+    Body body_;
+    TorqueSet torques_;
+    double mu_, rho_, omega2_, lambda_;
+    Vec3 carrier_;
+};
+
+inline MovingMass::State MovingMass::quasi_static_state(const Vec3& omega) const {
+    // Taylor coefficients of ω(t) along J ω̇ = Jω × ω (system moments), orders 0..4.
+    constexpr int N = 4;
+    const Vec3& J = body_.moments();
+    std::array<Vec3, N + 1> W;
+    W[0] = omega;
+    for (int k = 0; k < N; ++k) {
+        Vec3 s = Vec3::Zero();
+        for (int i = 0; i <= k; ++i) s += J.cwiseProduct(W[i]).cross(W[k - i]);
+        W[k + 1] = s.cwiseQuotient(J) / (k + 1);
+    }
+    auto derivative = [](const std::array<Vec3, N + 1>& a) {
+        std::array<Vec3, N + 1> d;
+        for (int k = 0; k < N; ++k) d[k] = (k + 1) * a[k + 1];
+        d[N] = Vec3::Zero();
+        return d;
+    };
+    const Vec3 d0(0.0, 0.0, rho_);
+    const auto Wd = derivative(W);
+    std::array<Vec3, N + 1> u1;
+    for (int k = 0; k <= N; ++k) {
+        Vec3 acc = Vec3::Zero();
+        for (int i = 0; i <= k; ++i) acc += W[i].dot(d0) * W[k - i] - W[i].dot(W[k - i]) * d0;
+        acc += Wd[k].cross(d0);
+        u1[k] = -acc / omega2_;
+    }
+    const auto u1d = derivative(u1);
+    std::array<Vec3, N + 1> u;
+    for (int k = 0; k <= N; ++k) u[k] = u1[k] - lambda_ / omega2_ * u1d[k];
+    const auto ud = derivative(u);
+    State y;
+    y << omega, u[0], ud[0];
+    return y;
+}
+
+}  // namespace gyrostat::model

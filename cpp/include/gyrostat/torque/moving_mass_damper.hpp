@@ -1,0 +1,121 @@
+// The moving mass on a viscoelastic damper, in Chernousko's quasi-static (reduced) form.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <stdexcept>
+
+#include "gyrostat/body.hpp"
+
+namespace gyrostat::torque {
+
+/// A point mass on an isotropic spring (Ω² = c/μ) with a viscous damper (λ = δ/μ), attached on
+/// the body's z principal axis at distance ρ; μ is the (reduced) mass. When the mass follows
+/// the body quasi-statically (Ω² ≫ λ|ν| and Ω² ≫ |ω|², ν = (C − A) r / A the body-frame
+/// precession rate), it exerts the torque M = T_L + T_S with kL = μρ²/Ω², kS = μρ²λ/Ω⁴.
+///
+/// Symmetric body (A = B), paper 001 eqs. (2)–(3):
+///   L = kL C (A² p² + A² q² + C² r²)/A³,  S = kS C³ (A − C)/A⁴,
+///   T_L = (L q r, −L p r, 0),  T_S = (S p r⁴, S q r⁴, −(A/C) S r³ (p² + q²)).
+/// A, B, C are the whole system's moments with the mass at rest. For a triaxial body the exact
+/// expansion of the same reduction is used (docs/papers/001_moving_mass.md §B(i-b); it reduces
+/// to the above at B = A). T_L is conservative; T_S keeps |G| (symmetric body) and dissipates.
+///
+/// Averaged over the symmetric Euler–Poinsot motion: ȧ = S r⁴ a / A, ṙ = −(A/C²) S r³ a²
+/// (T_L only shifts the phase). The sign of S is that of A − C: the damper destabilises rotation
+/// about the axis of least inertia.
+///
+/// Assumptions (reported by the validity check): λ|ν|/Ω² ≪ 1 and |G|²/(A²Ω²) ≪ 1 (the
+/// reduction's error grows like these, docs/papers/001_moving_mass.md §E); the paper's own
+/// condition (4), Ω² ≫ λ|ω| ≫ |ω|², is reported as printed.
+struct MovingMassDamper {
+    double mass = 0.0;       ///< μ (reduced mass; m when the carrier is much heavier)
+    double arm = 0.0;        ///< ρ, distance of the attachment point along z
+    double frequency = 0.0;  ///< Ω, natural frequency of the spring (Ω² = c/μ)
+    double damping = 0.0;    ///< λ = δ/μ
+
+    MovingMassDamper(double m, double rho, double omega, double lambda)
+        : mass(m), arm(rho), frequency(omega), damping(lambda) {
+        check("mass m", m, false);
+        check("arm rho", rho, true);
+        check("frequency Omega", omega, false);
+        check("damping lambda", lambda, true);
+    }
+    double kL() const { return mass * arm * arm / (frequency * frequency); }
+    /// S of paper 001 eq. (3) for a symmetric body (A, A, C).
+    double S(double A, double C) const {
+        const double omega2 = frequency * frequency;
+        return mass * arm * arm * damping / (omega2 * omega2) * C * C * C * (A - C) / (A * A * A * A);
+    }
+
+    Vec3 operator()(double /*t*/, const Vec3& w, const Vec3& J) const {
+        const double A = J[0], B = J[1], C = J[2];
+        const double A2 = A * A, A3 = A2 * A, A4 = A3 * A, B2 = B * B, B3 = B2 * B, B4 = B3 * B;
+        const double C2 = C * C, C3 = C2 * C, C4 = C3 * C;
+        const double p = w[0], q = w[1], r = w[2];
+        const double mass_arm2 = mass * arm * arm, omega2 = frequency * frequency;
+        auto sq = [](double x) { return x * x; };
+        const double p2 = p * p, q2 = q * q, r2 = r * r;
+        const double kL = mass_arm2 / omega2;
+        const double kS = mass_arm2 * damping / (omega2 * omega2);
+        const double TL0 = kL * q * r * (
+            p2 * (7*A3 - 14*A2*B + 2*A2*C + 7*A*B2 + 8*A*B*C - 9*A*C2
+                  - 10*B2*C + 10*B*C2) / (A*B*C)
+            - (q2 * (A2*B2 - 2*A2*B*C - 2*A*B3 + 4*A*B2*C - 2*A*B*C2
+                     + B4 - 2*B3*C + B2*C2)
+               + r2 * (-4*A2*B*C + 3*A2*C2 + 4*A*B2*C - 2*A*B*C2
+                       - 2*A*C3 - B2*C2 + 2*B*C3 - C4)) / (A2*B*C));
+        const double TL1 = kL * p * r * (
+            -q2 * (7*A2*B - 10*A2*C - 14*A*B2 + 8*A*B*C + 10*A*C2 + 7*B3
+                   + 2*B2*C - 9*B*C2) / (A*B*C)
+            + (p2 * (A4 - 2*A3*B - 2*A3*C + A2*B2 + 4*A2*B*C + A2*C2
+                     - 2*A*B2*C - 2*A*B*C2)
+               + r2 * (4*A2*B*C - A2*C2 - 4*A*B2*C - 2*A*B*C2 + 2*A*C3
+                       + 3*B2*C2 - 2*B*C3 - C4)) / (A*B2*C));
+        const double TS0 = kS * p * (
+            -2*q2*r2*(A - B)*(12*A2*B - 13*A2*C - 12*A*B2 + 10*A*B*C + 2*A*C2
+                              + 11*B2*C - 22*B*C2 + 11*C3) / (A2*B*C)
+            - p2*q2*(A - B)*(5*A3 - 10*A2*B + 4*A2*C + 5*A*B2 + 4*A*B*C
+                             - 9*A*C2 - 8*B2*C + 8*B*C2) / (A*B*C2)
+            + 2*p2*r2*(A - B)*(A - C)*(3*A2 - 3*A*B + A*C + 4*B*C - 4*C2) / (A*B2*C)
+            + r2*r2*(A - C)*(4*A2*B - 3*A2*C - 4*A*B2 + 2*A*B*C + 2*A*C2
+                             + B2*C - 2*B*C2 + C3) / (A2*B2)
+            + q2*q2*B*(A - B)*sq(A - B + C) / (A2*C2));
+        const double TS1 = kS * q * (
+            -2*p2*r2*(A - B)*(12*A2*B - 11*A2*C - 12*A*B2 - 10*A*B*C + 22*A*C2
+                              + 13*B2*C - 2*B*C2 - 11*C3) / (A*B2*C)
+            + p2*q2*(A - B)*(5*A2*B - 8*A2*C - 10*A*B2 + 4*A*B*C + 8*A*C2
+                             + 5*B3 + 4*B2*C - 9*B*C2) / (A*B*C2)
+            + 2*q2*r2*(A - B)*(B - C)*(3*A*B - 4*A*C - 3*B2 - B*C + 4*C2) / (A2*B*C)
+            - r2*r2*(B - C)*(4*A2*B - A2*C - 4*A*B2 - 2*A*B*C + 2*A*C2
+                             + 3*B2*C - 2*B*C2 - C3) / (A2*B2)
+            - p2*p2*A*(A - B)*sq(A - B - C) / (B2*C2));
+        const double TS2 = kS * r * (A - B - C) * (A - B + C) * (
+            p2 * r2 * (A - C) / (A*B2) + q2 * r2 * (B - C) / (A2*B));
+        return {TL0 + TS0, TL1 + TS1, TS2};
+    }
+    /// ∂M/∂ω by central differences (the polynomial is long; the step is relative, ~1e-6·|ω|).
+    void add_jacobian(double t, const Vec3& w, const Vec3& J, Mat3& d) const {
+        const double h = 1e-6 * std::max(1.0, w.cwiseAbs().maxCoeff());
+        for (int j = 0; j < 3; ++j) {
+            Vec3 plus = w, minus = w;
+            plus[j] += h;
+            minus[j] -= h;
+            d.col(j) += ((*this)(t, plus, J) - (*this)(t, minus, J)) / (2.0 * h);
+        }
+    }
+    Eigen::Vector2d averaged(double /*t*/, double a, double r, double A, double C) const {
+        const double s = S(A, C), r3 = r * r * r;
+        return {s * r3 * r * a / A, -(A / (C * C)) * s * r3 * a * a};
+    }
+    static constexpr const char* name = "moving_mass_damper";
+
+private:
+    static void check(const char* what, double value, bool zero_allowed) {
+        if (!std::isfinite(value) || value < 0.0 || (!zero_allowed && value == 0.0))
+            throw std::invalid_argument(std::string("MovingMassDamper: ") + what + " = " + format_value(value) +
+                                        (zero_allowed ? " must be finite and non-negative" : " must be finite and positive"));
+    }
+};
+
+}  // namespace gyrostat::torque

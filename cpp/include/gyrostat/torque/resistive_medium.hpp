@@ -1,0 +1,48 @@
+// Linear resistance of the medium with coefficients that vary (slowly) in time.
+#pragma once
+
+#include <Eigen/Core>
+#include <stdexcept>
+#include <vector>
+
+#include "gyrostat/body.hpp"
+
+namespace gyrostat::torque {
+
+/// M = −D(t) ω with D(t) = Σ_k D_k t^k, a polynomial in time of 3×3 matrices (paper 001:
+/// −ε I(τ) ω with τ = εt; paper 002: −ε I ω with a full tensor). Put the small parameter into
+/// the coefficients: D_k = ε^{k+1} I_k for I(τ) = Σ I_k τ^k.
+///
+/// Averaged over the symmetric Euler–Poinsot motion, with D frozen at the current t (its slow
+/// variation is the slow time of the averaged system):
+///   ȧ = −(D11(t) + D22(t)) a / (2A),   ṙ = −D33(t) r / C.
+/// Assumptions: D varies slowly against the fast frequency |(C − A) r / A| (reported by the
+/// validity check); the symmetric part of D decides dissipation.
+struct ResistiveMedium {
+    std::vector<Mat3> coefficients;  ///< D_0, D_1, … (t^0, t^1, …)
+
+    explicit ResistiveMedium(std::vector<Mat3> c) : coefficients(std::move(c)) {
+        if (coefficients.empty()) throw std::invalid_argument("ResistiveMedium: at least one coefficient matrix is needed");
+        for (std::size_t k = 0; k < coefficients.size(); ++k)
+            require_finite(Eigen::Map<const Eigen::Matrix<double, 9, 1>>(coefficients[k].data()),
+                           "ResistiveMedium: coefficient D_" + std::to_string(k));
+    }
+
+    /// D(t) by Horner's rule.
+    Mat3 at(double t) const {
+        Mat3 d = coefficients.back();
+        for (std::size_t k = coefficients.size() - 1; k-- > 0;) d = d * t + coefficients[k];
+        return d;
+    }
+    Vec3 operator()(double t, const Vec3& omega, const Vec3& /*moments*/) const { return -(at(t) * omega); }
+    void add_jacobian(double t, const Vec3& /*omega*/, const Vec3& /*moments*/, Mat3& dM_domega) const {
+        dM_domega -= at(t);
+    }
+    Eigen::Vector2d averaged(double t, double a, double r, double A, double C) const {
+        const Mat3 d = at(t);
+        return {-(d(0, 0) + d(1, 1)) * a / (2.0 * A), -d(2, 2) * r / C};
+    }
+    static constexpr const char* name = "resistive_medium";
+};
+
+}  // namespace gyrostat::torque
