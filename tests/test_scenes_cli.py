@@ -20,12 +20,19 @@ def test_examples_run_and_write_results(tmp_path, capsys):
         folder = tmp_path / name
         report = json.loads((folder / "report.json").read_text())
         assert report["status"] == "success"
-        with (folder / "result.csv").open() as handle:
+        if report["model"] == "compare":
+            with (folder / "result_averaged.csv").open() as handle:
+                assert next(csv.reader(handle))[:3] == ["t [s]", "a [rad/s]", "r [rad/s]"]
+            stem = "result_full"
+        else:
+            stem = "result"
+        with (folder / f"{stem}.csv").open() as handle:
             header = next(csv.reader(handle))
         assert header[:4] == ["t [s]", "p [rad/s]", "q [rad/s]", "r [rad/s]"]
-        data = np.load(folder / "result.npz")
+        data = np.load(folder / f"{stem}.npz")
         assert json.loads(str(data["units"]))["kinetic_energy"] == "J"
-        assert (folder / "omega.png").stat().st_size > 10_000
+        pngs = list(folder.glob("*.png"))
+        assert pngs and all(p.stat().st_size > 10_000 for p in pngs)
     out = capsys.readouterr().out
     assert "model: closed_form" in out
 

@@ -6,6 +6,8 @@ PYBIND11_MODULE(_core, m) {
     gyrostat::bindings::expose_body(m);
     gyrostat::bindings::expose_integrate(m);
     gyrostat::bindings::expose_torque_free(m);
+    gyrostat::bindings::expose_lagrange(m);
+    gyrostat::bindings::expose_orthogonal(m);
 #ifdef GYROSTAT_VERSION
     m.attr("__version__") = GYROSTAT_VERSION;
 #endif

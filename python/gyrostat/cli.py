@@ -18,7 +18,7 @@ def _print_report(report: dict) -> None:
     print(f"{report['scene']}: {report['title']}")
     print(f"  model: {report['model']} ({report['model_reason']}); status: {report['status']}; "
           f"time: {report['seconds']:.3g} s")
-    for name, run in report["runs"].items():
+    for name, run in report.get("runs", {}).items():
         stats = run["stats"]
         drift = ", ".join(f"{k} {v:+.3e}" for k, v in run["invariant_relative_change"].items())
         print(f"  {name}: {run['method']}, {run['status']}; steps {stats['steps']}, rhs evaluations "
@@ -28,7 +28,7 @@ def _print_report(report: dict) -> None:
     if "averaged_vs_full" in report:
         diff = report["averaged_vs_full"]
         print(f"  averaged vs full: max |Δa| = {diff['max_abs_error_a']:.3e}, max |Δr| = {diff['max_abs_error_r']:.3e}")
-    for broken in report["broken_assumptions"]:
+    for broken in report.get("broken_assumptions", []):
         print(f"  WARNING assumption broken: {broken}")
     if "max_error_vs_closed_form" in report:
         print(f"  max |omega - closed form| = {report['max_error_vs_closed_form']:.3e}")

@@ -19,6 +19,7 @@ UNITS = {
     "p": "rad/s", "q": "rad/s", "r": "rad/s",
     "q_w": "1", "q_x": "1", "q_y": "1", "q_z": "1",
     "angular_momentum_norm": "kg m^2/s",
+    "a": "rad/s", "x": "rad^2/s^2", "y": "rad^2/s^2", "energy": "J",
     "kinetic_energy": "J",
     "psi": "rad", "theta": "rad", "phi": "rad",
 }
@@ -152,14 +153,36 @@ def save(solution: Solution, names: tuple[str, ...], folder: Path, stem: str = "
     return [csv_path, npz_path]
 
 
+# Scene kinds other than the rigid body / gyrostat of Scene: the top-level key `kind` of a scene
+# file names one; its module provides run_scene(path, out_dir, progress) -> report (same keys).
+SCENE_KINDS = {"lagrange_top": "gyrostat.lagrange", "orthogonal_torque": "gyrostat.orthogonal"}
+
+
+def scene_kind(path: str | Path) -> str:
+    import tomllib
+
+    with Path(path).open("rb") as handle:
+        try:
+            return str(tomllib.load(handle).get("kind", "rigid_body"))
+        except tomllib.TOMLDecodeError as error:
+            raise ValueError(f"{path}: not valid TOML: {error}") from None
+
+
 def run_scene(path: str | Path, out_dir: str | Path, progress: bool = True) -> dict:
     """Loads, solves, saves and plots one scene; returns its report (also written as
     report.json). Broken assumptions are warned about (gyrostat.ValidityWarning)."""
+    import importlib
     import warnings
 
     from gyrostat import plots
     from gyrostat.validity import ValidityWarning
 
+    kind = scene_kind(path)
+    if kind != "rigid_body":
+        if kind not in SCENE_KINDS:
+            raise ValueError(f"{path}: kind = {kind!r} is not a known scene kind "
+                             f"(rigid_body, {', '.join(SCENE_KINDS)})")
+        return importlib.import_module(SCENE_KINDS[kind]).run_scene(path, out_dir, progress=progress)
     scene = Scene.from_toml(path)
     solutions, report = solve_scene(scene, progress=progress)
     for broken in report["broken_assumptions"]:
