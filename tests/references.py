@@ -92,3 +92,63 @@ def scipy_reference(moments, rotor, torque, y0, t_eval, rtol=1e-12, atol=1e-14):
                     t_eval=t_eval, rtol=rtol, atol=atol)
     assert sol.success, sol.message
     return sol.y.T
+
+
+def cavity_torque(w, moments, kappa):
+    """Chernousko's viscous-cavity torque for P = P0·I, κ = ρP0/ν (paper 002 eq. (1))."""
+    A, B, C = moments
+    p, q, r = w
+    k = kappa / (A * B * C)
+    return np.array([
+        k * p * (C * (A - C) * (A + C - B) * r * r + B * (A - B) * (A + B - C) * q * q),
+        k * q * (A * (B - A) * (B + A - C) * p * p + C * (B - C) * (B + C - A) * r * r),
+        k * r * (B * (C - B) * (C + B - A) * q * q + A * (C - A) * (C + A - B) * p * p),
+    ])
+
+
+def damper_torque_symmetric(w, A, C, mass_arm2, omega2, lam):
+    """Paper 001 eqs. (2)–(3): L = μρ² C (A²p² + A²q² + C²r²)/(A³Ω²), S = μρ²λ C³(A − C)/(A⁴Ω⁴)."""
+    p, q, r = w
+    L = mass_arm2 / omega2 * C / A**3 * (A * A * (p * p + q * q) + C * C * r * r)
+    S = mass_arm2 * lam / omega2**2 * C**3 * (A - C) / A**4
+    return np.array([L * q * r + S * p * r**4, -L * p * r + S * q * r**4, -(A / C) * S * r**3 * (p * p + q * q)])
+
+
+def damper_torque_series(w, moments, arm, mass, omega2, lam, order=6):
+    """The quasi-static reduction evaluated by Taylor series along the unperturbed Euler flow
+    (any J): u1 = −(ω(ω·d0) − d0|ω|² + ω̇ × d0)/Ω², u2 = −(λ/Ω²) u̇1,
+    ΔK(u) = μ[2(d0·u)ω − d0(u·ω) − u(d0·ω) + d0 × u̇], T = −(ΔK̇ + ω × ΔK), M = T(u1) + T(u2).
+    Series arithmetic on coefficient arrays (row n: n-th normalised Taylor coefficient)."""
+    J = np.asarray(moments, float)
+
+    def cauchy(f, a, b):
+        out = np.zeros((order + 1,) + np.shape(f(a[0], b[0])))
+        for k in range(order + 1):
+            for i in range(k + 1):
+                out[k] += f(a[i], b[k - i])
+        return out
+
+    def der(a):
+        out = np.zeros_like(a)
+        out[:-1] = (np.arange(1, order + 1)[:, None]) * a[1:]
+        return out
+
+    W = np.zeros((order + 1, 3))
+    W[0] = w
+    for k in range(order):
+        s = np.zeros(3)
+        for i in range(k + 1):
+            s += np.cross(J * W[i], W[k - i])
+        W[k + 1] = s / J / (k + 1)
+    D0 = np.zeros((order + 1, 3))
+    D0[0] = [0.0, 0.0, arm]
+    dot = lambda a, b: cauchy(np.dot, a, b)[:, None]  # noqa: E731
+    smul = lambda s, a: cauchy(lambda x, y: x * y, s[:, 0], a)  # noqa: E731
+    cross = lambda a, b: cauchy(np.cross, a, b)  # noqa: E731
+    u1 = -(smul(dot(W, D0), W) - smul(dot(W, W), D0) + cross(der(W), D0)) / omega2
+    u2 = -(lam / omega2) * der(u1)
+    total = np.zeros(3)
+    for u in (u1, u2):
+        dK = mass * (2 * smul(dot(D0, u), W) - smul(dot(u, W), D0) - smul(dot(D0, W), u) + cross(D0, der(u)))
+        total += -(der(dK)[0] + np.cross(W[0], dK[0]))
+    return total

@@ -4,6 +4,7 @@
 
 #include <variant>
 
+#include "convert.hpp"
 #include "expose.hpp"
 #include "gyrostat/ensemble.hpp"
 #include "gyrostat/model/averaged.hpp"
@@ -25,27 +26,6 @@ struct CoreModel {
     }
 };
 
-/// Python torque objects → the core's torque values.
-std::vector<AnyTorque> torques_from(const py::sequence& objects) {
-    std::vector<AnyTorque> torques;
-    for (const py::handle& obj : objects) {
-        if (py::isinstance<torque::Constant>(obj)) {
-            torques.emplace_back(obj.cast<torque::Constant>());
-        } else if (py::isinstance<torque::LinearDamping>(obj)) {
-            torques.emplace_back(obj.cast<torque::LinearDamping>());
-        } else if (py::isinstance<torque::ResistiveMedium>(obj)) {
-            torques.emplace_back(obj.cast<torque::ResistiveMedium>());
-        } else if (py::isinstance<torque::ViscousCavity>(obj)) {
-            torques.emplace_back(obj.cast<torque::ViscousCavity>());
-        } else if (py::isinstance<torque::MovingMassDamper>(obj)) {
-            torques.emplace_back(obj.cast<torque::MovingMassDamper>());
-        } else {
-            throw py::type_error("unknown torque: " + std::string(py::repr(obj)));
-        }
-    }
-    return torques;
-}
-
 CoreModel make_full(const Body& body, const py::sequence& torque_objects, bool attitude) {
     TorqueSet set(torques_from(torque_objects));
     if (attitude) return {model::Gyrostat<true>(body, set)};
@@ -64,34 +44,6 @@ CoreModel make_moving_mass(const Body& body, double mass, double arm, double fre
 const model::AveragedSymmetric& as_averaged(const CoreModel& m) {
     if (const auto* a = std::get_if<model::AveragedSymmetric>(&m.system)) return *a;
     throw std::invalid_argument("this is not an averaged model");
-}
-
-py::array_t<double> as_array(const std::vector<double>& flat, std::size_t rows, std::size_t cols) {
-    py::array_t<double> out({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
-    std::copy(flat.begin(), flat.end(), out.mutable_data());
-    return out;
-}
-
-integrate::Options make_options(const std::string& method, double rtol, double atol, std::vector<double> t_eval,
-                                bool every_step, long max_steps, double first_step, double max_step) {
-    integrate::Options o;
-    o.method = integrate::method_from_name(method);
-    o.rtol = rtol;
-    o.atol = atol;
-    o.t_eval = std::move(t_eval);
-    o.every_step = every_step;
-    o.max_steps = max_steps;
-    o.first_step = first_step;
-    o.max_step = max_step;
-    return o;
-}
-
-template <class System>
-typename System::State to_state(const Eigen::VectorXd& y0) {
-    if (y0.size() != System::dim)
-        throw std::invalid_argument("initial state has " + std::to_string(y0.size()) + " components; this model needs " +
-                                    std::to_string(System::dim));
-    return y0;
 }
 
 integrate::Result solve_model(const CoreModel& model, const Eigen::VectorXd& y0, double t0, double t1,
