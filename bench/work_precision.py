@@ -163,6 +163,8 @@ def draw_charts(rows, out: Path) -> None:
           "Torque-free triaxial body, 100 periods: work against precision")
     chart(rows, "forced", out / "work_precision_forced.png", "Forced damped gyrostat with attitude, t = 200")
     chart(rows, "stiff", out / "work_precision_stiff.png", "Stiff damping (D = 1e3 I), t = 10")
+    chart(rows, "moving_mass", out / "work_precision_moving_mass.png",
+          "Explicit moving-mass model (paper 001), Ω² = 2000, λ = 400, t = 20")
 
 
 def main():

@@ -126,6 +126,19 @@ def test_paper_002_scene_breaks_its_assumptions():
     assert not all(c.holds for c in checks)
 
 
+def test_validity_check_of_a_shipped_scene():
+    from gyrostat.cli import example_scenes
+    from gyrostat.validity import check_scene
+
+    path = next(p for p in example_scenes() if p.stem == "p001_A1p5_C1_I1-1p25")
+    with pytest.warns(g.ValidityWarning) as record:
+        checks = check_scene(path)
+    messages = " | ".join(str(w.message) for w in record)
+    # the paper's own condition (4): Ω²/(λ|ω|) = 100/(98·√2) = 0.72; the lag λ|ν|/Ω² = 98·(1/3)/100 = 0.33
+    assert "condition (4)" in messages and "0.722" in messages and "0.327" in messages
+    assert any(c.holds for c in checks)
+
+
 # ---- paper 000: the sign of the M3 term -------------------------------------------------------
 
 P000 = [((8.0, 4.0), 0.1), ((8.0, 4.0), 0.3), ((1.3, 1.0), 0.1), ((1.3, 1.0), 0.3)]

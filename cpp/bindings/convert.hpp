@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "gyrostat/integrate/options.hpp"
@@ -64,6 +65,19 @@ typename System::State to_state(const Eigen::VectorXd& y0) {
         throw std::invalid_argument("initial state has " + std::to_string(y0.size()) + " components; this model needs " +
                                     std::to_string(System::dim));
     return y0;
+}
+
+/// f(t, y) of whichever system a variant of systems holds (for checks from Python, not speed).
+template <class Variant>
+Eigen::VectorXd variant_rhs(const Variant& systems, double t, const Eigen::VectorXd& y) {
+    return std::visit(
+        [&](const auto& s) -> Eigen::VectorXd {
+            using S = std::decay_t<decltype(s)>;
+            typename S::State dy;
+            s.rhs(t, to_state<S>(y), dy);
+            return dy;
+        },
+        systems);
 }
 
 }  // namespace gyrostat::bindings

@@ -83,17 +83,7 @@ void expose_integrate(py::module_& m) {
                  throw std::invalid_argument("this is not a moving-mass model");
              },
              py::arg("omega"))
-        .def("rhs",
-             [](const CoreModel& fm, double t, const Eigen::VectorXd& y) {
-                 return std::visit(
-                     [&](const auto& s) -> Eigen::VectorXd {
-                         using S = std::decay_t<decltype(s)>;
-                         typename S::State dy;
-                         s.rhs(t, to_state<S>(y), dy);
-                         return dy;
-                     },
-                     fm.system);
-             },
+        .def("rhs", [](const CoreModel& fm, double t, const Eigen::VectorXd& y) { return variant_rhs(fm.system, t, y); },
              py::arg("t"), py::arg("y"));
 
     py::class_<integrate::Stats>(m, "Stats")

@@ -1,8 +1,123 @@
-// Bindings of paper 003's models (placeholder: filled by the model's implementation).
+// Bindings of paper 003's models (heavy symmetric top, full and averaged over nutation): type
+// translation only; the physics is in model/lagrange_top.hpp, model/lagrange_averaged.hpp.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "convert.hpp"
 #include "expose.hpp"
+#include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/model/lagrange_averaged.hpp"
+#include "gyrostat/model/lagrange_top.hpp"
 
 namespace gyrostat::bindings {
 
-void expose_lagrange(pybind11::module_& /*m*/) {}
+namespace {
+
+template <class System, class Class>
+void def_system(Class& cls) {
+    cls.def_property_readonly_static("dim", [](py::object) { return System::dim; })
+        .def_property_readonly("A", &System::A)
+        .def_property_readonly("C", &System::C)
+        .def_property_readonly("mu", &System::mu)
+        .def("rhs",
+             [](const System& s, double t, const Eigen::VectorXd& y) -> Eigen::VectorXd {
+                 typename System::State dy;
+                 s.rhs(t, to_state<System>(y), dy);
+                 return dy;
+             },
+             py::arg("t"), py::arg("y"))
+        .def("solve",
+             [](const System& s, const Eigen::VectorXd& y0, double t0, double t1, const std::string& method, double rtol,
+                double atol, std::vector<double> t_eval, bool every_step, long max_steps, double first_step,
+                double max_step) {
+                 const auto o =
+                     make_options(method, rtol, atol, std::move(t_eval), every_step, max_steps, first_step, max_step);
+                 const auto start = to_state<System>(y0);
+                 py::gil_scoped_release release;
+                 return integrate::solve(s, t0, start, t1, o);
+             },
+             py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("method"), py::arg("rtol"), py::arg("atol"),
+             py::arg("t_eval"), py::arg("every_step"), py::arg("max_steps"), py::arg("first_step"), py::arg("max_step"));
+}
+
+}  // namespace
+
+void expose_lagrange(py::module_& m) {
+    py::class_<model::Nutation>(m, "LagrangeNutation")
+        .def_readonly("u1", &model::Nutation::u1)
+        .def_readonly("u2", &model::Nutation::u2)
+        .def_readonly("u3", &model::Nutation::u3)
+        .def_readonly("m", &model::Nutation::m)
+        .def_readonly("alpha", &model::Nutation::alpha)
+        .def_readonly("v", &model::Nutation::v)
+        .def_readonly("period", &model::Nutation::period);
+
+    m.def("lagrange_nutation", &model::nutation, py::arg("A"), py::arg("C"), py::arg("mu"), py::arg("G_z"), py::arg("H"),
+          py::arg("r"));
+    m.def(
+        "lagrange_nutation_table",
+        [](double A, double C, double mu, const std::vector<double>& Gz, const std::vector<double>& H,
+           const std::vector<double>& r) {
+            if (Gz.size() != H.size() || Gz.size() != r.size())
+                throw std::invalid_argument("lagrange_nutation_table: G_z, H, r must have one length; got " +
+                                            std::to_string(Gz.size()) + ", " + std::to_string(H.size()) + ", " +
+                                            std::to_string(r.size()));
+            py::array_t<double> out({static_cast<py::ssize_t>(Gz.size()), py::ssize_t(7)});
+            double* data = out.mutable_data();
+            {
+                py::gil_scoped_release release;
+                for (std::size_t i = 0; i < Gz.size(); ++i) {
+                    const model::Nutation n = model::nutation(A, C, mu, Gz[i], H[i], r[i]);
+                    const double row[7] = {n.u1, n.u2, n.u3, n.m, n.alpha, n.v, n.period};
+                    std::copy(row, row + 7, data + 7 * i);
+                }
+            }
+            return out;
+        },
+        py::arg("A"), py::arg("C"), py::arg("mu"), py::arg("G_z"), py::arg("H"), py::arg("r"),
+        "Rows (u1, u2, u3, m, alpha, v, period) for each (G_z, H, r).");
+    m.def("elliptic_K", &model::elliptic_K, py::arg("m"), "K(m), parameter m = k^2 (GSL)");
+    m.def("elliptic_E", &model::elliptic_E, py::arg("m"), "E(m), parameter m = k^2 (GSL)");
+    m.def("jacobi_sn_cn_dn", &model::jacobi_sn_cn_dn, py::arg("u"), py::arg("m"), "(sn, cn, dn)(u | m) (GSL)");
+    m.def("mean_sn_squared", &model::mean_sn_squared, py::arg("m"), "W(m) = (K - E)/(m K) = <sn^2>");
+
+    py::class_<model::LagrangeUnperturbed>(m, "LagrangeUnperturbed")
+        .def(py::init<double, double, double, const Vec3&, const Vec3&, double>(), py::arg("A"), py::arg("C"),
+             py::arg("mu"), py::arg("omega"), py::arg("gamma"), py::arg("t0") = 0.0)
+        .def("u",
+             [](const model::LagrangeUnperturbed& s, const std::vector<double>& t) {
+                 std::vector<double> out(t.size());
+                 {
+                     py::gil_scoped_release release;
+                     for (std::size_t i = 0; i < t.size(); ++i) out[i] = s.u(t[i]);
+                 }
+                 return out;
+             },
+             py::arg("t"))
+        .def_property_readonly("nutation", &model::LagrangeUnperturbed::nutation)
+        .def_property_readonly("G_z", &model::LagrangeUnperturbed::Gz)
+        .def_property_readonly("H", &model::LagrangeUnperturbed::H)
+        .def_property_readonly("r", &model::LagrangeUnperturbed::r)
+        .def_property_readonly("beta", &model::LagrangeUnperturbed::beta);
+
+    py::class_<model::LagrangeTop> top(m, "LagrangeTopCore");
+    top.def(py::init([](const Body& body, double mu, const py::sequence& torques) {
+                return model::LagrangeTop(body, mu, TorqueSet(torques_from(torques)));
+            }),
+            py::arg("body"), py::arg("mu"), py::arg("torques"));
+    def_system<model::LagrangeTop>(top);
+
+    py::class_<model::LagrangeAveraged> averaged(m, "LagrangeAveragedCore");
+    averaged
+        .def(py::init([](const Body& body, double mu, const py::sequence& torques) {
+                 return model::LagrangeAveraged(body, mu, TorqueSet(torques_from(torques)));
+             }),
+             py::arg("body"), py::arg("mu"), py::arg("torques"))
+        .def("rate", &model::LagrangeAveraged::rate, py::arg("t"))
+        .def("equatorial_damping", &model::LagrangeAveraged::equatorial_damping, py::arg("t"))
+        .def("axial_damping", &model::LagrangeAveraged::axial_damping, py::arg("t"));
+    def_system<model::LagrangeAveraged>(averaged);
+}
 
 }  // namespace gyrostat::bindings

@@ -12,6 +12,7 @@ from gyrostat.model import AveragedModel, Model, MovingMassModel
 from gyrostat.solution import Solution
 from gyrostat.solve import METHODS, solve, solve_ensemble, torque_free
 from gyrostat.validity import ValidityWarning
+from gyrostat import averaged, lagrange, orthogonal, validity  # noqa: E402  (papers 002-004 helpers)
 
 __all__ = [
     "Body",
@@ -30,5 +31,9 @@ __all__ = [
     "solve_ensemble",
     "torque_free",
     "ValidityWarning",
+    "averaged",
+    "lagrange",
+    "orthogonal",
+    "validity",
 ]
 __version__ = "0.1.0"

@@ -20,6 +20,7 @@ UNITS = {
     "q_w": "1", "q_x": "1", "q_y": "1", "q_z": "1",
     "angular_momentum_norm": "kg m^2/s",
     "a": "rad/s", "x": "rad^2/s^2", "y": "rad^2/s^2", "energy": "J",
+    "tau": "s", "g": "1", "h": "kg m^2/s^2",
     "kinetic_energy": "J",
     "psi": "rad", "theta": "rad", "phi": "rad",
 }
@@ -129,6 +130,21 @@ def _concatenate(pieces: list[Solution]) -> Solution:
     )
 
 
+def write_columns(columns: dict[str, np.ndarray], folder: Path, stem: str, units: dict | None = None) -> list[Path]:
+    """STEM.csv (a column per quantity, its unit in the header) and STEM.npz (the same arrays by
+    name, plus their units as JSON). Units from `units`, else UNITS; "1" when unknown."""
+    units = UNITS if units is None else {**UNITS, **units}
+    folder.mkdir(parents=True, exist_ok=True)
+    csv_path = folder / f"{stem}.csv"
+    with csv_path.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow([f"{name} [{units.get(name, '1')}]" for name in columns])
+        writer.writerows(np.column_stack(list(columns.values())).tolist())
+    npz_path = folder / f"{stem}.npz"
+    np.savez(npz_path, **columns, units=json.dumps({name: units.get(name, "1") for name in columns}))
+    return [csv_path, npz_path]
+
+
 def save(solution: Solution, names: tuple[str, ...], folder: Path, stem: str = "result") -> list[Path]:
     """Writes STEM.csv (a column per quantity, units in the header) and STEM.npz (the same arrays
     by name, plus their units as JSON)."""
@@ -143,14 +159,7 @@ def save(solution: Solution, names: tuple[str, ...], folder: Path, stem: str = "
     if names[:2] == ("a", "r"):
         columns["x"] = solution.y[:, 0] ** 2
         columns["y"] = solution.y[:, 1] ** 2
-    csv_path = folder / f"{stem}.csv"
-    with csv_path.open("w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow([f"{name} [{UNITS.get(name, '1')}]" for name in columns])
-        writer.writerows(np.column_stack(list(columns.values())).tolist())
-    npz_path = folder / f"{stem}.npz"
-    np.savez(npz_path, **columns, units=json.dumps({name: UNITS.get(name, "1") for name in columns}))
-    return [csv_path, npz_path]
+    return write_columns(columns, folder, stem)
 
 
 # Scene kinds other than the rigid body / gyrostat of Scene: the top-level key `kind` of a scene

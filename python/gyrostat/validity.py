@@ -135,3 +135,20 @@ def check(model, states, times=None, warn: bool = True) -> list[Assumption]:
             if not assumption.holds:
                 warnings.warn(str(assumption), ValidityWarning, stacklevel=2)
     return results
+
+
+def check_scene(scene, warn: bool = True) -> list[Assumption]:
+    """Checks a scene (a :class:`gyrostat.scene.Scene` or the path of its TOML file) at its
+    initial state, for every model the scene uses, without solving it. (`gyrostat run` checks
+    along the whole solution.)"""
+    from gyrostat.scene import Scene
+
+    if not isinstance(scene, Scene):
+        scene = Scene.from_toml(scene)
+    choice, _ = scene.choose_model()
+    results: list[Assumption] = []
+    if choice in ("full", "compare"):
+        results += check(scene.model(), scene.omega0, warn=warn)
+    if choice in ("averaged", "compare"):
+        results += check(scene.averaged_model(), scene.slow0, warn=warn)
+    return results

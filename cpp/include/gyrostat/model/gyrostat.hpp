@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/set.hpp"
 
@@ -56,12 +57,7 @@ public:
         dy.template head<3>() =
             body_.inverse_moments().cwiseProduct(torques_.total(t, omega, body_.moments()) - omega.cross(momentum));
         if constexpr (WithAttitude) {
-            const double w = y[3], x = y[4], yy = y[5], z = y[6];
-            const double p = omega.x(), q = omega.y(), r = omega.z();
-            dy[3] = 0.5 * (-x * p - yy * q - z * r);
-            dy[4] = 0.5 * (w * p + yy * r - z * q);
-            dy[5] = 0.5 * (w * q + z * p - x * r);
-            dy[6] = 0.5 * (w * r + x * q - yy * p);
+            dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
         }
     }
 

@@ -1,0 +1,139 @@
+// Paper 003: the heavy symmetric top averaged over the nutation, in the slow variables (G_z, H, r).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gyrostat/model/lagrange_top.hpp"
+
+namespace gyrostat::model {
+
+/// Heavy symmetric top (A, A, C; μ = m g l) under torques of the paper's class (2.3),
+/// M1 = f p, M2 = f q, M3 = M3*, averaged over the nutation phase of the unperturbed top.
+///
+/// Slow variables x = (G_z, H, r): the unperturbed first integrals. They are smooth and need no
+/// sign bookkeeping (the paper's roots u1, u2, u3 do: docs/papers/003_lagrange_top.md §3–4).
+/// Exactly, dG_z/dt = M·γ, dH/dt = M·ω, C dr/dt = M3, and with p γ1 + q γ2 = (G_z − C r u)/A,
+/// p² + q² = (2H − C r² − 2μu)/A, averaging over u = cos θ (⟨u⟩ = v(G_z, H, r), see Nutation):
+///
+///   dG_z/dt = f(t) (G_z − C r v)/A + M3*(t, r) v
+///   dH/dt   = f(t) (2H − C r² − 2μ v)/A + M3*(t, r) r
+///   dr/dt   = M3*(t, r)/C
+///
+/// Torques accepted (the class (2.3) with coefficients that may depend on t):
+///   ResistiveMedium and LinearDamping with D = diag(d, d, d3) at every order (f = −d(t),
+///   M3* contains −d3(t) r); Constant with M = (0, 0, c) (M3* contains c).
+/// Any other torque throws std::invalid_argument naming it: its nutation average is not
+/// implemented, use the full LagrangeTop. For the paper's (3.1), f = −ε a(εt), M3* = −ε b(εt) r,
+/// and r(t) = r0 exp(−(b0 τ + b1 τ²/2)/C) exactly (paper (3.3)).
+///
+/// Validity (checked by the Python layer, not here): the nutation period T = 2K(m)/α must be short
+/// against the time scale of the slow variables (rate() · T ≪ 1); near the separatrix (1 − m → 0)
+/// and the triple root (α → 0) T grows and the averaging degrades. At m → 0 (regular
+/// precession) the right-hand side stays smooth (only the individual roots u1, u2 do not).
+///
+/// Invariants reported: u1, u2, u3 (the roots of the nutation cubic) for each output.
+class LagrangeAveraged {
+public:
+    static constexpr int dim = 3;
+    static constexpr bool has_jacobian = false;
+    static constexpr bool has_projection = false;
+    static constexpr bool has_taylor = false;
+    static constexpr int max_taylor_order = 0;
+    static constexpr int n_invariants = 3;
+    using State = Eigen::Vector3d;
+    using Jacobian = Eigen::Matrix3d;
+
+    LagrangeAveraged(Body body, double mu, TorqueSet torques)
+        : top_(std::move(body), mu, torques), torques_(std::move(torques)) {
+        for (const auto& part : torques_.parts()) {
+            if (const auto* medium = std::get_if<torque::ResistiveMedium>(&part)) {
+                for (std::size_t k = 0; k < medium->coefficients.size(); ++k)
+                    add_linear(medium->coefficients[k], k, "ResistiveMedium coefficient D_" + std::to_string(k));
+            } else if (const auto* damping = std::get_if<torque::LinearDamping>(&part)) {
+                add_linear(damping->matrix, 0, "LinearDamping matrix");
+            } else if (const auto* constant = std::get_if<torque::Constant>(&part)) {
+                if (constant->moment.x() != 0.0 || constant->moment.y() != 0.0)
+                    throw std::invalid_argument(
+                        "LagrangeAveraged: a constant torque must be axial, M = (0, 0, c), to be of the paper's class "
+                        "(2.3); got M1 = " + format_value(constant->moment.x()) + ", M2 = " +
+                        format_value(constant->moment.y()) + ": use the full LagrangeTop");
+                axial_constant_ += constant->moment.z();
+            } else {
+                throw std::invalid_argument(std::string("LagrangeAveraged: the nutation average of torque '") +
+                                            torque_name(part) + "' is not implemented: use the full LagrangeTop");
+            }
+        }
+    }
+
+    const LagrangeTop& top() const { return top_; }
+    double A() const { return top_.A(); }
+    double C() const { return top_.C(); }
+    double mu() const { return top_.mu(); }
+
+    /// d(t): the equatorial damping coefficient (f = −d); d3(t): the axial one; c: axial constant.
+    double equatorial_damping(double t) const { return horner(equatorial_, t); }
+    double axial_damping(double t) const { return horner(axial_, t); }
+    double axial_constant() const { return axial_constant_; }
+    /// The rate at which the slow variables relax: max(|d(t)|/A, |d3(t)|/C). Times the nutation
+    /// period it is the adiabaticity number N = rate · T that must be ≪ 1.
+    double rate(double t) const {
+        return std::max(std::abs(equatorial_damping(t)) / A(), std::abs(axial_damping(t)) / C());
+    }
+
+    /// The equations in the block comment above the class.
+    void rhs(double t, const State& x, State& dx) const {
+        const double A = top_.A(), C = top_.C(), mu = top_.mu();
+        const double Gz = x[0], H = x[1], r = x[2];
+        const double v = nutation(A, C, mu, Gz, H, r).v;
+        const double f = -equatorial_damping(t);
+        const double m3 = -axial_damping(t) * r + axial_constant_;
+        dx[0] = f * (Gz - C * r * v) / A + m3 * v;
+        dx[1] = f * (2.0 * H - C * r * r - 2.0 * mu * v) / A + m3 * r;
+        dx[2] = m3 / C;
+    }
+    void jacobian(double, const State&, Jacobian&) const {}
+    void project(State&) const {}
+    template <int Order>
+    void taylor_coefficients(double, const State&, State*) const {}
+    bool supports_taylor() const { return false; }
+
+    static constexpr std::array<const char*, n_invariants> invariant_names{"u1", "u2", "u3"};
+    void invariants(double /*t*/, const State& x, double* out) const {
+        const Nutation n = nutation(top_.A(), top_.C(), top_.mu(), x[0], x[1], x[2]);
+        out[0] = n.u1;
+        out[1] = n.u2;
+        out[2] = n.u3;
+    }
+
+private:
+    void add_linear(const Mat3& D, std::size_t order, const std::string& what) {
+        const bool diagonal = D(0, 1) == 0.0 && D(0, 2) == 0.0 && D(1, 0) == 0.0 && D(1, 2) == 0.0 &&
+                              D(2, 0) == 0.0 && D(2, 1) == 0.0;
+        if (!diagonal || D(0, 0) != D(1, 1))
+            throw std::invalid_argument("LagrangeAveraged: " + what +
+                                        " must be diag(d, d, d3) to be of the paper's class (2.3); got D11 = " +
+                                        format_value(D(0, 0)) + ", D22 = " + format_value(D(1, 1)) +
+                                        (diagonal ? std::string() : std::string(" and off-diagonal terms")) +
+                                        ": use the full LagrangeTop");
+        if (equatorial_.size() <= order) equatorial_.resize(order + 1, 0.0), axial_.resize(order + 1, 0.0);
+        equatorial_[order] += D(0, 0);
+        axial_[order] += D(2, 2);
+    }
+    static double horner(const std::vector<double>& c, double t) {
+        double s = 0.0;
+        for (std::size_t k = c.size(); k-- > 0;) s = s * t + c[k];
+        return s;
+    }
+
+    LagrangeTop top_;
+    TorqueSet torques_;
+    std::vector<double> equatorial_, axial_;  ///< polynomial coefficients in t
+    double axial_constant_ = 0.0;
+};
+
+}  // namespace gyrostat::model

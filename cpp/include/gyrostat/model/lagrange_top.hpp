@@ -1,0 +1,161 @@
+// Paper 003: a heavy dynamically symmetric top about a fixed point on its axis (Lagrange case)
+// under small perturbation torques; its classical unperturbed solution in Jacobi sn.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "gyrostat/attitude.hpp"
+#include "gyrostat/body.hpp"
+#include "gyrostat/torque/set.hpp"
+
+namespace gyrostat::model {
+
+// ---------------------------------------------------------------------------------------------
+// Elliptic functions (GSL; compiled in lagrange.cpp). Every function takes the PARAMETER m = k²
+// (SciPy's convention and the paper's k²); GSL's complete integrals take the modulus k and are
+// called with k = √m inside. Out-of-range arguments throw std::invalid_argument naming the value.
+// ---------------------------------------------------------------------------------------------
+
+/// K(m) = ∫_0^{π/2} dϑ / √(1 − m sin²ϑ), 0 ≤ m ≤ 1 (K(1) = +∞).
+double elliptic_K(double m);
+/// E(m) = ∫_0^{π/2} √(1 − m sin²ϑ) dϑ, 0 ≤ m ≤ 1.
+double elliptic_E(double m);
+/// (sn, cn, dn)(u | m), 0 ≤ m ≤ 1.
+std::array<double, 3> jacobi_sn_cn_dn(double u, double m);
+/// W(m) = ⟨sn²⟩ over a period = (K − E)/(m K) = R_D(0, 1−m, 1) / (3 R_F(0, 1−m, 1)):
+/// W(0) = ½, W(1) = 1, no 0/0 at m → 0.
+double mean_sn_squared(double m);
+
+/// The nutation of the unperturbed top in terms of its first integrals (G_z, H, r).
+///
+///   f(u) = A (2H − C r² − 2μu)(1 − u²) − (G_z − C r u)² = 2μA (u − u1)(u − u2)(u − u3),
+///   −1 ≤ u1 ≤ u2 ≤ 1 ≤ u3,   u = cos θ ∈ [u1, u2],
+///   u(t) = u1 + (u2 − u1) sn²(α t + β | m),  m = k² = (u2 − u1)/(u3 − u1),  α = √(μ(u3 − u1)/(2A)),
+///   period of u:  T = 2K(m)/α  (the paper prints K/α after (1.3): see docs/papers/003),
+///   ⟨u⟩ = v = u1 + (u2 − u1) W(m) = u3 − (u3 − u1) E/K.
+struct Nutation {
+    double u1 = 0.0, u2 = 0.0, u3 = 0.0;
+    double m = 0.0;       ///< k², clamped to [0, 1]
+    double alpha = 0.0;   ///< rate of the sn argument
+    double v = 0.0;       ///< ⟨cos θ⟩ over the nutation
+    double period = 0.0;  ///< 2K(m)/α (+∞ at the separatrix m = 1 or at the triple root α = 0)
+};
+
+/// Roots of the cubic, k², α, v from (G_z, H, r): u3 by bisection on [1, 2 + max|s_i|] of the
+/// factored f (f(1) = −(G_z − C r)² ≤ 0 exactly), then deflation u1 + u2 = s1 − u3,
+/// u1 u2 = s3/u3 (u3 ≥ 1). Throws std::invalid_argument for non-finite input or no root.
+Nutation nutation(double A, double C, double mu, double Gz, double H, double r);
+
+/// The unperturbed top from an initial state (ω, γ) at t0 (γ: upward vertical in body axes):
+/// u(t) = cos θ(t) in closed form, β = ±F(arcsin √((u0 − u1)/(u2 − u1)) | m), sign of u̇0 = γ1 q − γ2 p.
+class LagrangeUnperturbed {
+public:
+    LagrangeUnperturbed(double A, double C, double mu, const Vec3& omega, const Vec3& gamma, double t0 = 0.0);
+    double u(double t) const;
+    const Nutation& nutation() const { return n_; }
+    double Gz() const { return Gz_; }
+    double H() const { return H_; }
+    double r() const { return r_; }
+    double beta() const { return beta_; }
+
+private:
+    Nutation n_;
+    double Gz_ = 0.0, H_ = 0.0, r_ = 0.0, beta_ = 0.0, t0_ = 0.0;
+};
+
+/// Upward vertical in body axes from the body→space quaternion (w, x, y, z): third row of R(Q).
+inline Vec3 vertical_in_body(double w, double x, double y, double z) {
+    return {2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)};
+}
+
+/// Heavy symmetric top (A1 = A2 = A, A3 = C) about a fixed point O on its axis, centre of mass
+/// at distance l on +z, μ = m g l > 0, plus the torques of a TorqueSet.
+///
+/// State y = (p, q, r, Q_w, Q_x, Q_y, Q_z): ω in body axes and the unit quaternion Q rotating
+/// body axes into space axes (z up). No Euler angles: nothing is singular at θ = 0 or π.
+/// γ = upward vertical in body axes = third row of R(Q) (vertical_in_body). Gravity torque
+/// about O: l e_z × (−m g γ) = μ (γ2, −γ1, 0).
+///
+///   A ṗ = (A − C) q r + μ γ2 + M1(t, ω)
+///   A q̇ = (C − A) p r − μ γ1 + M2(t, ω)
+///   C ṙ =                      M3(t, ω)
+///   Q̇  = ½ Q ⊗ (0, ω)
+///
+/// With γ = (sin θ sin φ, sin θ cos φ, cos θ) (z-x-z Euler angles) this is the paper's (1.1).
+/// Paper 003's torque (3.1) M = ε(−a(τ)p, −a(τ)q, −b(τ)r), τ = εt, is a ResistiveMedium with
+/// D_0 = ε diag(a0, a0, b0), D_1 = ε² diag(a1, a1, b1).
+///
+/// Invariants reported (first integrals of the unperturbed top, paper (1.2)):
+///   G_z = A (p γ1 + q γ2) + C r γ3   (vertical angular momentum; dG_z/dt = M·γ),
+///   H   = ½ (A (p² + q²) + C r²) + μ γ3   (energy; dH/dt = M·ω),
+///   r                                  (axial spin; C dr/dt = M3).
+class LagrangeTop {
+public:
+    static constexpr int dim = 7;
+    static constexpr bool has_jacobian = false;  // CVODE builds it by difference quotients
+    static constexpr bool has_projection = true;
+    static constexpr bool has_taylor = false;
+    static constexpr int max_taylor_order = 0;
+    static constexpr int n_invariants = 3;
+    using State = Eigen::Matrix<double, 7, 1>;
+    using Jacobian = Eigen::Matrix<double, 7, 7>;
+
+    LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)), mu_(mu) {
+        const Vec3& J = body_.moments();
+        if (J[0] != J[1])
+            throw std::invalid_argument("LagrangeTop: the top must be dynamically symmetric (A1 = A2); got A1 = " +
+                                        format_value(J[0]) + ", A2 = " + format_value(J[1]));
+        if (body_.rotor().squaredNorm() != 0.0)
+            throw std::invalid_argument("LagrangeTop: a rigid top has no rotor; got |k| = " +
+                                        format_value(body_.rotor().norm()));
+        if (!(mu > 0.0) || !std::isfinite(mu))
+            throw std::invalid_argument("LagrangeTop: mu = m g l must be positive and finite; got mu = " +
+                                        format_value(mu));
+        A_ = J[0];
+        C_ = J[2];
+    }
+
+    const Body& body() const { return body_; }
+    const TorqueSet& torques() const { return torques_; }
+    double A() const { return A_; }
+    double C() const { return C_; }
+    double mu() const { return mu_; }
+    bool supports_taylor() const { return false; }
+
+    /// The equations in the block comment above the class.
+    void rhs(double t, const State& y, State& dy) const {
+        const double p = y[0], q = y[1], r = y[2];
+        const double w = y[3], x = y[4], yy = y[5], z = y[6];
+        const Vec3 g = vertical_in_body(w, x, yy, z);
+        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, Vec3(p, q, r), body_.moments());
+        dy[0] = ((A_ - C_) * q * r + mu_ * g[1] + M[0]) / A_;
+        dy[1] = ((C_ - A_) * p * r - mu_ * g[0] + M[1]) / A_;
+        dy[2] = M[2] / C_;
+        dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), Vec3(p, q, r));
+    }
+    void jacobian(double, const State&, Jacobian&) const {}
+    template <int Order>
+    void taylor_coefficients(double, const State&, State*) const {}
+
+    /// Keeps |Q| = 1 to rounding (so |γ| = 1).
+    void project(State& y) const { y.template segment<4>(3).normalize(); }
+
+    static constexpr std::array<const char*, n_invariants> invariant_names{"G_z", "H", "r"};
+    void invariants(double /*t*/, const State& y, double* out) const {
+        const Vec3 g = vertical_in_body(y[3], y[4], y[5], y[6]);
+        out[0] = A_ * (y[0] * g[0] + y[1] * g[1]) + C_ * y[2] * g[2];
+        out[1] = 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2];
+        out[2] = y[2];
+    }
+
+private:
+    Body body_;
+    TorqueSet torques_;
+    double mu_ = 0.0;
+    double A_ = 0.0, C_ = 0.0;
+};
+
+}  // namespace gyrostat::model

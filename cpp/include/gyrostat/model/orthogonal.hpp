@@ -1,0 +1,260 @@
+// Paper 004: a gyrostat under a servo torque orthogonal to its angular momentum G and its angular
+// velocity ω (Makeev). See docs/papers/004_orthogonal_torque.md.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gyrostat/attitude.hpp"
+#include "gyrostat/body.hpp"
+#include "gyrostat/torque/set.hpp"
+
+namespace gyrostat::model {
+
+/// The magnitude L(t) of the servo torque: a value type evaluated in C++ (no Python call per
+/// right-hand side). L is signed: L < 0 means a torque along −Q.
+///   constant:    L(t) = c0
+///   polynomial:  L(t) = Σ_i c_i tⁱ                        (coefficients c0, c1, …)
+///   harmonic:    L(t) = L0 + Σ_i A_i sin(w_i t + φ_i)
+///   tabulated:   values L_i at strictly increasing times t_i; linear or cubic Hermite
+///                interpolation (slopes by finite differences: centred inside, one-sided at the
+///                ends); outside [t_0, t_n] the end value is held.
+class MagnitudeLaw {
+public:
+    enum class Kind { Constant, Polynomial, Harmonic, Tabulated };
+
+    static MagnitudeLaw constant(double value) {
+        check_finite(value, "MagnitudeLaw.constant: value");
+        MagnitudeLaw law;
+        law.kind_ = Kind::Constant;
+        law.a_ = {value};
+        return law;
+    }
+    static MagnitudeLaw polynomial(std::vector<double> coefficients) {
+        if (coefficients.empty()) throw std::invalid_argument("MagnitudeLaw.polynomial: no coefficients given");
+        for (std::size_t i = 0; i < coefficients.size(); ++i)
+            check_finite(coefficients[i], "MagnitudeLaw.polynomial: coefficient " + std::to_string(i));
+        MagnitudeLaw law;
+        law.kind_ = Kind::Polynomial;
+        law.a_ = std::move(coefficients);
+        return law;
+    }
+    static MagnitudeLaw harmonic(double mean, std::vector<double> amplitudes, std::vector<double> frequencies,
+                                 std::vector<double> phases) {
+        check_finite(mean, "MagnitudeLaw.harmonic: mean L0");
+        if (phases.empty()) phases.assign(amplitudes.size(), 0.0);
+        if (amplitudes.size() != frequencies.size() || amplitudes.size() != phases.size())
+            throw std::invalid_argument("MagnitudeLaw.harmonic: " + std::to_string(amplitudes.size()) + " amplitudes, " +
+                                        std::to_string(frequencies.size()) + " frequencies and " +
+                                        std::to_string(phases.size()) + " phases: give one of each per term");
+        for (std::size_t i = 0; i < amplitudes.size(); ++i) {
+            check_finite(amplitudes[i], "MagnitudeLaw.harmonic: amplitude " + std::to_string(i));
+            check_finite(frequencies[i], "MagnitudeLaw.harmonic: frequency " + std::to_string(i));
+            check_finite(phases[i], "MagnitudeLaw.harmonic: phase " + std::to_string(i));
+        }
+        MagnitudeLaw law;
+        law.kind_ = Kind::Harmonic;
+        law.a_ = {mean};
+        law.a_.insert(law.a_.end(), amplitudes.begin(), amplitudes.end());
+        law.b_ = std::move(frequencies);
+        law.c_ = std::move(phases);
+        return law;
+    }
+    static MagnitudeLaw tabulated(std::vector<double> times, std::vector<double> values, bool cubic = false) {
+        if (times.size() != values.size())
+            throw std::invalid_argument("MagnitudeLaw.tabulated: " + std::to_string(times.size()) + " times but " +
+                                        std::to_string(values.size()) + " values");
+        if (times.size() < 2) throw std::invalid_argument("MagnitudeLaw.tabulated: needs at least 2 points");
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            check_finite(times[i], "MagnitudeLaw.tabulated: time " + std::to_string(i));
+            check_finite(values[i], "MagnitudeLaw.tabulated: value " + std::to_string(i));
+            if (i > 0 && !(times[i] > times[i - 1]))
+                throw std::invalid_argument("MagnitudeLaw.tabulated: times must increase strictly; time " +
+                                            std::to_string(i) + " = " + format_value(times[i]) + " follows " +
+                                            format_value(times[i - 1]) + " (spacing " +
+                                            format_value(times[i] - times[i - 1]) + ")");
+        }
+        MagnitudeLaw law;
+        law.kind_ = Kind::Tabulated;
+        law.cubic_ = cubic;
+        const std::size_t n = times.size();
+        law.c_.assign(n, 0.0);  // slopes for the cubic Hermite form
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t lo = i == 0 ? 0 : i - 1, hi = i + 1 == n ? n - 1 : i + 1;
+            law.c_[i] = (values[hi] - values[lo]) / (times[hi] - times[lo]);
+        }
+        law.a_ = std::move(times);
+        law.b_ = std::move(values);
+        return law;
+    }
+
+    Kind kind() const { return kind_; }
+    bool cubic() const { return cubic_; }
+    const std::vector<double>& a() const { return a_; }
+    const std::vector<double>& b() const { return b_; }
+    const std::vector<double>& c() const { return c_; }
+
+    double operator()(double t) const {
+        switch (kind_) {
+            case Kind::Constant: return a_[0];
+            case Kind::Polynomial: {
+                double v = 0.0;
+                for (std::size_t i = a_.size(); i-- > 0;) v = v * t + a_[i];
+                return v;
+            }
+            case Kind::Harmonic: {
+                double v = a_[0];
+                for (std::size_t i = 0; i < b_.size(); ++i) v += a_[i + 1] * std::sin(b_[i] * t + c_[i]);
+                return v;
+            }
+            case Kind::Tabulated: {
+                const std::vector<double>& ts = a_;
+                if (t <= ts.front()) return b_.front();
+                if (t >= ts.back()) return b_.back();
+                const std::size_t j = static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) - ts.begin());
+                const std::size_t i = j - 1;
+                const double h = ts[j] - ts[i], s = (t - ts[i]) / h;
+                if (!cubic_) return b_[i] + s * (b_[j] - b_[i]);
+                const double s2 = s * s, s3 = s2 * s;
+                return (2 * s3 - 3 * s2 + 1) * b_[i] + (s3 - 2 * s2 + s) * h * c_[i] + (-2 * s3 + 3 * s2) * b_[j] +
+                       (s3 - s2) * h * c_[j];
+            }
+        }
+        return 0.0;
+    }
+
+private:
+    static void check_finite(double x, const std::string& what) {
+        if (!std::isfinite(x)) throw std::invalid_argument(what + " = " + format_value(x) + " is not finite");
+    }
+    Kind kind_ = Kind::Constant;
+    bool cubic_ = false;
+    std::vector<double> a_{0.0}, b_, c_;
+};
+
+/// Gyrostat (moments J = diag(A1, A2, A3), rotor momentum k) under the servo torque of paper 004
+/// plus, optionally, other torques ΣM_i (TorqueSet).
+///
+///   G = J ω + k,  Q = ω × G,  δ = η |ω| |G|   (η = 1e-3 by default)
+///   n_δ(|Q|) = |Q|                   for |Q| ≥ δ
+///            = (|Q|² + δ²) / (2δ)    for |Q| < δ      (C¹ at |Q| = δ; n_δ(0) = δ/2)
+///   M_servo = L(t) Q / n_δ            (= L e_L, e_L = Q/|Q|, wherever |Q| ≥ δ)
+///   J ω̇ = M_servo + ΣM_i − ω × G  = −g Q + ΣM_i,   g = 1 − L(t)/n_δ
+///   τ̇   = g                        (the paper's time change (10); τ(0) = 0 by convention)
+///   q̇   = ½ q ⊗ (0, ω)             (attitude, only when asked)
+///
+/// Regularisation: the direction e_L is undefined at Q = 0 (ω ∥ G or ω = 0: the permanent
+/// rotations of the Zhukovsky–Volterra gyrostat), and e_L turns at a rate ∝ |L|/|Q| near it.
+/// Below the threshold |Q| < δ the magnitude is tapered to L|Q|/n_δ → 0 (the prescribed L is not
+/// applied there; the Python layer flags those times); at and above it the paper's torque is
+/// applied exactly. M stays parallel to Q, so |G|² and h = ω·Jω stay exact first integrals and
+/// ω(t) = ω_ZV(τ(t)) stays exact; at Q = 0 the torque vanishes and the permanent rotation is an
+/// equilibrium. (The smooth form L Q/√(|Q|² + δ²) of the docs also works but changes L by a
+/// relative δ²/2|Q|² everywhere: τ(60) moves by 7.6e-4 in scene S1.) Only ω = 0 has n_δ = 0:
+/// there M = 0 and g = 1 (nothing divides by zero).
+///
+/// State layout: (p, q, r, τ) or (p, q, r, q_w, q_x, q_y, q_z, τ).
+/// Invariants reported: |G| = |Jω + k| and h = ω·Jω (exact without other torques).
+template <bool WithAttitude>
+class OrthogonalTorque {
+public:
+    static constexpr int dim = WithAttitude ? 8 : 4;
+    static constexpr int tau_index = dim - 1;
+    static constexpr bool has_jacobian = false;  // CVODE BDF uses its difference-quotient Jacobian
+    static constexpr bool has_projection = WithAttitude;
+    static constexpr bool has_taylor = false;  // L(t)·Q/|Q| is not polynomial
+    static constexpr int max_taylor_order = 0;
+    static constexpr int n_invariants = 2;
+    using State = Eigen::Matrix<double, dim, 1>;
+    using Jacobian = Eigen::Matrix<double, dim, dim>;
+
+    /// smooth = true selects the form n_δ = √(|Q|² + δ²) of the docs' first recommendation
+    /// (smooth everywhere, but the applied L is off by a relative δ²/2|Q|² at every |Q|).
+    OrthogonalTorque(Body body, MagnitudeLaw law, TorqueSet torques = {}, double eta = 1e-3, bool smooth = false)
+        : body_(std::move(body)), law_(std::move(law)), torques_(std::move(torques)), eta_(eta), smooth_(smooth) {
+        if (!std::isfinite(eta) || eta <= 0.0)
+            throw std::invalid_argument("OrthogonalTorque: regularisation eta = " + format_value(eta) +
+                                        " must be finite and positive (the torque direction Q/|Q| is undefined at Q = 0)");
+    }
+
+    const Body& body() const { return body_; }
+    const MagnitudeLaw& law() const { return law_; }
+    const TorqueSet& torques() const { return torques_; }
+    double eta() const { return eta_; }
+    bool smooth() const { return smooth_; }
+    bool supports_taylor() const { return false; }
+
+    /// δ = η |ω| |G|, the regularisation threshold at ω.
+    double delta(const Vec3& omega) const { return eta_ * omega.norm() * body_.angular_momentum(omega).norm(); }
+
+    /// n_δ(|Q|): |Q| above the threshold δ, (|Q|² + δ²)/(2δ) below it (or √(|Q|² + δ²) when smooth).
+    double denominator(double q_norm, double delta) const {
+        if (smooth_) return std::sqrt(q_norm * q_norm + delta * delta);
+        return q_norm >= delta ? q_norm : (q_norm * q_norm + delta * delta) / (2.0 * delta);
+    }
+
+    /// dτ/dt = g(t, ω) = 1 − L(t)/n_δ(|Q|) (1 at ω = 0).
+    double tau_rate(double t, const Vec3& omega) const {
+        const Vec3 G = body_.angular_momentum(omega);
+        const Vec3 Q = omega.cross(G);
+        const double d = eta_ * omega.norm() * G.norm();
+        const double n = denominator(Q.norm(), d);
+        return n > 0.0 ? 1.0 - law_(t) / n : 1.0;
+    }
+
+    /// The servo torque L(t) Q/n_δ(|Q|) in body axes.
+    Vec3 servo_torque(double t, const Vec3& omega) const {
+        const Vec3 G = body_.angular_momentum(omega);
+        const Vec3 Q = omega.cross(G);
+        const double d = eta_ * omega.norm() * G.norm();
+        const double n = denominator(Q.norm(), d);
+        return n > 0.0 ? Vec3(law_(t) / n * Q) : Vec3::Zero();
+    }
+
+    /// ω̇ = J⁻¹ (−g Q + ΣM_i);  q̇ = ½ q ⊗ (0, ω);  τ̇ = g   (equations in the class comment).
+    void rhs(double t, const State& y, State& dy) const {
+        const Vec3 omega = y.template head<3>();
+        const Vec3 G = body_.moments().cwiseProduct(omega) + body_.rotor();
+        const Vec3 Q = omega.cross(G);
+        const double d = eta_ * omega.norm() * G.norm();
+        const double n = denominator(Q.norm(), d);
+        const double g = n > 0.0 ? 1.0 - law_(t) / n : 1.0;
+        Vec3 m = -g * Q;
+        if (!torques_.empty()) m += torques_.total(t, omega, body_.moments());
+        dy.template head<3>() = body_.inverse_moments().cwiseProduct(m);
+        if constexpr (WithAttitude) {
+            dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
+        }
+        dy[tau_index] = g;
+    }
+
+    void jacobian(double, const State&, Jacobian& jac) const { jac.setZero(); }
+    template <int Order>
+    void taylor_coefficients(double, const State&, State*) const {}
+
+    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
+    void project(State& y) const {
+        if constexpr (WithAttitude) y.template segment<4>(3).normalize();
+    }
+
+    static constexpr std::array<const char*, n_invariants> invariant_names{"angular_momentum_norm", "h"};
+    void invariants(double /*t*/, const State& y, double* out) const {
+        const Vec3 omega = y.template head<3>();
+        out[0] = body_.angular_momentum(omega).norm();
+        out[1] = omega.dot(body_.moments().cwiseProduct(omega));
+    }
+
+private:
+    Body body_;
+    MagnitudeLaw law_;
+    TorqueSet torques_;
+    double eta_;
+    bool smooth_ = false;
+};
+
+}  // namespace gyrostat::model
