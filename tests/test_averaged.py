@@ -21,7 +21,10 @@ def averaged_vs_full(A, B, C, torques, a0, r0, T, n=3001):
     body = g.Body([A, B, C])
     t = np.linspace(0, T, n)
     full = g.solve(g.Model(body, torques), [a0, 0.0, r0], (0, T), t_eval=t, rtol=1e-10, atol=1e-12)
-    avg = g.solve(g.AveragedModel(g.Body([A, B, C]), torques), [a0, r0], (0, T), t_eval=t, rtol=1e-10, atol=1e-12)
+    # The order tests reach ε = 0.1, where the averaging conditions are marginal on purpose, and
+    # the paper scenes break them: the validity check (tested separately) is off here.
+    avg = g.solve(g.AveragedModel(g.Body([A, B, C]), torques), [a0, r0], (0, T), t_eval=t, rtol=1e-10, atol=1e-12,
+                  check_validity=False)
     assert full.success and avg.success
     a_full, r_full = slow_variables(full)
     return np.max(np.abs(a_full - avg.y[:, 0])), np.max(np.abs(r_full - avg.y[:, 1]))
@@ -126,6 +129,17 @@ def test_paper_002_scene_breaks_its_assumptions():
     assert not all(c.holds for c in checks)
 
 
+def test_averaged_solve_warns_when_the_fast_frequency_vanishes():
+    """r → 0 under a decelerating axial torque: the fast frequency |(C − A)r/A| goes to zero,
+    averaging over φ fails with a transverse torque present, and solve says so."""
+    model = g.AveragedModel(g.Body([1.0, 1.0, 1.8]), [g.ConstantTorque([0.01, 0.0, -0.05])])
+    with pytest.warns(g.ValidityWarning, match=r"slow rate / fast frequency"):
+        sol = g.solve(model, [1.0, 1.0], (0, 30))
+    assert any("fast frequency" in note for note in sol.notes)
+    # a valid scene: no warning (filterwarnings = error would fail the test otherwise)
+    g.solve(g.AveragedModel(g.Body([1.0, 1.0, 1.8]), [g.ConstantTorque([0.001, 0.0, 0.001])]), [1.0, 1.0], (0, 10))
+
+
 def test_validity_check_of_a_shipped_scene():
     from gyrostat.cli import example_scenes
     from gyrostat.validity import check_scene
@@ -152,7 +166,7 @@ def test_paper_000_limits_come_from_a_sign_misprint(case):
     (A, C), M3 = P000[case]  # M3 is −0.1 or −0.3 in the paper: the torque is ε M3 = −ε·(0.1 or 0.3)
     eps, kappa = 0.1, 1260 * 0.48 / 1000
     model = g.AveragedModel(g.Body([A, A, C]), [g.ViscousCavity(1260, 1000, 0.48), g.ConstantTorque([0, 0, -eps * M3])])
-    sol = g.solve(model, [1.0, 1.0], (0, 60), n_out=6001, rtol=1e-11, atol=1e-13)
+    sol = g.solve(model, [1.0, 1.0], (0, 60), n_out=6001, rtol=1e-11, atol=1e-13, check_validity=False)  # paper scene
     a, r = sol.y[:, 0], sol.y[:, 1]
 
     def derived(t, z):  # the test's own (a, r) system: cavity + axial torque (docs, T1 + T2)
@@ -194,7 +208,8 @@ def p001_model(A, C, I1, I3=1.0, damper=True):
 def test_paper_001_x_equals_y_only_without_damper():
     """'x = y when A/C = I1/I3' holds only for S = 0 (no damper, or A = C)."""
     for damper, bound in ((False, 1e-12), (True, None)):
-        sol = g.solve(p001_model(1.5, 1.0, 1.5, damper=damper), [1.0, 1.0], (0, 40), rtol=1e-12, atol=1e-14)
+        sol = g.solve(p001_model(1.5, 1.0, 1.5, damper=damper), [1.0, 1.0], (0, 40), rtol=1e-12, atol=1e-14,
+                      check_validity=False)  # the paper's damper breaks λ|ν|/Ω² ≪ 1 (tested below)
         gap = np.max(np.abs(sol.y[:, 0] ** 2 - sol.y[:, 1] ** 2))
         if bound:
             assert gap < bound
@@ -205,7 +220,7 @@ def test_paper_001_x_equals_y_only_without_damper():
 @pytest.mark.parametrize("A, C, I1", [(1.5, 1, 1.25), (1.5, 1, 2.5), (4, 2, 1.25), (4, 2, 2.5)])
 def test_paper_001_which_variable_decays_faster(A, C, I1):
     """For A ≥ C the faster-decaying variable is the one with the larger I/J ratio."""
-    sol = g.solve(p001_model(A, C, I1), [1.0, 1.0], (0, 40), rtol=1e-10)
+    sol = g.solve(p001_model(A, C, I1), [1.0, 1.0], (0, 40), rtol=1e-10, check_validity=False)  # paper scene
     x, y = sol.y[-1, 0] ** 2, sol.y[-1, 1] ** 2
     assert (x < y) == (I1 / A > 1.0 / C)
 

@@ -91,9 +91,15 @@ def solve(
     max_steps: int = 1_000_000,
     first_step: float = 0.0,
     max_step: float = math.inf,
+    check_validity: bool = True,
 ) -> Solution:
     """Integrates a model (:class:`Model`, :class:`AveragedModel`, :class:`MovingMassModel`)
     from y0 over t_span = (t0, t1).
+
+    For an averaged model the assumptions of the averaging (fast frequency against the slow
+    rates along the solution, near symmetry, the torques' own conditions) are checked after the
+    run: broken ones are warned about (:class:`gyrostat.ValidityWarning`) and listed in
+    ``solution.notes``; ``check_validity=False`` skips this.
 
     Outputs are at ``t_eval`` or, by default, at ``n_out`` = 1001 evenly spaced times (dense
     output between steps, so memory grows with the outputs, not with the steps). With
@@ -108,7 +114,13 @@ def solve(
     y = _state(model, y0)
     result = _core.solve(model._core, y, t0, t1, method, float(rtol), float(atol), times, bool(every_step),
                          int(max_steps), float(first_step), float(max_step))
-    return _solution(result)
+    solution = _solution(result)
+    if check_validity and getattr(model, "kind", "") == "averaged" and solution.t.size:
+        from gyrostat import validity
+
+        broken = [a for a in validity.check(model, solution.y, solution.t, warn=True) if not a.holds]
+        solution.notes += [f"assumption broken: {a}" for a in broken]
+    return solution
 
 
 def solve_ensemble(

@@ -130,8 +130,9 @@ Result cvode(const System& system, double t0, const typename System::State& y0, 
     Eigen::Map<typename System::State>(N_VGetArrayPointer(y.get())) = start;
     sundials::CallbackData<System> data{&system};
     sundials::ErrorLog log;
-    if (t0 == t1) {
-        Recorder<System>(system, result, 1).push(t0, start);
+    if (t0 == t1) {  // nothing to integrate: every output time is t0
+        Recorder<System> record(system, result, 1);
+        for (double t : output_times(options, t0, t1)) record.push(t, start);
         return result;
     }
     cvode_detail::CvodeStepper<System> stepper(bdf, ctx, y.get(), t0, options, data, log);
