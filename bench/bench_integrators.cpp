@@ -43,6 +43,7 @@ void sweep(const char* problem, const System& system, const typename System::Sta
     for (Method m : methods) {
         for (double rtol : tolerances) {
             integrate::Options o;
+            o.n_out = 0;  // t0 and t1 only (the engine's default is 1001 outputs)
             o.method = m;
             o.rtol = rtol;
             o.atol = rtol * 1e-3;
@@ -94,6 +95,7 @@ int main(int argc, char** argv) {
         model::Gyrostat<true>::State y0;
         y0 << 1.0, 0.5, -0.3, 1.0, 0.0, 0.0, 0.0;
         integrate::Options tight;
+        tight.n_out = 0;  // t0 and t1 only (the engine's default is 1001 outputs)
         tight.rtol = 1e-14;
         tight.atol = 1e-16;
         const auto ref = integrate::solve(system, 0.0, y0, 200.0, tight);
@@ -116,6 +118,7 @@ int main(int argc, char** argv) {
                                                             torque::Constant(Vec3(1.0, 2.0, 3.0))}));
         const Vec3 w0(1.0, 0.5, -0.3);
         integrate::Options tight;
+        tight.n_out = 0;  // t0 and t1 only (the engine's default is 1001 outputs)
         tight.method = Method::CvodeBdf;
         tight.rtol = 1e-13;
         tight.atol = 1e-16;
@@ -132,6 +135,7 @@ int main(int argc, char** argv) {
         const model::MovingMass system(Body(Vec3(1.0, 1.0, 1.6)), 0.18, 1.0, std::sqrt(2000.0), 400.0, TorqueSet{});
         const auto y0 = system.quasi_static_state(Vec3(0.8, 0.0, 1.0));
         integrate::Options tight;
+        tight.n_out = 0;  // t0 and t1 only (the engine's default is 1001 outputs)
         tight.method = Method::CvodeBdf;
         tight.rtol = 1e-12;
         tight.atol = 1e-15;
@@ -153,6 +157,7 @@ int main(int argc, char** argv) {
             const model::Gyrostat<false> full(body, set);
             const model::AveragedSymmetric averaged(body, set);
             integrate::Options o;
+            o.n_out = 0;  // t0 and t1 only (the engine's default is 1001 outputs)
             o.rtol = 1e-10;
             o.atol = 1e-12;
             o.max_steps = 100'000'000;
@@ -175,6 +180,7 @@ int main(int argc, char** argv) {
         std::vector<Vec3> starts;
         for (int i = 0; i < (quick ? 64 : 512); ++i) starts.emplace_back(1.0 + 0.001 * i, 0.5, -0.3);
         integrate::Options o;
+        o.n_out = 0;  // t0 and t1 only (the engine's default is 1001 outputs)
         o.rtol = 1e-10;
         o.atol = 1e-13;
         double base = 0.0;

@@ -15,7 +15,7 @@ from scipy.integrate import solve_ivp
 from scipy.special import ellipe, ellipj, ellipk, ellipkinc
 
 import gyrostat as g
-from gyrostat import _core
+from gyrostat import _core, attitude
 from gyrostat import lagrange as lg
 
 A, C, MU = 1.5, 1.0, 0.5          # the paper's top
@@ -46,6 +46,14 @@ def ref_state(p, q, r, theta, phi):
     Q = [ct * cp, st * cp, -st * sp, ct * sp]
     gam = [math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi), math.cos(theta)]
     return np.array([p, q, r, *gam, *Q])
+
+
+def ref_vertical(Q):
+    """(n, 3) upward vertical in body axes of (n, 4) quaternions (w, x, y, z), normalised here:
+    γ = R(Q)ᵀ e_z, the third row of the body → space rotation matrix, written out."""
+    Q = np.atleast_2d(np.asarray(Q, float))
+    w, x, yy, z = (Q / np.linalg.norm(Q, axis=1, keepdims=True)).T
+    return np.column_stack([2 * (x * z - w * yy), 2 * (yy * z + w * x), 1 - 2 * (x * x + yy * yy)])
 
 
 def ref_integrals(y, A=A, C=C, mu=MU):
@@ -122,9 +130,9 @@ def test_paper_table_of_initial_roots():
     # The paper's table (p0 = q0 = 0, r0 = √3): (0.9128, 0.9962, 1.0872), (0, 0.5, 2),
     # (−0.9319, −0.8660, 2.9319), printed with 4 decimals -> tolerance 6e-5.
     printed = {1: (0.9128, 0.9962, 1.0872), 2: (0.0, 0.5, 2.0), 3: (-0.9319, -0.8660, 2.9319)}
-    top, _ = paper_models(0.0)
+    top, avg = paper_models(0.0)
     for case, theta in CASES.items():
-        table = lg.nutation_table(top, lg.slow_variables(top, case_state(theta)))
+        table = lg.nutation_table(top, avg.initial_state(case_state(theta)))   # (G_z, H, r) of the state
         np.testing.assert_allclose([table["u1"][0], table["u2"][0], table["u3"][0]], printed[case], atol=6e-5)
 
 
@@ -151,7 +159,7 @@ def test_bad_models_are_rejected():
     with pytest.raises(ValueError, match="mu"):
         lg.LagrangeTop(A, C, 0.0)
     with pytest.raises(ValueError, match="A1 = A2"):
-        _core.LagrangeTopCore(g.Body([1.5, 1.4, 1.0]), 0.5, [])
+        _core.lagrange_top_model(g.Body([1.5, 1.4, 1.0]), 0.5, [])
     # a torque outside the paper's class (2.3) has no nutation average here: refused, named
     with pytest.raises(ValueError, match="LinearDamping matrix must be diag"):
         lg.LagrangeAveraged(A, C, MU, [g.LinearDamping(np.diag([0.1, 0.2, 0.3]))])
@@ -164,7 +172,7 @@ def unperturbed_run():
     top, _ = paper_models(0.0)
     y0 = lg.initial_state([0.3, -0.2, 1.2], math.radians(40), math.radians(30), math.radians(10))
     t = np.linspace(0, 60, 3001)
-    sol = lg.solve(top, y0, (0, 60), t_eval=t, rtol=1e-12, atol=1e-14)
+    sol = g.solve(top, y0, (0, 60), t_eval=t, rtol=1e-12, atol=1e-14)
     assert sol.success, sol.message
     return top, y0, t, sol
 
@@ -172,10 +180,11 @@ def unperturbed_run():
 def test_eps0_keeps_the_first_integrals(unperturbed_run):
     top, y0, t, sol = unperturbed_run
     # dop853 at rtol 1e-12 over ~8 nutation periods: measured drift ~1e-12; 1e-10 leaves room
+    assert set(sol.invariants) == {"G_z", "H"}   # r is a state, not an output
     for name in ("G_z", "H", "r"):
-        assert np.max(np.abs(sol.invariants[name] - sol.invariants[name][0])) < 1e-10, name
+        assert np.max(np.abs(sol[name] - sol[name][0])) < 1e-10, name
     # the reported invariants are the test's own formulas on the states
-    G, H, r = ref_integrals(np.concatenate([sol.y[-1, :3], lg.vertical(sol.y[-1])[0]]))
+    G, H, r = ref_integrals(np.concatenate([sol.y[-1, :3], ref_vertical(sol.y[-1, 3:7])[0]]))
     assert (sol.invariants["G_z"][-1], sol.invariants["H"][-1]) == pytest.approx((G, H), abs=1e-14)
 
 
@@ -204,12 +213,15 @@ def test_nutation_matches_the_sn_solution(unperturbed_run):
 
 def test_euler_angle_outputs(unperturbed_run):
     top, y0, t, sol = unperturbed_run
-    psi, theta, phi = lg.euler_angles(sol.y).T
-    gam = lg.vertical(sol.y)
+    # the angles recorded by the engine during the run (outputs psi, theta, phi)
+    psi, theta, phi = sol.euler_angles("zxz").T
+    np.testing.assert_array_equal(theta, sol["theta"])
+    gam = ref_vertical(sol.quaternion)
     # γ = (sin θ sin φ, sin θ cos φ, cos θ): the angles reproduce γ to rounding
     rebuilt = np.column_stack([np.sin(theta) * np.sin(phi), np.sin(theta) * np.cos(phi), np.cos(theta)])
     np.testing.assert_allclose(rebuilt, gam, atol=1e-13)
-    assert lg.euler_angles(y0)[0] == pytest.approx([math.radians(10), math.radians(40), math.radians(30)], abs=1e-14)
+    assert attitude.euler_angles(y0[3:7], "zxz") == pytest.approx(
+        [math.radians(10), math.radians(40), math.radians(30)], abs=1e-14)
     # ψ̇ = (G_z − C r u)/(A sin²θ) (precession quadrature): centred differences on the 0.02 grid
     G = sol.invariants["G_z"][0]
     dpsi = np.gradient(np.unwrap(psi), t)
@@ -219,6 +231,44 @@ def test_euler_angle_outputs(unperturbed_run):
     assert np.max(np.abs(dpsi[1:-1] - expected[1:-1])) < 2e-3
 
 
+def ref_quaternion(psi, theta, phi):
+    """Q = q_z(ψ) ⊗ q_x(θ) ⊗ q_z(φ) multiplied out (z-x-z), without the library's quaternion code."""
+    return np.array([math.cos(theta / 2) * math.cos((psi + phi) / 2), math.sin(theta / 2) * math.cos((psi - phi) / 2),
+                     math.sin(theta / 2) * math.sin((psi - phi) / 2), math.cos(theta / 2) * math.sin((psi + phi) / 2)])
+
+
+def test_euler_angles_near_the_poles():
+    # θ = atan2(sin θ, cos θ) from well-conditioned pairs: accurate near 0 and π, not only away
+    # from them (arccos(γ3) would lose half the digits there: √(2·1e-16) ~ 1e-8).
+    psi, phi = 0.4, 0.3
+    for theta in (0.0, 1e-12, 1e-9, 1e-5, math.pi - 1e-5, math.pi - 1e-9, math.pi - 1e-12, math.pi):
+        angles = attitude.euler_angles(ref_quaternion(psi, theta, phi), "zxz")
+        # rounding of the quaternion's components (~1e-16 each) moves θ by a few 1e-16: 1e-15
+        assert angles[1] == pytest.approx(theta, abs=1e-15), theta
+        assert np.all(np.isfinite(angles)), theta   # no NaN at the singular angles (old convention)
+        if theta in (0.0, math.pi):
+            # only ψ ± φ is defined there: the new convention puts it all into ψ, φ = 0
+            # (R = Rz(ψ + φ) at θ = 0, R = Rz(ψ − φ) Rx(π) at θ = π)
+            assert angles[2] == 0.0
+            assert angles[0] == pytest.approx(psi + phi if theta == 0.0 else psi - phi, abs=1e-15)
+    # a sleeping top (θ = 0) and a hanging one (θ = π) spinning about the vertical: Q stays a
+    # rotation about z (resp. (0, x, y, 0)), so θ recorded during the run stays at the pole, φ = 0
+    # and ψ advances by ±∫r dt = ±(r0 t) (no torque)
+    top, _ = paper_models(0.0)
+    t = np.linspace(0, 10, 11)
+    for theta, sign in ((0.0, 1.0), (math.pi, -1.0)):
+        y0 = np.concatenate([[0.0, 0.0, 1.7], ref_quaternion(psi, theta, phi)])
+        sol = g.solve(top, y0, (0, 10), t_eval=t, rtol=1e-12, atol=1e-14)
+        assert sol.success, sol.message
+        # the state leaves the pole only by rounding (p = q = 0 and the x, y (resp. w, z) components
+        # of Q have zero rates exactly): θ stays there to a few ulp
+        np.testing.assert_allclose(sol["theta"], theta, rtol=0, atol=1e-15)
+        np.testing.assert_array_equal(sol["phi"], 0.0)
+        expected = (psi + sign * phi) + sign * 1.7 * t
+        # integration error of the spin angle at rtol 1e-12 over ~3 turns: 1e-10
+        np.testing.assert_allclose(np.angle(np.exp(1j * (sol["psi"] - expected))), 0.0, rtol=0, atol=1e-10)
+
+
 def test_full_model_against_scipy_reference():
     eps = 0.1
     y10 = ref_state(0.2, -0.1, R0, math.radians(60), math.radians(20))
@@ -226,7 +276,7 @@ def test_full_model_against_scipy_reference():
     t = np.linspace(0, 30, 301)
     ref = solve_ivp(ref_rhs(eps), (0, 30), y10, method="DOP853", rtol=1e-12, atol=1e-14, t_eval=t).y.T
     top, _ = paper_models(eps)
-    sol = lg.solve(top, y7, (0, 30), t_eval=t, rtol=1e-12, atol=1e-14)
+    sol = g.solve(top, y7, (0, 30), t_eval=t, rtol=1e-12, atol=1e-14)
     assert sol.success, sol.message
     # both at rtol 1e-12 over ~5 nutation periods: global errors ~1e-11 each; 1e-9
     assert np.max(np.abs(sol.y[:, :3] - ref[:, :3])) < 1e-9
@@ -236,19 +286,83 @@ def test_full_model_against_scipy_reference():
     assert np.max(np.abs(sol.y[:, 2] - lg.r_exact(R0, C, eps, (1.0, 1.0), t))) < 1e-12
 
 
+def test_recorded_outputs_equal_the_tests_own_formulas():
+    """G_z, H, kinetic_energy, u1, u2, u3, m, v, T_nut and cos θ recorded by the engine during a
+    perturbed run equal the test's own formulas (ref_vertical, ref_integrals, ref_roots, SciPy's
+    ellipk/ellipe) evaluated on the recorded states."""
+    eps = 0.1
+    top, _ = paper_models(eps)
+    y10 = ref_state(0.2, -0.1, R0, math.radians(60), math.radians(20))
+    sol = g.solve(top, np.concatenate([y10[:3], y10[6:]]), (0, 30), rtol=1e-10, atol=1e-12, n_out=301)
+    assert sol.success, sol.message
+    assert set(sol.invariants) == {"G_z", "H"}
+    gam = ref_vertical(sol.quaternion)
+    G, H, r = ref_integrals(np.column_stack([sol.omega, gam]).T)
+    np.testing.assert_array_equal(r, sol["r"])
+    # same formulas on the same states, O(1) terms: rounding only (the engine does not normalise Q
+    # for the outputs, the test does; the recorded |Q| − 1 is ≤ 2.2e-16 (measured), which moves
+    # γ by ~5e-16): 1e-14 for the sums of O(1) products, 2e-15 for γ3 = 1 − 2(x² + y²) itself
+    np.testing.assert_allclose(sol["G_z"], G, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(sol["H"], H, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(sol["kinetic_energy"], H - MU * gam[:, 2], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(sol["cos_theta"], gam[:, 2], rtol=0, atol=2e-15)
+    roots = np.array([ref_roots(*row) for row in zip(G, H, r)])
+    u1, u2, u3 = roots.T
+    # as in test_roots_against_numpy: companion eigenvalues ~1e-15·scale, the library's bisection +
+    # deflation; the closest pair (the top relaxes towards u1, u2 → −1) stays ≥ 6e-3 apart here,
+    # so simple roots: errors ~1e-15/6e-3 each, and 1e-9 is the bound used for the roots above
+    assert np.min(u2 - u1) > 6e-3
+    np.testing.assert_allclose(np.column_stack([sol["u1"], sol["u2"], sol["u3"]]), roots, rtol=0, atol=1e-9)
+    m = (u2 - u1) / (u3 - u1)
+    np.testing.assert_allclose(sol["m"], m, rtol=0, atol=1e-9)
+    # v = u3 − (u3 − u1) E/K (paper's form, SciPy) against the library's Carlson form
+    np.testing.assert_allclose(sol["v"], u3 - (u3 - u1) * ellipe(m) / ellipk(m), rtol=0, atol=1e-9)
+    # T = 2K/α (period of u): roots to 1e-9 relative in α and m: 1e-8
+    np.testing.assert_allclose(sol["T_nut"], 2 * ellipk(m) / np.sqrt(MU * (u3 - u1) / (2 * A)), rtol=1e-8)
+
+
+def test_ensemble_equals_single_runs():
+    # full and averaged members in one ensemble, two threads: each equals its own g.solve bit for
+    # bit (same engine, same options, no shared state). ε = 0.005 keeps N = rate·T_nut below 0.1
+    # over the span, so the averaged members pass their validity check without a warning.
+    models = [*paper_models(0.005), *paper_models(0.003, (0.8, 0.3), (1.7, -0.2))]
+    y0s = [case_state(CASES[2]), case_state(CASES[3]), lg.initial_state([0.2, -0.1, 1.7], 1.0, 0.3),
+           lg.initial_state([0.3, 0.1, 1.2], 2.0, 0.5, 0.1)]
+    t = np.linspace(0, 40, 201)
+    runs = g.solve_ensemble(models, y0s, (0, 40), threads=2, t_eval=t, rtol=1e-10, atol=1e-12)
+    assert len(runs) == len(models)
+    for model, y0, run in zip(models, y0s, runs):
+        single = g.solve(model, y0, (0, 40), t_eval=t, rtol=1e-10, atol=1e-12)
+        assert run.success and single.success, (run.message, single.message)
+        assert run.state_names == single.state_names and run.output_names == single.output_names
+        np.testing.assert_array_equal(run.t, single.t)
+        np.testing.assert_array_equal(run.y, single.y)
+        for name in single.output_names:
+            np.testing.assert_array_equal(run[name], single[name], err_msg=name)
+        assert run.notes == single.notes
+    # the averaged members start from the (G_z, H, r) of the full members' states (the test's own)
+    for i in (1, 3):
+        G, H, r = ref_integrals(np.concatenate([y0s[i][:3], ref_vertical(y0s[i][3:7])[0]]))
+        # same formulas, different association order: a few ulp
+        np.testing.assert_allclose(runs[i].y[0], [G, H, r], rtol=0, atol=1e-14)
+        assert runs[i].state_names == ("G_z", "H", "r")
+
+
 @pytest.mark.parametrize("method", g.METHODS)
 def test_every_integrator_runs_the_top(method):
     top, avg = paper_models(0.1)
     y0 = lg.initial_state([0.2, -0.1, 1.7], 1.0, 0.3)
-    ref = lg.solve(top, y0, (0, 30), rtol=1e-12, atol=1e-14, n_out=11)
+    ref = g.solve(top, y0, (0, 30), rtol=1e-12, atol=1e-14, n_out=11)
     if method == "taylor":  # no polynomial right-hand side (γ from Q is quadratic, the torque is not folded)
         with pytest.raises(ValueError, match="Taylor"):
-            lg.solve(top, y0, (0, 30), method=method)
+            g.solve(top, y0, (0, 30), method=method)
         return
     context = pytest.warns(UserWarning, match="verner") if method == "arkode_verner6" else contextlib.nullcontext()
     with context:
-        sol = lg.solve(top, y0, (0, 30), method=method, rtol=1e-10, atol=1e-12, n_out=11)
-        slow = lg.solve(avg, y0, (0, 30), method=method, n_out=11)
+        sol = g.solve(top, y0, (0, 30), method=method, rtol=1e-10, atol=1e-12, n_out=11)
+        # the old lagrange.solve's defaults (rtol 1e-10, atol 1e-12), and no validity check (N ≈ 2
+        # here; this only asks that every method runs the averaged top; validity is tested below)
+        slow = g.solve(avg, y0, (0, 30), method=method, rtol=1e-10, atol=1e-12, n_out=11, check_validity=False)
     assert sol.success and slow.success, (sol.message, slow.message)
     # global error at rtol 1e-10 over 30 s: measured 5e-12 (fehlberg) .. 9e-9 (cvode_bdf); 1e-7
     assert np.max(np.abs(sol.y - ref.y)) < 1e-7
@@ -284,7 +398,10 @@ def averaged_paper_runs():
     runs = {}
     for case, theta in CASES.items():
         tau = np.linspace(0, 4, 801)
-        runs[case] = (tau, lg.solve(avg, case_state(theta), (0, 4), t_eval=tau, rtol=1e-11, atol=1e-13))
+        # ε = 1: N = rate·T_nut reaches ~30, the check would warn; only the averaged equations are
+        # tested here (the old lagrange.solve did not check): no check
+        runs[case] = (tau, g.solve(avg, case_state(theta), (0, 4), t_eval=tau, rtol=1e-11, atol=1e-13,
+                                   check_validity=False))
     return avg, runs
 
 
@@ -295,9 +412,9 @@ def test_averaged_r_is_exact(averaged_paper_runs):
         # (3.3) with a0 = b0 = 1: the averaged r equation is exact; what is left is the integration
         # error, controlled on the whole state (G_z, H ~ 1) at rtol 1e-11: 1e-10 absolute
         np.testing.assert_allclose(sol.y[:, 2], lg.r_exact(R0, C, 1.0, (1.0, 1.0), tau), rtol=0, atol=1e-10)
-        # u1, u2, u3 are reported as invariants and equal the roots of the test's cubic
+        # u1, u2, u3 are recorded as outputs and equal the roots of the test's cubic
         j = 100
-        np.testing.assert_allclose([sol.invariants[k][j] for k in ("u1", "u2", "u3")], ref_roots(*sol.y[j]), atol=1e-8)
+        np.testing.assert_allclose([sol[k][j] for k in ("u1", "u2", "u3")], ref_roots(*sol.y[j]), atol=1e-8)
 
 
 def test_paper_claims_on_the_averaged_evolution(averaged_paper_runs):
@@ -314,10 +431,10 @@ def test_paper_claims_on_the_averaged_evolution(averaged_paper_runs):
             assert (G[j], H[j]) == pytest.approx((Gp, Hp), abs=1e-4), (case, tp)
         # conclusion of the paper: tends to the lower equilibrium H → −μ, u1, u2 → −1, u3 → 1
         assert H[-1] == pytest.approx(-MU, abs=1e-3)
-        assert sol.invariants["u1"][-1] < -0.999 and sol.invariants["u2"][-1] < -0.999
-        assert sol.invariants["u3"][-1] == pytest.approx(1.0, abs=1e-3)
+        assert sol["u1"][-1] < -0.999 and sol["u2"][-1] < -0.999
+        assert sol["u3"][-1] == pytest.approx(1.0, abs=1e-3)
         assert mono(H, +1) and mono(r, +1)          # H and r decrease in every case
-        assert mono(sol.invariants["u1"], +1)       # u1 decreases in every case
+        assert mono(sol["u1"], +1)                  # u1 decreases in every case
     # cases 1 and 2: G_z decreases monotonically; case 3: G_z is NOT monotone (paper: "increases
     # monotonically to 0"): it crosses 0 near τ = 2.87 and overshoots to +2.4e-4 near τ = 3.18
     assert mono(runs[1][1].y[:, 0], +1) and mono(runs[2][1].y[:, 0], +1)
@@ -327,7 +444,7 @@ def test_paper_claims_on_the_averaged_evolution(averaged_paper_runs):
     assert tau[np.argmax(G)] == pytest.approx(3.18, abs=0.02)
     # case 1: u3 falls to 1 quickly (τ ≈ 0.105, where G_z = C r and sign R of (2.5) flips), then rises
     tau1, sol1 = runs[1]
-    u3 = sol1.invariants["u3"]
+    u3 = sol1["u3"]
     j = int(np.argmin(u3[:200]))
     assert tau1[j] == pytest.approx(0.105, abs=0.01) and u3[j] - 1 < 1e-4
     assert u3[200] > 1.01   # τ = 1: back to ≈ 1.014
@@ -337,10 +454,12 @@ def _errors(case_theta, eps, tau_end=3.0):
     top, avg = paper_models(eps)
     y0 = case_state(case_theta)
     t = np.linspace(0, tau_end / eps, int(20 * tau_end / eps) + 1)
-    full = lg.solve(top, y0, (0, t[-1]), t_eval=t, rtol=1e-10, atol=1e-12)
-    slow = lg.solve(avg, y0, (0, t[-1]), t_eval=t, rtol=1e-10, atol=1e-12)
+    full = g.solve(top, y0, (0, t[-1]), t_eval=t, rtol=1e-10, atol=1e-12)
+    # the errors are measured even where N ≪ 1 is broken (T_nut grows as the spin decays: N > 0.1
+    # late in these runs down to ε = 0.01), so no validity check (the old lagrange.solve had none)
+    slow = g.solve(avg, y0, (0, t[-1]), t_eval=t, rtol=1e-10, atol=1e-12, check_validity=False)
     assert full.success and slow.success
-    return [float(np.max(np.abs(full.invariants[k] - slow.y[:, i]))) for i, k in enumerate(("G_z", "H"))]
+    return [float(np.max(np.abs(full[k] - slow[k]))) for k in ("G_z", "H")]
 
 
 def _order(eps_list, errors):
@@ -372,7 +491,8 @@ def test_case1_is_first_order_only_for_small_eps():
     for eps, broken in ((0.1, True), (0.002, False)):
         top, avg = paper_models(eps)
         t = np.linspace(0, 0.2 / eps, 201)
-        sol = lg.solve(avg, case_state(CASES[1]), (0, t[-1]), t_eval=t)
+        # checked explicitly below with lg.check (the old lagrange.solve's defaults, no check here)
+        sol = g.solve(avg, case_state(CASES[1]), (0, t[-1]), t_eval=t, rtol=1e-10, atol=1e-12, check_validity=False)
         if broken:
             with pytest.warns(g.ValidityWarning, match=r"rate·T_nut.*use the full LagrangeTop"):
                 checks = lg.check(avg, sol.y, sol.t)
@@ -386,17 +506,18 @@ def test_separatrix_is_reported():
     # r0 = 1 (below the sleeping-top threshold), θ0 = 0.2°: 1 − k² = 6.9e-6 (doc: test S2)
     _, avg = paper_models(0.01)
     y0 = case_state(0.2, r0=1.0)
-    table = lg.nutation_table(avg, lg.slow_variables(avg, y0))
+    slow = avg.initial_state(y0)   # (G_z, H, r) of the full state
+    table = lg.nutation_table(avg, slow)
     assert 1 - table["m"][0] == pytest.approx(6.9e-6, rel=0.05)
     with pytest.warns(g.ValidityWarning) as record:
-        checks = lg.check(avg, lg.slow_variables(avg, y0), [0.0])
+        checks = lg.check(avg, slow, [0.0])
     messages = [str(w.message) for w in record]
     # both limits are named with their numbers: 1 − k² = 6.85e-6 and N = rate·T_nut = 0.31 (T_nut = 31)
     assert any(re.search(r"1 − k² ≥ 1e-3: 6\.85e-06.*O\(ε\^½\).*full LagrangeTop", m) for m in messages)
     assert any(re.search(r"rate·T_nut ≪ 1: 0\.311", m) for m in messages)
     assert not checks[1].holds
     # the right-hand side stays finite at the separatrix (W(1) = 1, no K in v): no silent NaN
-    assert np.all(np.isfinite(avg.rhs(0.0, lg.slow_variables(avg, y0)[0])))
+    assert np.all(np.isfinite(avg.rhs(0.0, slow)))
 
 
 def test_regular_precession_limit_is_smooth():
@@ -420,9 +541,10 @@ def test_regular_precession_limit_is_smooth():
 
 def test_scene_runs_and_reports(tmp_path):
     from gyrostat.cli import example_scenes
+    from gyrostat.runner import run_scene
 
     path = next(p for p in example_scenes() if p.stem.startswith("p003_case3"))
-    report = lg.run_scene(path, tmp_path, progress=False)
+    report = run_scene(path, tmp_path, progress=False)
     assert report["status"] == "success" and report["broken_assumptions"] == []
     # ε = 0.002 in the scene: averaged vs full within a few ε·10⁻² (measured 2.4e-5 for G_z)
     assert report["averaged_vs_full_slow"]["max_abs_error_G_z"] < 2e-4

@@ -4,9 +4,11 @@
 #include <pybind11/pybind11.h>
 
 namespace gyrostat::bindings {
-void expose_body(pybind11::module_& m);
-void expose_integrate(pybind11::module_& m);
-void expose_torque_free(pybind11::module_& m);
-void expose_lagrange(pybind11::module_& m);     // paper 003: heavy symmetric top, averaged over nutation
-void expose_orthogonal(pybind11::module_& m);   // paper 004: gyrostat under a torque orthogonal to G and ω
+void expose_body(pybind11::module_& m);         // body.hpp, torque/*.hpp
+void expose_attitude(pybind11::module_& m);     // attitude.hpp
+void expose_integrate(pybind11::module_& m);    // integrate/options.hpp, engine.hpp: Options, Result, solve
+void expose_models(pybind11::module_& m);       // engine.hpp: the model of every family
+void expose_torque_free(pybind11::module_& m);  // model/torque_free.hpp: the closed form
+void expose_lagrange(pybind11::module_& m);     // model/lagrange_top.hpp: elliptic functions, nutation
+void expose_orthogonal(pybind11::module_& m);   // model/orthogonal.hpp: the magnitude law
 }  // namespace gyrostat::bindings

@@ -10,6 +10,16 @@ namespace py = pybind11;
 namespace gyrostat::bindings {
 
 namespace {
+std::string vector_text(const Eigen::Ref<const Eigen::VectorXd>& v) {
+    std::string s = "[";
+    for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + format_value(v[i]);
+    return s + "]";
+}
+std::string matrix_text(const Mat3& m) {
+    return "[" + vector_text(m.row(0).transpose()) + ", " + vector_text(m.row(1).transpose()) + ", " +
+           vector_text(m.row(2).transpose()) + "]";
+}
+
 /// What every torque shares in Python: evaluation, its averaged contribution, its name.
 template <class Torque>
 py::class_<Torque> expose_torque(py::module_& m, const char* python_name) {
@@ -33,16 +43,23 @@ void expose_body(py::module_& m) {
 
     expose_torque<torque::Constant>(m, "ConstantTorque")
         .def(py::init<const Vec3&>(), py::arg("moment"))
-        .def_readonly("moment", &torque::Constant::moment);
+        .def_readonly("moment", &torque::Constant::moment)
+        .def("__repr__", [](const torque::Constant& x) { return "ConstantTorque(moment=" + vector_text(x.moment) + ")"; });
 
     expose_torque<torque::LinearDamping>(m, "LinearDamping")
         .def(py::init<const Mat3&>(), py::arg("matrix"))
-        .def_readonly("matrix", &torque::LinearDamping::matrix);
+        .def_readonly("matrix", &torque::LinearDamping::matrix)
+        .def("__repr__", [](const torque::LinearDamping& x) { return "LinearDamping(matrix=" + matrix_text(x.matrix) + ")"; });
 
     expose_torque<torque::ResistiveMedium>(m, "ResistiveMedium")
         .def(py::init<std::vector<Mat3>>(), py::arg("coefficients"))
         .def_readonly("coefficients", &torque::ResistiveMedium::coefficients)
-        .def("at", &torque::ResistiveMedium::at, py::arg("t"));
+        .def("at", &torque::ResistiveMedium::at, py::arg("t"))
+        .def("__repr__", [](const torque::ResistiveMedium& x) {
+            std::string s = "ResistiveMedium(coefficients=[";
+            for (std::size_t k = 0; k < x.coefficients.size(); ++k) s += (k ? ", " : "") + matrix_text(x.coefficients[k]);
+            return s + "])";
+        });
 
     expose_torque<torque::ViscousCavity>(m, "ViscousCavity")
         .def(py::init<double, double, double>(), py::arg("density"), py::arg("viscosity"), py::arg("p0"))
@@ -51,7 +68,11 @@ void expose_body(py::module_& m) {
         .def_readonly("viscosity", &torque::ViscousCavity::viscosity)
         .def_readonly("p0", &torque::ViscousCavity::p0)
         .def_property_readonly("kappa", &torque::ViscousCavity::kappa)
-        .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius);
+        .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius)
+        .def("__repr__", [](const torque::ViscousCavity& x) {
+            return "ViscousCavity(density=" + format_value(x.density) + ", viscosity=" + format_value(x.viscosity) +
+                   ", p0=" + format_value(x.p0) + ")";
+        });
 
     expose_torque<torque::MovingMassDamper>(m, "MovingMassDamper")
         .def(py::init<double, double, double, double>(), py::arg("mass"), py::arg("arm"), py::arg("frequency"),
@@ -60,7 +81,11 @@ void expose_body(py::module_& m) {
         .def_readonly("arm", &torque::MovingMassDamper::arm)
         .def_readonly("frequency", &torque::MovingMassDamper::frequency)
         .def_readonly("damping", &torque::MovingMassDamper::damping)
-        .def("S", &torque::MovingMassDamper::S, py::arg("A"), py::arg("C"));
+        .def("S", &torque::MovingMassDamper::S, py::arg("A"), py::arg("C"))
+        .def("__repr__", [](const torque::MovingMassDamper& x) {
+            return "MovingMassDamper(mass=" + format_value(x.mass) + ", arm=" + format_value(x.arm) +
+                   ", frequency=" + format_value(x.frequency) + ", damping=" + format_value(x.damping) + ")";
+        });
 }
 
 }  // namespace gyrostat::bindings

@@ -1,90 +1,96 @@
-#include <pybind11/eigen.h>
-#include <pybind11/numpy.h>
-#include <pybind11/stl.h>
+// Bindings of the engine's entry points: Options, Stats, Result, solve, solve_ensemble.
+// Translation of types only; the GIL is released around every integration, and Ctrl-C reaches
+// the run through the engine's Control (polled at a bounded rate, results unchanged).
+#include <Python.h>
 
-#include <variant>
+#include <memory>
 
 #include "convert.hpp"
 #include "expose.hpp"
-#include "gyrostat/ensemble.hpp"
-#include "gyrostat/model/averaged.hpp"
-#include "gyrostat/model/gyrostat.hpp"
-#include "gyrostat/model/moving_mass.hpp"
-
-namespace py = pybind11;
+#include "gyrostat/engine.hpp"
 
 namespace gyrostat::bindings {
 
 namespace {
 
-/// A model as Python holds it: the full gyrostat (without or with the attitude quaternion), the
-/// averaged symmetric system, or the explicit moving-mass model.
-struct CoreModel {
-    std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric, model::MovingMass> system;
-    int dim() const {
-        return std::visit([](const auto& s) { return std::decay_t<decltype(s)>::dim; }, system);
+/// The engine's Control for a call from Python: polls Ctrl-C (the signal handlers run on the
+/// main thread) and calls the optional progress callback with the fraction done.
+class PythonControl {
+public:
+    PythonControl(py::object progress, double interval) : progress_(std::move(progress)) {
+        control_.interval = interval;
+        control_.poll = [this](double fraction) {
+            py::gil_scoped_acquire gil;
+            if (PyErr_CheckSignals() != 0) {  // KeyboardInterrupt: stop and keep what was computed
+                PyErr_Clear();
+                return false;
+            }
+            if (progress_.is_none()) return true;
+            try {
+                progress_(fraction);
+            } catch (py::error_already_set& e) {
+                error_ = std::make_unique<py::error_already_set>(std::move(e));
+                return false;
+            }
+            return true;
+        };
     }
+    const integrate::Control* get() const { return &control_; }
+    /// Re-raises an exception of the progress callback (with the GIL held).
+    void rethrow() {
+        if (error_) throw std::move(*error_);
+    }
+
+private:
+    py::object progress_;
+    integrate::Control control_;
+    std::unique_ptr<py::error_already_set> error_;
 };
 
-CoreModel make_full(const Body& body, const py::sequence& torque_objects, bool attitude) {
-    TorqueSet set(torques_from(torque_objects));
-    if (attitude) return {model::Gyrostat<true>(body, set)};
-    return {model::Gyrostat<false>(body, set)};
-}
-
-CoreModel make_averaged(const Body& body, const py::sequence& torque_objects) {
-    return {model::AveragedSymmetric(body, TorqueSet(torques_from(torque_objects)))};
-}
-
-CoreModel make_moving_mass(const Body& body, double mass, double arm, double frequency, double damping,
-                           const py::sequence& torque_objects) {
-    return {model::MovingMass(body, mass, arm, frequency, damping, TorqueSet(torques_from(torque_objects)))};
-}
-
-const model::AveragedSymmetric& as_averaged(const CoreModel& m) {
-    if (const auto* a = std::get_if<model::AveragedSymmetric>(&m.system)) return *a;
-    throw std::invalid_argument("this is not an averaged model");
-}
-
-integrate::Result solve_model(const CoreModel& model, const Eigen::VectorXd& y0, double t0, double t1,
-                              const integrate::Options& o) {
-    return std::visit(
-        [&](const auto& system) {
-            using System = std::decay_t<decltype(system)>;
-            return integrate::solve(system, t0, to_state<System>(y0), t1, o);
-        },
-        model.system);
-}
-
-template <class System>
-std::vector<integrate::Result> ensemble_of(const std::vector<const CoreModel*>& models, const Eigen::MatrixXd& y0s,
-                                           double t0, double t1, const integrate::Options& o, int threads) {
-    std::vector<System> systems;
-    for (const CoreModel* m : models) systems.push_back(std::get<System>(m->system));
-    std::vector<typename System::State> starts;
-    for (Eigen::Index i = 0; i < y0s.rows(); ++i) starts.push_back(to_state<System>(y0s.row(i).transpose()));
-    return solve_ensemble(systems, starts, t0, t1, o, threads);
+std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
+    std::vector<Eigen::VectorXd> states;
+    if (py::isinstance<py::array>(y0s) && py::array(y0s.cast<py::array>()).ndim() == 2) {
+        const auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(y0s);
+        if (!rows) throw py::value_error("y0s must hold numbers");
+        const auto r = rows.unchecked<2>();
+        states.reserve(static_cast<std::size_t>(r.shape(0)));
+        for (py::ssize_t i = 0; i < r.shape(0); ++i) states.emplace_back(Eigen::Map<const Eigen::VectorXd>(r.data(i, 0), r.shape(1)));
+        return states;
+    }
+    for (const py::handle& row : y0s) states.push_back(row.cast<Eigen::VectorXd>());
+    return states;
 }
 
 }  // namespace
 
 void expose_integrate(py::module_& m) {
-    py::class_<CoreModel>(m, "CoreModel")
-        .def_property_readonly("dim", &CoreModel::dim)
-        .def_property_readonly("attitude", [](const CoreModel& fm) { return fm.system.index() == 1; })
-        .def("fast_frequency", [](const CoreModel& fm, double r) { return as_averaged(fm).fast_frequency(r); },
-             py::arg("r"))
-        .def("slow_rate",
-             [](const CoreModel& fm, double t, const Eigen::Vector2d& y) { return as_averaged(fm).slow_rate(t, y); },
-             py::arg("t"), py::arg("y"))
-        .def("quasi_static_state",
-             [](const CoreModel& fm, const Vec3& omega) -> Eigen::VectorXd {
-                 if (const auto* mm = std::get_if<model::MovingMass>(&fm.system)) return mm->quasi_static_state(omega);
-                 throw std::invalid_argument("this is not a moving-mass model");
-             },
-             py::arg("omega"))
-        .def("rhs", [](const CoreModel& fm, double t, const Eigen::VectorXd& y) { return variant_rhs(fm.system, t, y); },
-             py::arg("t"), py::arg("y"));
+    using integrate::Options;
+    py::class_<Options>(m, "Options", "Every integrator option with its default (the one place where defaults live).")
+        .def(py::init<>())
+        .def_property(
+            "method", [](const Options& o) { return std::string(integrate::method_name(o.method)); },
+            [](Options& o, const std::string& name) { o.method = integrate::method_from_name(name); })
+        .def_readwrite("rtol", &Options::rtol)
+        .def_readwrite("atol", &Options::atol)
+        .def_property(
+            "t_eval",
+            [](const Options& o) { return py::array_t<double>(static_cast<py::ssize_t>(o.t_eval.size()), o.t_eval.data()); },
+            [](Options& o, py::array_t<double, py::array::c_style | py::array::forcecast> t) {
+                if (t.ndim() != 1) throw py::value_error("t_eval must be one-dimensional, got " + std::to_string(t.ndim()) + " dimensions");
+                o.t_eval.assign(t.data(), t.data() + t.size());
+            })
+        .def_readwrite("n_out", &Options::n_out)
+        .def_readwrite("every_step", &Options::every_step)
+        .def_readwrite("max_steps", &Options::max_steps)
+        .def_readwrite("first_step", &Options::first_step)
+        .def_readwrite("max_step", &Options::max_step)
+        .def("__repr__", [](const Options& o) {
+            return "Options(method='" + std::string(integrate::method_name(o.method)) + "', rtol=" + format_value(o.rtol) +
+                   ", atol=" + format_value(o.atol) + ", n_out=" + std::to_string(o.n_out) + ", t_eval=<" +
+                   std::to_string(o.t_eval.size()) + " times>, every_step=" + (o.every_step ? "True" : "False") +
+                   ", max_steps=" + std::to_string(o.max_steps) + ", first_step=" + format_value(o.first_step) +
+                   ", max_step=" + format_value(o.max_step) + ")";
+        });
 
     py::class_<integrate::Stats>(m, "Stats")
         .def_readonly("steps", &integrate::Stats::steps)
@@ -94,58 +100,69 @@ void expose_integrate(py::module_& m) {
         .def_readonly("nonlinear_conv_failures", &integrate::Stats::nonlinear_conv_failures)
         .def_readonly("last_step", &integrate::Stats::last_step);
 
-    py::class_<integrate::Result>(m, "Result")
-        .def_readonly("method", &integrate::Result::method)
-        .def_property_readonly("t", [](const integrate::Result& r) { return as_array(r.t, r.t.size(), 1).attr("ravel")(); })
-        .def_property_readonly("y", [](const integrate::Result& r) { return as_array(r.y, r.t.size(), r.dim); })
-        .def_readonly("invariant_names", &integrate::Result::invariant_names)
-        .def_property_readonly("invariants", [](const integrate::Result& r) {
-            return as_array(r.invariants, r.t.size(), r.invariant_names.size());
-        })
-        .def_readonly("stats", &integrate::Result::stats)
-        .def_property_readonly("status", [](const integrate::Result& r) { return integrate::status_name(r.status); })
-        .def_readonly("message", &integrate::Result::message)
-        .def_property_readonly("success", &integrate::Result::success);
-
-    m.def("full_model", &make_full, py::arg("body"), py::arg("torques"), py::arg("attitude") = false);
-    m.def("averaged_model", &make_averaged, py::arg("body"), py::arg("torques"));
-    m.def("moving_mass_model", &make_moving_mass, py::arg("body"), py::arg("mass"), py::arg("arm"),
-          py::arg("frequency"), py::arg("damping"), py::arg("torques"));
+    using integrate::Result;
+    py::class_<Result>(m, "Result", "A trajectory as the engine returns it; the arrays are views of its memory.")
+        .def_readonly("method", &Result::method)
+        .def_readonly("dim", &Result::dim)
+        .def_readonly("state_names", &Result::state_names)
+        .def_readonly("output_names", &Result::output_names)
+        .def_readonly("output_conserved", &Result::output_conserved)
+        .def_property_readonly("t",
+                               [](py::object self) {
+                                   const auto& r = self.cast<const Result&>();
+                                   return py::array_t<double>(static_cast<py::ssize_t>(r.t.size()), r.t.data(), self);
+                               })
+        .def_property_readonly("y",
+                               [](py::object self) {
+                                   const auto& r = self.cast<const Result&>();
+                                   return view(r.y, static_cast<py::ssize_t>(r.t.size()), r.dim, self);
+                               })
+        .def_property_readonly("outputs",
+                               [](py::object self) {
+                                   const auto& r = self.cast<const Result&>();
+                                   return view(r.outputs, static_cast<py::ssize_t>(r.t.size()),
+                                               static_cast<py::ssize_t>(r.output_names.size()), self);
+                               })
+        .def_readonly("stats", &Result::stats)
+        .def_property_readonly("status", [](const Result& r) { return integrate::status_name(r.status); })
+        .def_readonly("message", &Result::message)
+        .def_property_readonly("success", &Result::success);
 
     m.def(
         "solve",
-        [](const CoreModel& model, const Eigen::VectorXd& y0, double t0, double t1, const std::string& method, double rtol,
-           double atol, std::vector<double> t_eval, bool every_step, long max_steps, double first_step, double max_step) {
-            const auto o = make_options(method, rtol, atol, std::move(t_eval), every_step, max_steps, first_step, max_step);
-            py::gil_scoped_release release;
-            return solve_model(model, y0, t0, t1, o);
+        [](const BoundModel& model, const Eigen::Ref<const Eigen::VectorXd>& y0, double t0, double t1, const Options& options,
+           py::object progress, double interval) {
+            PythonControl control(std::move(progress), interval);
+            Result result;
+            {
+                py::gil_scoped_release release;
+                result = solve(model.model, t0, y0, t1, options, control.get());
+            }
+            control.rethrow();
+            return result;
         },
-        py::arg("model"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("method"), py::arg("rtol"),
-        py::arg("atol"), py::arg("t_eval"), py::arg("every_step"), py::arg("max_steps"), py::arg("first_step"),
-        py::arg("max_step"));
+        py::arg("model"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("progress") = py::none(),
+        py::arg("interval") = 0.1);
 
     m.def(
         "solve_ensemble",
-        [](const std::vector<const CoreModel*>& models, const Eigen::MatrixXd& y0s, double t0, double t1,
-           const std::string& method, double rtol, double atol, std::vector<double> t_eval, bool every_step,
-           long max_steps, double first_step, double max_step, int threads) {
-            if (models.empty()) throw std::invalid_argument("solve_ensemble: no model given");
-            const std::size_t kind = models.front()->system.index();
-            for (const CoreModel* fm : models)
-                if (fm->system.index() != kind)
-                    throw std::invalid_argument("solve_ensemble: all models must be of one kind (and attitude on or off for all)");
-            const auto o = make_options(method, rtol, atol, std::move(t_eval), every_step, max_steps, first_step, max_step);
-            py::gil_scoped_release release;
-            switch (kind) {
-                case 0: return ensemble_of<model::Gyrostat<false>>(models, y0s, t0, t1, o, threads);
-                case 1: return ensemble_of<model::Gyrostat<true>>(models, y0s, t0, t1, o, threads);
-                case 2: return ensemble_of<model::AveragedSymmetric>(models, y0s, t0, t1, o, threads);
-                default: return ensemble_of<model::MovingMass>(models, y0s, t0, t1, o, threads);
+        [](const std::vector<const BoundModel*>& bound, const py::object& y0s, double t0, double t1, const Options& options,
+           int threads, py::object progress, double interval) {
+            const auto starts = initial_states(y0s);
+            std::vector<const AnyModel*> models;
+            models.reserve(bound.size());
+            for (const BoundModel* b : bound) models.push_back(&b->model);
+            PythonControl control(std::move(progress), interval);
+            std::vector<Result> results;
+            {
+                py::gil_scoped_release release;
+                results = solve_ensemble(models, starts, t0, t1, options, threads, control.get());
             }
+            control.rethrow();
+            return results;
         },
-        py::arg("models"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("method"), py::arg("rtol"),
-        py::arg("atol"), py::arg("t_eval"), py::arg("every_step"), py::arg("max_steps"), py::arg("first_step"),
-        py::arg("max_step"), py::arg("threads"));
+        py::arg("models"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("threads") = 0,
+        py::arg("progress") = py::none(), py::arg("interval") = 0.1);
 
     m.def("methods", &integrate::method_names);
 }

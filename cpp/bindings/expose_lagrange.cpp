@@ -6,42 +6,10 @@
 
 #include "convert.hpp"
 #include "expose.hpp"
-#include "gyrostat/integrate/solve.hpp"
-#include "gyrostat/model/lagrange_averaged.hpp"
 #include "gyrostat/model/lagrange_top.hpp"
 
 namespace gyrostat::bindings {
 
-namespace {
-
-template <class System, class Class>
-void def_system(Class& cls) {
-    cls.def_property_readonly_static("dim", [](py::object) { return System::dim; })
-        .def_property_readonly("A", &System::A)
-        .def_property_readonly("C", &System::C)
-        .def_property_readonly("mu", &System::mu)
-        .def("rhs",
-             [](const System& s, double t, const Eigen::VectorXd& y) -> Eigen::VectorXd {
-                 typename System::State dy;
-                 s.rhs(t, to_state<System>(y), dy);
-                 return dy;
-             },
-             py::arg("t"), py::arg("y"))
-        .def("solve",
-             [](const System& s, const Eigen::VectorXd& y0, double t0, double t1, const std::string& method, double rtol,
-                double atol, std::vector<double> t_eval, bool every_step, long max_steps, double first_step,
-                double max_step) {
-                 const auto o =
-                     make_options(method, rtol, atol, std::move(t_eval), every_step, max_steps, first_step, max_step);
-                 const auto start = to_state<System>(y0);
-                 py::gil_scoped_release release;
-                 return integrate::solve(s, t0, start, t1, o);
-             },
-             py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("method"), py::arg("rtol"), py::arg("atol"),
-             py::arg("t_eval"), py::arg("every_step"), py::arg("max_steps"), py::arg("first_step"), py::arg("max_step"));
-}
-
-}  // namespace
 
 void expose_lagrange(py::module_& m) {
     py::class_<model::Nutation>(m, "LagrangeNutation")
@@ -100,24 +68,6 @@ void expose_lagrange(py::module_& m) {
         .def_property_readonly("H", &model::LagrangeUnperturbed::H)
         .def_property_readonly("r", &model::LagrangeUnperturbed::r)
         .def_property_readonly("beta", &model::LagrangeUnperturbed::beta);
-
-    py::class_<model::LagrangeTop> top(m, "LagrangeTopCore");
-    top.def(py::init([](const Body& body, double mu, const py::sequence& torques) {
-                return model::LagrangeTop(body, mu, TorqueSet(torques_from(torques)));
-            }),
-            py::arg("body"), py::arg("mu"), py::arg("torques"));
-    def_system<model::LagrangeTop>(top);
-
-    py::class_<model::LagrangeAveraged> averaged(m, "LagrangeAveragedCore");
-    averaged
-        .def(py::init([](const Body& body, double mu, const py::sequence& torques) {
-                 return model::LagrangeAveraged(body, mu, TorqueSet(torques_from(torques)));
-             }),
-             py::arg("body"), py::arg("mu"), py::arg("torques"))
-        .def("rate", &model::LagrangeAveraged::rate, py::arg("t"))
-        .def("equatorial_damping", &model::LagrangeAveraged::equatorial_damping, py::arg("t"))
-        .def("axial_damping", &model::LagrangeAveraged::axial_damping, py::arg("t"));
-    def_system<model::LagrangeAveraged>(averaged);
 }
 
 }  // namespace gyrostat::bindings

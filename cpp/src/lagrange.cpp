@@ -1,9 +1,5 @@
-// Compiled parts of paper 003's models: elliptic functions (GSL), the nutation cubic and the
-// unperturbed solution of the heavy symmetric top.
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_sf_ellint.h>
-#include <gsl/gsl_sf_elljac.h>
-
+// Compiled parts of paper 003's models: the nutation cubic and the unperturbed solution of the
+// heavy symmetric top.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,75 +9,6 @@
 #include "gyrostat/model/lagrange_top.hpp"
 
 namespace gyrostat::model {
-
-namespace {
-
-// GSL's default handler aborts the process; errors are reported through return codes here.
-struct GslHandlerOff {
-    GslHandlerOff() { gsl_set_error_handler_off(); }
-};
-const GslHandlerOff gsl_handler_off;
-
-constexpr double inf = std::numeric_limits<double>::infinity();
-
-void require_parameter(double m, const char* what) {
-    if (!(m >= 0.0 && m <= 1.0))
-        throw std::invalid_argument(std::string(what) + ": the parameter m = k^2 must be in [0, 1]; got m = " +
-                                    format_value(m));
-}
-
-double checked(int status, const gsl_sf_result& result, const char* what, double m) {
-    if (status != GSL_SUCCESS)
-        throw std::invalid_argument(std::string(what) + ": GSL failed (" + gsl_strerror(status) + ") at m = " +
-                                    format_value(m));
-    return result.val;
-}
-
-}  // namespace
-
-// K and E through Carlson's forms with the argument 1 − m formed directly: GSL's Kcomp/Ecomp take
-// the modulus k = √m and form 1 − k² inside, which loses log10(1/(1 − m)) digits near the
-// separatrix (measured: 5e-9 relative at m = 1 − 1e-9). K = R_F(0, 1−m, 1),
-// E = R_F(0, 1−m, 1) − (m/3) R_D(0, 1−m, 1).
-double elliptic_K(double m) {
-    require_parameter(m, "elliptic_K");
-    if (m == 1.0) return inf;
-    gsl_sf_result rf;
-    return checked(gsl_sf_ellint_RF_e(0.0, 1.0 - m, 1.0, GSL_PREC_DOUBLE, &rf), rf, "elliptic_K (R_F)", m);
-}
-
-double elliptic_E(double m) {
-    require_parameter(m, "elliptic_E");
-    if (m == 1.0) return 1.0;
-    if (m == 0.0) return 2.0 * std::atan(1.0);  // π/2
-    gsl_sf_result rf, rd;
-    const double f = checked(gsl_sf_ellint_RF_e(0.0, 1.0 - m, 1.0, GSL_PREC_DOUBLE, &rf), rf, "elliptic_E (R_F)", m);
-    const double d = checked(gsl_sf_ellint_RD_e(0.0, 1.0 - m, 1.0, GSL_PREC_DOUBLE, &rd), rd, "elliptic_E (R_D)", m);
-    return f - m * d / 3.0;
-}
-
-std::array<double, 3> jacobi_sn_cn_dn(double u, double m) {
-    require_parameter(m, "jacobi_sn_cn_dn");
-    if (!std::isfinite(u)) throw std::invalid_argument("jacobi_sn_cn_dn: argument u = " + format_value(u) + " is not finite");
-    double sn = 0.0, cn = 0.0, dn = 0.0;
-    // gsl_sf_elljac_e takes the parameter m (unlike the complete integrals).
-    const int status = gsl_sf_elljac_e(u, m, &sn, &cn, &dn);
-    if (status != GSL_SUCCESS)
-        throw std::invalid_argument(std::string("jacobi_sn_cn_dn: GSL failed (") + gsl_strerror(status) + ") at u = " +
-                                    format_value(u) + ", m = " + format_value(m));
-    return {sn, cn, dn};
-}
-
-double mean_sn_squared(double m) {
-    require_parameter(m, "mean_sn_squared");
-    if (m == 1.0) return 1.0;
-    if (m == 0.0) return 0.5;
-    gsl_sf_result rd, rf;
-    const double y = 1.0 - m;
-    const double d = checked(gsl_sf_ellint_RD_e(0.0, y, 1.0, GSL_PREC_DOUBLE, &rd), rd, "mean_sn_squared (R_D)", m);
-    const double f = checked(gsl_sf_ellint_RF_e(0.0, y, 1.0, GSL_PREC_DOUBLE, &rf), rf, "mean_sn_squared (R_F)", m);
-    return d / (3.0 * f);
-}
 
 Nutation nutation(double A, double C, double mu, double Gz, double H, double r) {
     if (!(std::isfinite(Gz) && std::isfinite(H) && std::isfinite(r)))
@@ -127,7 +54,8 @@ Nutation nutation(double A, double C, double mu, double Gz, double H, double r) 
     n.m = span > 0.0 ? std::clamp((n.u2 - n.u1) / span, 0.0, 1.0) : 0.0;
     n.alpha = std::sqrt(mu * span / (2.0 * A));
     n.v = n.u1 + (n.u2 - n.u1) * mean_sn_squared(n.m);
-    n.period = (n.alpha > 0.0 && n.m < 1.0) ? 2.0 * elliptic_K(n.m) / n.alpha : inf;
+    n.period = (n.alpha > 0.0 && n.m < 1.0) ? 2.0 * elliptic_K(n.m) / n.alpha
+                                                     : std::numeric_limits<double>::infinity();
     return n;
 }
 
@@ -147,11 +75,9 @@ LagrangeUnperturbed::LagrangeUnperturbed(double A, double C, double mu, const Ve
     const double width = n_.u2 - n_.u1;
     if (width > 0.0) {
         const double s = std::sqrt(std::clamp((gamma.z() - n_.u1) / width, 0.0, 1.0));
-        gsl_sf_result res;
-        const double k = std::sqrt(n_.m);
         double F;
         if (n_.m < 1.0) {
-            F = checked(gsl_sf_ellint_F_e(std::asin(s), k, GSL_PREC_DOUBLE, &res), res, "LagrangeUnperturbed (F)", n_.m);
+            F = elliptic_F(std::asin(s), n_.m);
         } else {
             F = std::atanh(std::min(s, 1.0 - 1e-16));  // F(φ | 1) = artanh(sin φ)
         }

@@ -12,15 +12,14 @@ namespace {
 struct NamedMethod {
     const char* name;
     Method method;
-    bool is_explicit;
 };
 constexpr NamedMethod kMethods[] = {
-    {"dop853", Method::Dop853, true},
-    {"cvode_bdf", Method::CvodeBdf, false},
-    {"cvode_adams", Method::CvodeAdams, false},
-    {"arkode_verner6", Method::ArkodeVerner6, true},
-    {"arkode_fehlberg8", Method::ArkodeFehlberg8, true},
-    {"taylor", Method::Taylor, true},
+    {"dop853", Method::Dop853},
+    {"cvode_bdf", Method::CvodeBdf},
+    {"cvode_adams", Method::CvodeAdams},
+    {"arkode_verner6", Method::ArkodeVerner6},
+    {"arkode_fehlberg8", Method::ArkodeFehlberg8},
+    {"taylor", Method::Taylor},
 };
 
 }  // namespace
@@ -46,12 +45,6 @@ std::vector<std::string> method_names() {
     return names;
 }
 
-bool method_is_explicit(Method method) {
-    for (const auto& m : kMethods)
-        if (m.method == method) return m.is_explicit;
-    return false;
-}
-
 const char* status_name(Status s) {
     switch (s) {
         case Status::Success: return "success";
@@ -60,6 +53,7 @@ const char* status_name(Status s) {
         case Status::NonFiniteState: return "non_finite_state";
         case Status::SolverFailure: return "solver_failure";
         case Status::InvalidInput: return "invalid_input";
+        case Status::Interrupted: return "interrupted";
     }
     return "unknown";
 }
@@ -77,6 +71,8 @@ void validate(const Options& o, double t0, double t1) {
         throw std::invalid_argument("atol = " + format_value(o.atol) + " must be finite and non-negative");
     if (!std::isfinite(t0)) throw std::invalid_argument("t0 = " + format_value(t0) + " is not finite");
     if (!std::isfinite(t1)) throw std::invalid_argument("t1 = " + format_value(t1) + " is not finite");
+    if (o.n_out < 0 || o.n_out == 1)
+        throw std::invalid_argument("n_out = " + std::to_string(o.n_out) + " must be at least 2 (or 0: t0 and t1 only)");
     if (o.max_steps <= 0) throw std::invalid_argument("max_steps = " + std::to_string(o.max_steps) + " must be positive");
     if (!std::isfinite(o.first_step) || o.first_step < 0.0)
         throw std::invalid_argument("first_step = " + format_value(o.first_step) + " must be finite and >= 0 (0: automatic)");
@@ -97,6 +93,13 @@ void validate(const Options& o, double t0, double t1) {
 
 std::vector<double> output_times(const Options& o, double t0, double t1) {
     if (!o.t_eval.empty()) return o.t_eval;
+    if (o.n_out >= 2) {  // as numpy.linspace: t0 + i·(t1 − t0)/(n − 1), the last one exactly t1
+        std::vector<double> times(static_cast<std::size_t>(o.n_out));
+        const double step = (t1 - t0) / static_cast<double>(o.n_out - 1);
+        for (long i = 0; i + 1 < o.n_out; ++i) times[static_cast<std::size_t>(i)] = t0 + static_cast<double>(i) * step;
+        times.back() = t1;
+        return times;
+    }
     if (t0 == t1) return {t0};
     return {t0, t1};
 }

@@ -1,8 +1,6 @@
 #include "gyrostat/model/torque_free.hpp"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_sf_ellint.h>
-#include <gsl/gsl_sf_elljac.h>
+#include "gyrostat/model/elliptic.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,22 +10,6 @@
 
 namespace gyrostat::model {
 
-namespace {
-// GSL's default handler aborts the process; the library reports errors through return codes.
-struct GslHandlerOff {
-    GslHandlerOff() { gsl_set_error_handler_off(); }
-};
-const GslHandlerOff gsl_handler_off;
-
-// F(φ, k) for any real φ: F(φ + nπ, k) = F(φ, k) + 2nK(k).
-double incomplete_first_kind(double phi, double k) {
-    const double n = std::round(phi / M_PI);
-    const double reduced = phi - n * M_PI;
-    double value = gsl_sf_ellint_F(reduced, k, GSL_PREC_DOUBLE);
-    if (n != 0.0) value += 2.0 * n * gsl_sf_ellint_Kcomp(k, GSL_PREC_DOUBLE);
-    return value;
-}
-}  // namespace
 
 TorqueFreeSolution::TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0) : omega0_(omega0), t0_(t0) {
     if (body.rotor().squaredNorm() != 0.0)
@@ -75,13 +57,12 @@ TorqueFreeSolution::TorqueFreeSolution(const Body& body, const Vec3& omega0, dou
     const double parity = cyclic ? 1.0 : -1.0;
     nu_ = parity * sign3_ * (C - B) * b_ * c_ / (A * a_);
     const double phi0 = std::atan2(w2 / b_, w1 / a_);
-    u0_ = incomplete_first_kind(phi0, std::sqrt(m_));
+    u0_ = elliptic_F(phi0, m_);
 }
 
 Vec3 TorqueFreeSolution::omega(double t) const {
     if (constant_) return omega0_;
-    double sn = 0, cn = 0, dn = 0;
-    gsl_sf_elljac_e(nu_ * (t - t0_) + u0_, m_, &sn, &cn, &dn);
+    const auto [sn, cn, dn] = jacobi_sn_cn_dn(nu_ * (t - t0_) + u0_, m_);
     Vec3 w;
     w[axis_[0]] = a_ * cn;
     w[axis_[1]] = b_ * sn;
@@ -101,7 +82,14 @@ std::vector<double> TorqueFreeSolution::omega(const std::vector<double>& times) 
 double TorqueFreeSolution::period() const {
     if (constant_) return std::numeric_limits<double>::infinity();
     if (m_ >= 1.0) return std::numeric_limits<double>::infinity();
-    return 4.0 * gsl_sf_ellint_Kcomp(std::sqrt(m_), GSL_PREC_DOUBLE) / std::abs(nu_);
+    return 4.0 * elliptic_K(m_) / std::abs(nu_);
+}
+
+
+TorqueFree::TorqueFree(Body body) : body_(std::move(body)) {
+    if (body_.rotor().squaredNorm() != 0.0)
+        throw std::invalid_argument("TorqueFree: the closed form is for a rigid body (rotor k = 0); this body has |k| = " +
+                                    format_value(body_.rotor().norm()) + ": use the full Model (it integrates)");
 }
 
 }  // namespace gyrostat::model

@@ -1,18 +1,22 @@
 """gyrostat: perturbed rotational motion of rigid bodies and gyrostats about the centre of mass.
 
-A thin Python layer over the C++ core (``gyrostat._core``): build a :class:`Body`, add torques,
-make a :class:`Model`, :func:`solve` it (or :func:`solve_ensemble` many at once) and get NumPy
-arrays back. Scenes (TOML files) bundle all of that with outputs and plots; ``gyrostat run``
-runs one from the command line.
+A thin Python layer over the C++ engine (``gyrostat._core``): build a :class:`Body`, add torques,
+make a model of any family (:class:`Model`, :class:`AveragedModel`, :class:`MovingMassModel`,
+:class:`TorqueFreeModel`, :class:`gyrostat.lagrange.LagrangeTop`,
+:class:`gyrostat.lagrange.LagrangeAveraged`, :class:`gyrostat.orthogonal.OrthogonalModel`),
+:func:`solve` it (or :func:`solve_ensemble` many at once) and get a :class:`Solution` with the
+state and the named outputs the engine recorded. Scenes (TOML files) bundle all of that with
+outputs and plots; ``gyrostat run`` runs one from the command line.
 """
 
+from gyrostat import _core
 from gyrostat._core import (Body, ConstantTorque, LinearDamping, MovingMassDamper, ResistiveMedium,
                             TorqueFreeSolution, ViscousCavity)
-from gyrostat.model import AveragedModel, Model, MovingMassModel
+from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
 from gyrostat.solution import Solution
-from gyrostat.solve import METHODS, solve, solve_ensemble, torque_free
+from gyrostat.solve import METHODS, Options, solve, solve_ensemble, torque_free
 from gyrostat.validity import ValidityWarning
-from gyrostat import averaged, lagrange, orthogonal, validity  # noqa: E402  (papers 002-004 helpers)
+from gyrostat import attitude, averaged, lagrange, orthogonal, validity  # noqa: E402  (papers 002-004 helpers)
 
 __all__ = [
     "Body",
@@ -22,18 +26,22 @@ __all__ = [
     "ViscousCavity",
     "MovingMassDamper",
     "TorqueFreeSolution",
+    "ModelBase",
     "Model",
     "AveragedModel",
     "MovingMassModel",
+    "TorqueFreeModel",
     "Solution",
     "METHODS",
+    "Options",
     "solve",
     "solve_ensemble",
     "torque_free",
     "ValidityWarning",
+    "attitude",
     "averaged",
     "lagrange",
     "orthogonal",
     "validity",
 ]
-__version__ = "0.1.0"
+__version__ = _core.__version__

@@ -1,184 +1,423 @@
-"""Type stubs for the C++ extension gyrostat._core (bindings only translate types)."""
-
-from collections.abc import Sequence
-
-import numpy as np
-import numpy.typing as npt
-
-_Vec = Sequence[float] | npt.NDArray[np.float64]
-
-__version__: str
-
+"""Type stubs for the C++ extension gyrostat._core: bodies, torques, models, integrators, ensembles
+(the bindings only translate types). Generated from the built module by pybind11-stubgen
+(`pybind11-stubgen gyrostat._core`); regenerate after changing a binding.
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['Body', 'ConstantTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'solve', 'solve_ensemble', 'torque_free_model']
 class Body:
-    def __init__(self, moments: _Vec, rotor: _Vec = ...) -> None: ...
+    def __init__(self, moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], rotor: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
     @property
-    def moments(self) -> npt.NDArray[np.float64]: ...
+    def moments(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
     @property
-    def rotor(self) -> npt.NDArray[np.float64]: ...
-
+    def rotor(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
 class ConstantTorque:
-    moment: npt.NDArray[np.float64]
-    def __init__(self, moment: _Vec) -> None: ...
-    def __call__(self, t: float, omega: _Vec, moments: _Vec) -> npt.NDArray[np.float64]: ...
-    def averaged(self, t: float, a: float, r: float, A: float, C: float) -> npt.NDArray[np.float64]: ...
-
+    kind: typing.ClassVar[str] = 'constant'
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments.
+        """
+    def __init__(self, moment: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        """
+        Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        """
+    @property
+    def moment(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
 class LinearDamping:
-    matrix: npt.NDArray[np.float64]
-    def __init__(self, matrix: npt.ArrayLike) -> None: ...
-    def __call__(self, t: float, omega: _Vec, moments: _Vec) -> npt.NDArray[np.float64]: ...
-    def averaged(self, t: float, a: float, r: float, A: float, C: float) -> npt.NDArray[np.float64]: ...
-
+    kind: typing.ClassVar[str] = 'linear_damping'
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments.
+        """
+    def __init__(self, matrix: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 3]"]) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        """
+        Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        """
+    @property
+    def matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        ...
 class ResistiveMedium:
-    coefficients: list[npt.NDArray[np.float64]]
-    def __init__(self, coefficients: Sequence[npt.ArrayLike]) -> None: ...
-    def at(self, t: float) -> npt.NDArray[np.float64]: ...
-    def __call__(self, t: float, omega: _Vec, moments: _Vec) -> npt.NDArray[np.float64]: ...
-    def averaged(self, t: float, a: float, r: float, A: float, C: float) -> npt.NDArray[np.float64]: ...
-
+    kind: typing.ClassVar[str] = 'resistive_medium'
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments.
+        """
+    def __init__(self, coefficients: collections.abc.Sequence[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 3]"]]) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def at(self, t: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        ...
+    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        """
+        Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        """
+    @property
+    def coefficients(self) -> list[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]]:
+        ...
 class ViscousCavity:
-    density: float
-    viscosity: float
-    p0: float
-    kappa: float
-    equivalent_radius: float
-    def __init__(self, density: float, viscosity: float, p0: float) -> None: ...
+    kind: typing.ClassVar[str] = 'viscous_cavity'
     @staticmethod
-    def sphere(density: float, viscosity: float, radius: float) -> ViscousCavity: ...
-    def __call__(self, t: float, omega: _Vec, moments: _Vec) -> npt.NDArray[np.float64]: ...
-    def averaged(self, t: float, a: float, r: float, A: float, C: float) -> npt.NDArray[np.float64]: ...
-
+    def sphere(density: typing.SupportsFloat | typing.SupportsIndex, viscosity: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex) -> ViscousCavity:
+        ...
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments.
+        """
+    def __init__(self, density: typing.SupportsFloat | typing.SupportsIndex, viscosity: typing.SupportsFloat | typing.SupportsIndex, p0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        """
+        Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        """
+    @property
+    def density(self) -> float:
+        ...
+    @property
+    def equivalent_radius(self) -> float:
+        ...
+    @property
+    def kappa(self) -> float:
+        ...
+    @property
+    def p0(self) -> float:
+        ...
+    @property
+    def viscosity(self) -> float:
+        ...
 class MovingMassDamper:
-    mass: float
-    arm: float
-    frequency: float
-    damping: float
-    def __init__(self, mass: float, arm: float, frequency: float, damping: float) -> None: ...
-    def S(self, A: float, C: float) -> float: ...
-    def __call__(self, t: float, omega: _Vec, moments: _Vec) -> npt.NDArray[np.float64]: ...
-    def averaged(self, t: float, a: float, r: float, A: float, C: float) -> npt.NDArray[np.float64]: ...
-
-_Torque = ConstantTorque | LinearDamping | ResistiveMedium | ViscousCavity | MovingMassDamper
-
-class CoreModel:
+    kind: typing.ClassVar[str] = 'moving_mass_damper'
+    def S(self, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments.
+        """
+    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, arm: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+        """
+        Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        """
     @property
-    def dim(self) -> int: ...
+    def arm(self) -> float:
+        ...
     @property
-    def attitude(self) -> bool: ...
-    def rhs(self, t: float, y: _Vec) -> npt.NDArray[np.float64]: ...
-    def fast_frequency(self, r: float) -> float: ...
-    def slow_rate(self, t: float, y: _Vec) -> float: ...
-    def quasi_static_state(self, omega: _Vec) -> npt.NDArray[np.float64]: ...
-
-def full_model(body: Body, torques: Sequence[_Torque], attitude: bool = False) -> CoreModel: ...
-def averaged_model(body: Body, torques: Sequence[_Torque]) -> CoreModel: ...
-def moving_mass_model(body: Body, mass: float, arm: float, frequency: float, damping: float,
-                      torques: Sequence[_Torque]) -> CoreModel: ...
-
-class Stats:
-    steps: int
-    rhs_evals: int
-    rejected_steps: int
-    jacobian_evals: int
-    nonlinear_conv_failures: int
-    last_step: float
-
-class Result:
-    method: str
-    t: npt.NDArray[np.float64]
-    y: npt.NDArray[np.float64]
-    invariant_names: list[str]
-    invariants: npt.NDArray[np.float64]
-    stats: Stats
-    status: str
-    message: str
-    success: bool
-
-class TorqueFreeSolution:
-    def __init__(self, body: Body, omega0: _Vec, t0: float = 0.0) -> None: ...
-    def omega(self, t: Sequence[float]) -> npt.NDArray[np.float64]: ...
-    modulus_squared: float
-    frequency: float
-    period: float
-    is_constant: bool
-
-def solve(model: CoreModel, y0: _Vec, t0: float, t1: float, method: str, rtol: float, atol: float,
-          t_eval: Sequence[float], every_step: bool, max_steps: int, first_step: float, max_step: float) -> Result: ...
-def solve_ensemble(models: Sequence[CoreModel], y0s: npt.ArrayLike, t0: float, t1: float, method: str, rtol: float,
-                   atol: float, t_eval: Sequence[float], every_step: bool, max_steps: int, first_step: float,
-                   max_step: float, threads: int) -> list[Result]: ...
-def methods() -> list[str]: ...
-
-# ---- paper 003: heavy symmetric top (bindings in cpp/bindings/expose_lagrange.cpp) ----
-class LagrangeNutation:
-    u1: float
-    u2: float
-    u3: float
-    m: float
-    alpha: float
-    v: float
-    period: float
-
-def lagrange_nutation(A: float, C: float, mu: float, G_z: float, H: float, r: float) -> LagrangeNutation: ...
-def lagrange_nutation_table(A: float, C: float, mu: float, G_z: Sequence[float], H: Sequence[float],
-                            r: Sequence[float]) -> npt.NDArray[np.float64]: ...
-def elliptic_K(m: float) -> float: ...
-def elliptic_E(m: float) -> float: ...
-def jacobi_sn_cn_dn(u: float, m: float) -> tuple[float, float, float]: ...
-def mean_sn_squared(m: float) -> float: ...
-
-class LagrangeUnperturbed:
-    def __init__(self, A: float, C: float, mu: float, omega: _Vec, gamma: _Vec, t0: float = 0.0) -> None: ...
-    def u(self, t: Sequence[float]) -> list[float]: ...
-    nutation: LagrangeNutation
-    G_z: float
-    H: float
-    r: float
-    beta: float
-
-class _LagrangeSystem:
-    dim: int
-    A: float
-    C: float
-    mu: float
-    def rhs(self, t: float, y: _Vec) -> npt.NDArray[np.float64]: ...
-    def solve(self, y0: _Vec, t0: float, t1: float, method: str, rtol: float, atol: float, t_eval: Sequence[float],
-              every_step: bool, max_steps: int, first_step: float, max_step: float) -> Result: ...
-
-class LagrangeTopCore(_LagrangeSystem):
-    def __init__(self, body: Body, mu: float, torques: Sequence[object]) -> None: ...
-
-class LagrangeAveragedCore(_LagrangeSystem):
-    def __init__(self, body: Body, mu: float, torques: Sequence[object]) -> None: ...
-    def rate(self, t: float) -> float: ...
-    def equatorial_damping(self, t: float) -> float: ...
-    def axial_damping(self, t: float) -> float: ...
-
-# ---- paper 004: gyrostat under a torque orthogonal to G and ω (cpp/bindings/expose_orthogonal.cpp) ----
+    def damping(self) -> float:
+        ...
+    @property
+    def frequency(self) -> float:
+        ...
+    @property
+    def mass(self) -> float:
+        ...
 class MagnitudeLaw:
-    kind: str
+    """
+    The magnitude L(t) of paper 004's servo torque, evaluated in C++.
+    """
     @staticmethod
-    def constant(value: float) -> MagnitudeLaw: ...
+    def constant(value: typing.SupportsFloat | typing.SupportsIndex) -> MagnitudeLaw:
+        ...
     @staticmethod
-    def polynomial(coefficients: Sequence[float]) -> MagnitudeLaw: ...
+    def harmonic(mean: typing.SupportsFloat | typing.SupportsIndex, amplitudes: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], frequencies: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], phases: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> MagnitudeLaw:
+        ...
     @staticmethod
-    def harmonic(mean: float, amplitudes: Sequence[float], frequencies: Sequence[float],
-                 phases: Sequence[float]) -> MagnitudeLaw: ...
+    def polynomial(coefficients: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> MagnitudeLaw:
+        ...
     @staticmethod
-    def tabulated(times: Sequence[float], values: Sequence[float], cubic: bool = False) -> MagnitudeLaw: ...
-    def __call__(self, t: float) -> float: ...
-    def values(self, t: Sequence[float]) -> npt.NDArray[np.float64]: ...
-
-class OrthogonalCore:
+    def tabulated(times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], values: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], cubic: bool = False) -> MagnitudeLaw:
+        ...
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def values(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
     @property
-    def dim(self) -> int: ...
-    def rhs(self, t: float, y: _Vec) -> npt.NDArray[np.float64]: ...
-    def tau_rate(self, t: float, omega: _Vec) -> float: ...
-
-def orthogonal_model(body: Body, law: MagnitudeLaw, torques: Sequence[_Torque], attitude: bool, eta: float,
-                     smooth: bool = False) -> OrthogonalCore: ...
-def solve_orthogonal(model: OrthogonalCore, y0: _Vec, t0: float, t1: float, method: str, rtol: float, atol: float,
-                     t_eval: Sequence[float], every_step: bool, max_steps: int, first_step: float,
-                     max_step: float) -> Result: ...
-def solve_orthogonal_ensemble(model: OrthogonalCore, y0s: npt.ArrayLike, t0: float, t1: float, method: str,
-                              rtol: float, atol: float, t_eval: Sequence[float], max_steps: int,
-                              threads: int) -> list[Result]: ...
+    def kind(self) -> str:
+        ...
+class Model:
+    """
+    A model of any family, as the engine integrates it.
+    """
+    def fast_frequency(self, r: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def initial_state(self, given: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def quasi_static_state(self, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def rate(self, t: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def rhs(self, t: typing.SupportsFloat | typing.SupportsIndex, y: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def slow_rate(self, t: typing.SupportsFloat | typing.SupportsIndex, y: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"]) -> float:
+        ...
+    def tau_rate(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def dim(self) -> int:
+        ...
+    @property
+    def family(self) -> str:
+        ...
+    @property
+    def output_names(self) -> list[str]:
+        ...
+    @property
+    def state_names(self) -> list[str]:
+        ...
+class Options:
+    """
+    Every integrator option with its default (the one place where defaults live).
+    """
+    every_step: bool
+    method: str
+    def __init__(self) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def atol(self) -> float:
+        ...
+    @atol.setter
+    def atol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def first_step(self) -> float:
+        ...
+    @first_step.setter
+    def first_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_step(self) -> float:
+        ...
+    @max_step.setter
+    def max_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_steps(self) -> int:
+        ...
+    @max_steps.setter
+    def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_out(self) -> int:
+        ...
+    @n_out.setter
+    def n_out(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rtol(self) -> float:
+        ...
+    @rtol.setter
+    def rtol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def t_eval(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @t_eval.setter
+    def t_eval(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
+        ...
+class Stats:
+    @property
+    def jacobian_evals(self) -> int:
+        ...
+    @property
+    def last_step(self) -> float:
+        ...
+    @property
+    def nonlinear_conv_failures(self) -> int:
+        ...
+    @property
+    def rejected_steps(self) -> int:
+        ...
+    @property
+    def rhs_evals(self) -> int:
+        ...
+    @property
+    def steps(self) -> int:
+        ...
+class Result:
+    """
+    A trajectory as the engine returns it; the arrays are views of its memory.
+    """
+    @property
+    def dim(self) -> int:
+        ...
+    @property
+    def message(self) -> str:
+        ...
+    @property
+    def method(self) -> str:
+        ...
+    @property
+    def output_conserved(self) -> list[bool]:
+        ...
+    @property
+    def output_names(self) -> list[str]:
+        ...
+    @property
+    def outputs(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def state_names(self) -> list[str]:
+        ...
+    @property
+    def stats(self) -> Stats:
+        ...
+    @property
+    def status(self) -> str:
+        ...
+    @property
+    def success(self) -> bool:
+        ...
+    @property
+    def t(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def y(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class TorqueFreeSolution:
+    def __init__(self, body: Body, omega0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def omega(self, t: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def frequency(self) -> float:
+        ...
+    @property
+    def is_constant(self) -> bool:
+        ...
+    @property
+    def modulus_squared(self) -> float:
+        ...
+    @property
+    def period(self) -> float:
+        ...
+class LagrangeNutation:
+    @property
+    def alpha(self) -> float:
+        ...
+    @property
+    def m(self) -> float:
+        ...
+    @property
+    def period(self) -> float:
+        ...
+    @property
+    def u1(self) -> float:
+        ...
+    @property
+    def u2(self) -> float:
+        ...
+    @property
+    def u3(self) -> float:
+        ...
+    @property
+    def v(self) -> float:
+        ...
+class LagrangeUnperturbed:
+    def __init__(self, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], gamma: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def u(self, t: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
+        ...
+    @property
+    def G_z(self) -> float:
+        ...
+    @property
+    def H(self) -> float:
+        ...
+    @property
+    def beta(self) -> float:
+        ...
+    @property
+    def nutation(self) -> LagrangeNutation:
+        ...
+    @property
+    def r(self) -> float:
+        ...
+def averaged_model(body: Body, torques: collections.abc.Iterable) -> Model:
+    ...
+def elliptic_E(m: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    E(m), parameter m = k^2 (GSL)
+    """
+def elliptic_K(m: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    K(m), parameter m = k^2 (GSL)
+    """
+def euler_angles(q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], convention: str = 'zxz') -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Euler angles (psi, theta, phi) of quaternions (w, x, y, z), shape (4,) or (n, 4), body -> inertial;
+    convention 'zxz' (R = Rz(psi) Rx(theta) Rz(phi)) or 'zyx' (R = Rz(psi) Ry(theta) Rx(phi)).
+    At a singular theta the free rotation is in psi and phi = 0. Returns shape (3,) or (n, 3).
+    """
+def gyrostat_model(body: Body, torques: collections.abc.Iterable, attitude: bool) -> Model:
+    ...
+def jacobi_sn_cn_dn(u: typing.SupportsFloat | typing.SupportsIndex, m: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[list[float], "FixedSize(3)"]:
+    """
+    (sn, cn, dn)(u | m) (GSL)
+    """
+def lagrange_averaged_model(body: Body, mu: typing.SupportsFloat | typing.SupportsIndex, torques: collections.abc.Iterable) -> Model:
+    ...
+def lagrange_nutation(A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, G_z: typing.SupportsFloat | typing.SupportsIndex, H: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex) -> LagrangeNutation:
+    ...
+def lagrange_nutation_table(A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, G_z: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], H: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], r: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Rows (u1, u2, u3, m, alpha, v, period) for each (G_z, H, r).
+    """
+def lagrange_top_model(body: Body, mu: typing.SupportsFloat | typing.SupportsIndex, torques: collections.abc.Iterable) -> Model:
+    ...
+def mean_sn_squared(m: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    W(m) = (K - E)/(m K) = <sn^2>
+    """
+def methods() -> list[str]:
+    ...
+def moving_mass_model(body: Body, mass: typing.SupportsFloat | typing.SupportsIndex, arm: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex, torques: collections.abc.Iterable) -> Model:
+    ...
+def orthogonal_model(body: Body, law: MagnitudeLaw, torques: collections.abc.Iterable, attitude: bool, eta: typing.SupportsFloat | typing.SupportsIndex, smooth: bool) -> Model:
+    ...
+def quaternion_from_euler(angles: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], convention: str = 'zxz') -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Unit quaternions (w, x, y, z), w >= 0, of Euler angles (psi, theta, phi), shape (3,) or (n, 3),
+    convention 'zxz' or 'zyx'. Returns shape (4,) or (n, 4).
+    """
+def quaternion_from_matrix(R: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Unit quaternions (w, x, y, z), w >= 0, of rotation matrices, shape (3, 3) or (n, 3, 3) (Shepperd's
+    method). Returns shape (4,) or (n, 4).
+    """
+def rotation_matrix(q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Body -> inertial rotation matrices R(q) of quaternions (w, x, y, z) (normalised first), shape (4,)
+    or (n, 4). Returns shape (3, 3) or (n, 3, 3).
+    """
+def solve(model: Model, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> Result:
+    ...
+def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> list[Result]:
+    ...
+def torque_free_model(body: Body) -> Model:
+    ...
+__version__: str = '0.1.0'

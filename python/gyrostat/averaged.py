@@ -12,11 +12,10 @@ from gyrostat.solution import Solution
 
 
 def slow_variables(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
-    """(a, r) of a solution: a = √(p² + q²), r for a full model; the state itself for an
-    averaged one."""
-    if solution.y.shape[1] == 2:
-        return solution.y[:, 0], solution.y[:, 1]
-    return np.hypot(solution.y[:, 0], solution.y[:, 1]), solution.y[:, 2]
+    """(a, r) of a solution: the state of the averaged model; a = √(p² + q²) and r of a full one."""
+    if solution.state_names[:2] == ("a", "r"):
+        return solution["a"], solution["r"]
+    return np.hypot(solution["p"], solution["q"]), solution["r"]
 
 
 def xy(solution: Solution) -> tuple[np.ndarray, np.ndarray]:

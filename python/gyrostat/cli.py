@@ -1,4 +1,8 @@
-"""The command line: ``gyrostat run SCENE.toml``, ``gyrostat examples``, ``gyrostat methods``."""
+"""The command line: ``gyrostat run SCENE.toml``, ``gyrostat examples``, ``gyrostat methods``,
+``gyrostat scene-format``; ``gyrostat --version``. Also ``python -m gyrostat``.
+
+Exit codes: 0 every scene ran and succeeded; 1 a run failed (its partial results are written);
+2 a scene file is wrong (a one-line message names the key and the table, no traceback)."""
 
 from __future__ import annotations
 
@@ -20,9 +24,11 @@ def _print_report(report: dict) -> None:
           f"time: {report['seconds']:.3g} s")
     for name, run in report.get("runs", {}).items():
         stats = run["stats"]
-        drift = ", ".join(f"{k} {v:+.3e}" for k, v in run["invariant_relative_change"].items())
+        drift = ", ".join(f"{k} {v['relative_change']:+.3e}" if "relative_change" in v else
+                          f"{k} {v['max_abs_change']:.3e} (absolute)" for k, v in run["conserved"].items()
+                          if v.get("relative_change", v.get("max_abs_change")) is not None)
         print(f"  {name}: {run['method']}, {run['status']}; steps {stats['steps']}, rhs evaluations "
-              f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}; relative change: {drift}")
+              f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}" + (f"; change of {drift}" if drift else ""))
         if run["message"]:
             print(f"    message: {run['message']}")
     for key, diff in report.items():  # averaged_vs_full and its variants: name → max difference
@@ -38,7 +44,10 @@ def _print_report(report: dict) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from gyrostat import __version__
+
     parser = argparse.ArgumentParser(prog="gyrostat", description="Perturbed rotation of rigid bodies and gyrostats.")
+    parser.add_argument("--version", action="version", version=f"gyrostat {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="solve one or more scene files, save results and plots")
     run.add_argument("scenes", nargs="+", type=Path, help="scene files (TOML)")
@@ -48,6 +57,7 @@ def main(argv: list[str] | None = None) -> int:
     examples.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
     examples.add_argument("--quiet", action="store_true", help="no progress lines")
     sub.add_parser("methods", help="list the integrators")
+    sub.add_parser("scene-format", help="print the reference of every scene kind (Markdown)")
     args = parser.parse_args(argv)
 
     if args.command == "methods":
@@ -55,27 +65,38 @@ def main(argv: list[str] | None = None) -> int:
 
         print("\n".join(METHODS))
         return 0
+    if args.command == "scene-format":
+        from gyrostat.scene import scene_format
+
+        print(scene_format())
+        return 0
 
     import warnings
 
     from gyrostat.runner import run_scene
+    from gyrostat.schema import SceneError
     from gyrostat.validity import ValidityWarning
 
     paths = args.scenes if args.command == "run" else example_scenes()
-    failures = 0
+    bad_scenes = failures = 0
     for path in paths:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # printed in the report below
                 report = run_scene(path, args.out, progress=not args.quiet)
-        except (ValueError, OSError) as error:
+        except SceneError as error:
             print(f"{path}: error: {error}", file=sys.stderr)
+            bad_scenes += 1
+            continue
+        except (ValueError, OSError) as error:
+            print(f"{path}: error: {' '.join(str(error).split())}", file=sys.stderr)
             failures += 1
             continue
         _print_report(report)
         failures += report["status"] != "success"
-    print(f"results in {args.out.resolve()}")
-    return 1 if failures else 0
+    if bad_scenes + failures < len(paths):
+        print(f"results in {args.out.resolve()}")
+    return 2 if bad_scenes else (1 if failures else 0)
 
 
 if __name__ == "__main__":

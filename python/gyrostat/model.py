@@ -1,27 +1,86 @@
-"""A full model: a body, the torques on it, and whether the attitude is integrated."""
+"""Models: what the engine integrates. Every family (the gyrostat, the averaged symmetric system,
+the explicit moving mass, the closed-form torque-free body, the Lagrange top and its averaged
+system, the orthogonal servo torque) is a :class:`ModelBase`: a C++ model with named state
+components and named outputs, solved by :func:`gyrostat.solve` and :func:`gyrostat.solve_ensemble`.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
+import numpy as np
+
 from gyrostat import _core
 
-STATE_NAMES_RATES = ("p", "q", "r")
-STATE_NAMES_ATTITUDE = ("p", "q", "r", "q_w", "q_x", "q_y", "q_z")
 TORQUE_TYPES = (_core.ConstantTorque, _core.LinearDamping, _core.ResistiveMedium, _core.ViscousCavity,
                 _core.MovingMassDamper)
-AFFINE_TORQUES = (_core.ConstantTorque, _core.LinearDamping)
 
 
-def _check_torques(torques) -> tuple:
+def check_torques(torques) -> tuple:
+    """The torques as a tuple; anything that is not a torque raises TypeError naming its type."""
     torques = tuple(torques)
     for torque in torques:
         if not isinstance(torque, TORQUE_TYPES):
-            raise TypeError(f"unknown torque type {type(torque).__name__}")
+            raise TypeError(f"not a torque: {type(torque).__name__} (torques are "
+                            + ", ".join(t.__name__ for t in TORQUE_TYPES) + ")")
     return torques
 
 
-class Model:
+def check_body(body) -> _core.Body:
+    if not isinstance(body, _core.Body):
+        raise TypeError(f"body must be a gyrostat.Body, not {type(body).__name__}")
+    return body
+
+
+class ModelBase:
+    """What every model gives: its C++ model (``_core``), its family, the names of its state
+    components and of the outputs recorded at every output time.
+
+    Subclasses set ``_core`` in their constructor; ``kind`` names the model in reports.
+    """
+
+    __slots__ = ("_core", "__dict__")
+    kind = "model"
+
+    @property
+    def family(self) -> str:
+        return self._core.family
+
+    @property
+    def dim(self) -> int:
+        """Size of the state vector."""
+        return self._core.dim
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(self._core.state_names)
+
+    @property
+    def output_names(self) -> tuple[str, ...]:
+        """Quantities recorded by the engine at every output time (``solution[name]``)."""
+        return tuple(self._core.output_names)
+
+    @property
+    def attitude(self) -> bool:
+        """Whether the state holds the attitude quaternion (q_w, q_x, q_y, q_z)."""
+        return "q_w" in self._core.state_names
+
+    def rhs(self, t: float, y) -> np.ndarray:
+        """The right-hand side f(t, y), evaluated by the core (for checks, not for speed)."""
+        return np.asarray(self._core.rhs(float(t), np.asarray(y, float)))
+
+    def initial_state(self, y0) -> np.ndarray:
+        """The full initial state from a shorter one where the model allows it (ω alone for a
+        model with attitude: identity quaternion; τ(0) = 0 for the orthogonal torque)."""
+        return np.asarray(self._core.initial_state(np.asarray(y0, float).ravel()))
+
+    def check(self, solution) -> list:
+        """The model's assumptions along a solution (averaged models override this);
+        :func:`gyrostat.solve` warns for broken ones."""
+        return []
+
+
+class Model(ModelBase):
     """The full model: Euler's equations of a gyrostat, J ω̇ + ω × (J ω + k) = Σ M_i(t, ω).
 
     Parameters
@@ -35,65 +94,60 @@ class Model:
     attitude:
         Integrate the attitude quaternion as well (state size 7 instead of 3). Only needed when
         an output or a torque depends on the orientation; it costs four more equations.
+
+    Outputs: ``angular_momentum_norm`` |G|, ``kinetic_energy`` T and, with attitude, the z-x-z
+    Euler angles ``psi``, ``theta``, ``phi``.
     """
 
+    kind = "full"
+
     def __init__(self, body: _core.Body, torques: Sequence = (), attitude: bool = False):
-        if not isinstance(body, _core.Body):
-            raise TypeError(f"body must be a gyrostat.Body, not {type(body).__name__}")
-        self.body = body
-        self.torques = _check_torques(torques)
-        self.attitude = bool(attitude)
-        self._core = _core.full_model(body, list(self.torques), self.attitude)
-
-    @property
-    def dim(self) -> int:
-        """Size of the state vector: 3 (ω) or 7 (ω and the quaternion)."""
-        return self._core.dim
-
-    @property
-    def state_names(self) -> tuple[str, ...]:
-        return STATE_NAMES_ATTITUDE if self.attitude else STATE_NAMES_RATES
+        self.body = check_body(body)
+        self.torques = check_torques(torques)
+        self._core = _core.gyrostat_model(body, self.torques, bool(attitude))
 
     @property
     def is_torque_free_rigid_body(self) -> bool:
         """No torque and no rotor: the closed form (no integration) answers such a scene."""
         return not self.torques and not any(self.body.rotor)
 
-    def rhs(self, t: float, y):
-        """The right-hand side f(t, y), evaluated by the core (for checks, not for speed)."""
-        return self._core.rhs(t, y)
-
-    kind = "full"
-
     def __repr__(self) -> str:
         return f"Model({self.body!r}, torques={list(self.torques)!r}, attitude={self.attitude})"
 
 
-class AveragedModel:
+class TorqueFreeModel(ModelBase):
+    """The torque-free rigid body (rotor k = 0) in closed form: Jacobi elliptic functions, no
+    integration. State ω = (p, q, r); outputs |G| and T (exact to rounding). A body with a rotor
+    raises ValueError (no closed form here: use :class:`Model`)."""
+
+    kind = "closed_form"
+
+    def __init__(self, body: _core.Body):
+        self.body = check_body(body)
+        self.torques = ()
+        self._core = _core.torque_free_model(body)
+
+    def __repr__(self) -> str:
+        return f"TorqueFreeModel({self.body!r})"
+
+
+class AveragedModel(ModelBase):
     """The system averaged over the symmetric Euler–Poinsot motion, in slow variables (a, r).
 
     The body is (nearly) symmetric: A = A1 ≈ A2, C = A3, no rotor. The generating motion is
     p = a cos φ, q = a sin φ, r = const, φ̇ = (C − A) r / A; each torque contributes its own
     averaged (ȧ, ṙ) and the contributions add up. r is signed and may pass through zero (the
-    papers' x = a², y = r² form cannot); x and y are derived outputs. Averaging holds while the
-    fast frequency |(C − A) r / A| dominates the slow rates: :func:`gyrostat.validity.check`
-    reports where it does not.
+    papers' x = a², y = r² form cannot). Outputs: |G|, T, ``x`` = a², ``y`` = r², the fast
+    frequency and ``slow_to_fast`` (must stay ≪ 1). :func:`gyrostat.validity.check` reports
+    where the assumptions fail; :func:`gyrostat.solve` does so by itself.
     """
 
     kind = "averaged"
-    state_names = ("a", "r")
-    attitude = False
 
     def __init__(self, body: _core.Body, torques: Sequence = ()):
-        if not isinstance(body, _core.Body):
-            raise TypeError(f"body must be a gyrostat.Body, not {type(body).__name__}")
-        self.body = body
-        self.torques = _check_torques(torques)
-        self._core = _core.averaged_model(body, list(self.torques))
-
-    @property
-    def dim(self) -> int:
-        return 2
+        self.body = check_body(body)
+        self.torques = check_torques(torques)
+        self._core = _core.averaged_model(body, self.torques)
 
     @property
     def A(self) -> float:
@@ -109,16 +163,18 @@ class AveragedModel:
 
     def slow_rate(self, t: float, y) -> float:
         """max(|ȧ/a|, |ṙ/r|) at (t, a, r)."""
-        return self._core.slow_rate(float(t), y)
+        return self._core.slow_rate(float(t), np.asarray(y, float))
 
-    def rhs(self, t: float, y):
-        return self._core.rhs(t, y)
+    def check(self, solution) -> list:
+        from gyrostat import validity
+
+        return validity.check(self, solution.y, solution.t, warn=False)
 
     def __repr__(self) -> str:
         return f"AveragedModel({self.body!r}, torques={list(self.torques)!r})"
 
 
-class MovingMassModel:
+class MovingMassModel(ModelBase):
     """The explicit model behind the damper reduction: a carrier plus a point mass on a spring
     (Ω² = c/μ) with a viscous damper (λ = δ/μ), attached on the z axis at distance ρ.
 
@@ -126,31 +182,25 @@ class MovingMassModel:
     axes). ``body`` holds the whole system's moments with the mass at rest; the carrier's own are
     (A1 − μρ², A2 − μρ², A3). Extra torques act on the carrier. Stiff for a strong damper: solve
     it with ``method="cvode_bdf"``. :meth:`quasi_static_state` gives (u, v) for a start without
-    free oscillation of the mass.
+    free oscillation of the mass. Outputs: |K| (conserved) and the energy E (dissipated).
     """
 
     kind = "moving_mass"
-    state_names = ("p", "q", "r", "u_1", "u_2", "u_3", "v_1", "v_2", "v_3")
-    attitude = False
 
     def __init__(self, body: _core.Body, mass: float, arm: float, frequency: float, damping: float,
                  torques: Sequence = ()):
-        self.body = body
+        self.body = check_body(body)
         self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
-        self.torques = _check_torques(torques)
-        self._core = _core.moving_mass_model(body, self.mass, self.arm, self.frequency, self.damping,
-                                             list(self.torques))
-
-    @property
-    def dim(self) -> int:
-        return 9
+        self.torques = check_torques(torques)
+        self._core = _core.moving_mass_model(body, self.mass, self.arm, self.frequency, self.damping, self.torques)
 
     def damper(self) -> _core.MovingMassDamper:
         """The reduced (quasi-static) torque of the same mass, spring and damper."""
         return _core.MovingMassDamper(self.mass, self.arm, self.frequency, self.damping)
 
-    def quasi_static_state(self, omega):
-        return self._core.quasi_static_state(omega)
+    def quasi_static_state(self, omega) -> np.ndarray:
+        return np.asarray(self._core.quasi_static_state(np.asarray(omega, float)))
 
-    def rhs(self, t: float, y):
-        return self._core.rhs(t, y)
+    def __repr__(self) -> str:
+        return (f"MovingMassModel({self.body!r}, mass={self.mass}, arm={self.arm}, frequency={self.frequency}, "
+                f"damping={self.damping}, torques={list(self.torques)!r})")

@@ -12,35 +12,27 @@ at Q = 0); at and above it the paper's L Q/|Q| is applied exactly. Both invarian
 stay exact; where |Q| < δ the prescribed L is not applied, and the solution flags those times.
 
 Contents: magnitude laws (:func:`constant`, :func:`polynomial`, :func:`harmonic`,
-:func:`tabulated`), :class:`OrthogonalModel`, :func:`solve` (→ :class:`OrthogonalSolution`
-with τ(t), g(t), |Q|, the invariants, the angles of G in body axes, and a report of where g ≤ 0),
-:func:`torque_free_at_tau` (ω_ZV(τ)), the nearly spherical approximations of §4
-(:class:`NearlySpherical`) and :func:`run_scene` for scene files with ``kind = "orthogonal_torque"``.
+:func:`tabulated`), :class:`OrthogonalModel` (solved by :func:`gyrostat.solve`, which records
+τ(t) as a state and g, L, |Q|, δ, the angles of G in body axes as outputs), :func:`tau_report`
+(where g ≤ 0), :func:`torque_free_at_tau` (ω_ZV(τ)) and the nearly spherical approximations of
+§4 (:class:`NearlySpherical`). Scenes of ``kind = "orthogonal_torque"`` run through
+:mod:`gyrostat.scene`.
 """
 
 from __future__ import annotations
 
-import json
 import math
-import time
-import tomllib
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
-from gyrostat import _core
-from gyrostat.model import Model, _check_torques
-from gyrostat.solution import Solution
-from gyrostat.solve import _check_method, _output_times, _solution, solve as _solve
+from gyrostat import _core, attitude
+from gyrostat.model import Model, ModelBase, check_torques
+from gyrostat.solve import solve
 
 ETA = 1e-3
 """Default regularisation: δ = η |ω| |G|."""
-
-STATE_NAMES_RATES = ("p", "q", "r", "tau")
-STATE_NAMES_ATTITUDE = ("p", "q", "r", "q_w", "q_x", "q_y", "q_z", "tau")
 
 
 # ------------------------------------------------------------------------------ magnitude laws
@@ -99,11 +91,14 @@ def law_from_spec(spec: dict | float) -> _core.MagnitudeLaw:
 
 
 # ------------------------------------------------------------------------------ the model
-class OrthogonalModel:
+class OrthogonalModel(ModelBase):
     """Gyrostat under the servo torque L(t) Q/|Q| (regularised), plus optional other torques.
 
-    State: (p, q, r, τ) or, with ``attitude=True``, (p, q, r, q_w, q_x, q_y, q_z, τ). Invariants
-    recorded: ``angular_momentum_norm`` |G| and ``h`` = ω·Jω (exact without other torques).
+    State: (p, q, r, τ) or, with ``attitude=True``, (p, q, r, q_w, q_x, q_y, q_z, τ); ω alone (or
+    ω and the quaternion) as y0 starts τ at 0. Outputs: ``angular_momentum_norm`` |G| and ``h`` =
+    ω·Jω (exact without other torques), ``g`` = dτ/dt, ``L``, ``Q_norm`` |Q|, ``delta`` δ,
+    ``regularised`` (1 where |Q| < δ: the prescribed L was not applied), ``theta_G``, ``phi_G``
+    (the angles of G in body axes, paper (15)) and, with attitude, the z-x-z Euler angles.
 
     ``regularisation``: ``"threshold"`` (default: the paper's torque wherever |Q| ≥ δ = η|ω||G|,
     tapered to L Q/n, n = (|Q|² + δ²)/(2δ), below) or ``"smooth"`` (L Q/√(|Q|² + δ²) everywhere:
@@ -119,22 +114,13 @@ class OrthogonalModel:
         if not isinstance(law, _core.MagnitudeLaw):
             law = constant(law)
         self.body, self.law = body, law
-        self.torques = _check_torques(torques)
-        self.attitude = bool(attitude)
+        self.torques = check_torques(torques)
         self.eta = _finite(eta, "eta")
         if regularisation not in ("threshold", "smooth"):
             raise ValueError(f"regularisation = {regularisation!r}: choose 'threshold' or 'smooth'")
         self.regularisation = regularisation
-        self._core = _core.orthogonal_model(body, law, list(self.torques), self.attitude, self.eta,
+        self._core = _core.orthogonal_model(body, law, self.torques, bool(attitude), self.eta,
                                             regularisation == "smooth")
-
-    @property
-    def dim(self) -> int:
-        return self._core.dim
-
-    @property
-    def state_names(self) -> tuple[str, ...]:
-        return STATE_NAMES_ATTITUDE if self.attitude else STATE_NAMES_RATES
 
     @property
     def moments(self) -> np.ndarray:
@@ -143,9 +129,6 @@ class OrthogonalModel:
     @property
     def rotor(self) -> np.ndarray:
         return np.asarray(self.body.rotor, float)
-
-    def rhs(self, t: float, y):
-        return self._core.rhs(float(t), np.asarray(y, float))
 
     def tau_rate(self, t, omega) -> np.ndarray:
         """g = dτ/dt at times t for angular velocities omega (n, 3)."""
@@ -161,120 +144,16 @@ class OrthogonalModel:
                 f"regularisation={self.regularisation!r})")
 
 
-@dataclass
-class OrthogonalSolution(Solution):
-    """A :class:`Solution` of :class:`OrthogonalModel` plus the derived outputs:
-
-    tau, g: the clock τ(t) and its rate g = 1 − L/|Q| (regularised below δ); law: L(t); q_norm: |Q(ω(t))|;
-    delta: δ(t); regularised: |Q| < δ (the prescribed L was not applied there);
-    g_report: where g ≤ 0 (τ stops or runs backwards), with times and values (:func:`tau_report`).
-    """
-
-    tau: np.ndarray = None
-    g: np.ndarray = None
-    law: np.ndarray = None
-    q_norm: np.ndarray = None
-    delta: np.ndarray = None
-    regularised: np.ndarray = None
-    g_report: dict = None
-    moments: np.ndarray = None
-    rotor: np.ndarray = None
-
-    def momentum(self) -> np.ndarray:
-        """(n, 3) G = Jω + k in body axes."""
-        return self.omega * self.moments + self.rotor
-
-    def momentum_angles(self) -> np.ndarray:
-        """(n, 2) θ, φ of G in body axes (paper (15)): G/|G| = (sinθ sinφ, sinθ cosφ, cosθ).
-        These equal the Euler angles θ, φ of (16) at τ(t); they need no attitude."""
-        G = self.momentum()
-        s = G / np.linalg.norm(G, axis=1)[:, None]
-        return np.column_stack([np.arccos(np.clip(s[:, 2], -1, 1)), np.arctan2(s[:, 0], s[:, 1])])
-
-
-def _quaternion_state(model, omega0, quaternion0) -> np.ndarray:
-    omega0 = np.asarray(omega0, float).ravel()
-    if omega0.size != 3:
-        raise ValueError(f"omega0 must have 3 components, got {omega0.size}")
-    if model.attitude:
-        q0 = np.array([1.0, 0, 0, 0]) if quaternion0 is None else np.asarray(quaternion0, float).ravel()
-        if q0.size != 4:
-            raise ValueError(f"quaternion0 must have 4 components (w, x, y, z), got {q0.size}")
-        return np.concatenate([omega0, q0, [0.0]])
-    if quaternion0 is not None:
-        raise ValueError("quaternion0 given but the model has no attitude: use OrthogonalModel(..., attitude=True)")
-    return np.concatenate([omega0, [0.0]])
-
-
-def solve(model: OrthogonalModel, omega0, t_span, *, quaternion0=None, method: str = "dop853", rtol: float = 1e-10,
-          atol: float = 1e-12, t_eval=None, n_out: int | None = None, every_step: bool = False,
-          max_steps: int = 1_000_000, first_step: float = 0.0, max_step: float = math.inf,
-          freeze_tol: float = 1e-6) -> OrthogonalSolution:
-    """Integrates the model in real time t from ω0 (τ(t0) = 0). ``method``: any of gyrostat.METHODS
-    except ``taylor`` (the servo torque is not polynomial: ValueError). Bad input (NaN, negative
-    tolerances, …) raises ValueError naming the value."""
-    if not isinstance(model, OrthogonalModel):
-        raise TypeError(f"model must be an OrthogonalModel, not {type(model).__name__}")
-    _check_method(method)
-    t0, t1, times = _output_times(t_span, t_eval, n_out)
-    y0 = _quaternion_state(model, omega0, quaternion0)
-    result = _core.solve_orthogonal(model._core, y0, t0, t1, method, float(rtol), float(atol), times,
-                                    bool(every_step), int(max_steps), float(first_step), float(max_step))
-    return _finish(model, _solution(result), freeze_tol)
-
-
-def solve_ensemble(model: OrthogonalModel, omega0s, t_span, *, quaternion0s=None, method: str = "dop853",
-                   rtol: float = 1e-10, atol: float = 1e-12, t_eval=None, n_out: int | None = None,
-                   max_steps: int = 1_000_000, threads: int = 0) -> list[OrthogonalSolution]:
-    """N initial angular velocities (N, 3) (and quaternions (N, 4) with attitude) of one model in
-    one call on C++ threads (GIL released); results in index order, equal to single runs."""
-    if not isinstance(model, OrthogonalModel):
-        raise TypeError(f"model must be an OrthogonalModel, not {type(model).__name__}")
-    _check_method(method)
-    omega0s = np.atleast_2d(np.asarray(omega0s, float))
-    if omega0s.shape[1] != 3:
-        raise ValueError(f"omega0s must be (N, 3), got shape {omega0s.shape}")
-    qs = [None] * len(omega0s) if quaternion0s is None else np.atleast_2d(np.asarray(quaternion0s, float))
-    if model.attitude and quaternion0s is None:
-        qs = [np.array([1.0, 0, 0, 0])] * len(omega0s)
-    y0s = np.array([_quaternion_state(model, w, q) for w, q in zip(omega0s, qs)])
-    t0, t1, times = _output_times(t_span, t_eval, n_out)
-    results = _core.solve_orthogonal_ensemble(model._core, y0s, t0, t1, method, float(rtol), float(atol), times,
-                                              int(max_steps), int(threads))
-    return [_finish(model, _solution(r)) for r in results]
-
-
-def _finish(model: OrthogonalModel, base: Solution, freeze_tol: float = 1e-6) -> OrthogonalSolution:
-    sol = OrthogonalSolution(**{k: getattr(base, k) for k in ("t", "y", "invariants", "stats", "status", "message",
-                                                             "method", "notes")})
-    sol.moments, sol.rotor = model.moments, model.rotor
-    n = sol.t.size
-    sol.tau = sol.y[:, -1].copy() if n else np.zeros(0)
-    if n:
-        omega = sol.omega
-        G = sol.momentum()
-        Q = np.cross(omega, G)
-        sol.q_norm = np.linalg.norm(Q, axis=1)
-        sol.delta = model.eta * np.linalg.norm(omega, axis=1) * np.linalg.norm(G, axis=1)
-        sol.law = np.asarray(model.law.values(sol.t))
-        sol.g = model.tau_rate(sol.t, omega)
-        sol.regularised = sol.q_norm < sol.delta
-    else:
-        sol.q_norm = sol.delta = sol.law = sol.g = np.zeros(0)
-        sol.regularised = np.zeros(0, bool)
-    sol.g_report = tau_report(model, sol, freeze_tol)
-    sol.notes.extend(sol.g_report["messages"])
-    return sol
-
-
-def tau_report(model: OrthogonalModel, sol: OrthogonalSolution, freeze_tol: float = 1e-6) -> dict:
+def tau_report(model: OrthogonalModel, sol, freeze_tol: float = 1e-6) -> dict:
     """Where g = dτ/dt ≤ 0: zero crossings (time, τ, |Q|, L), intervals with g < 0, the minimum of
     g, a frozen end state (|g| and |ω̇| below freeze_tol), and times where |Q| < δ.
 
     What the motion does: ω moves along the torque-free orbit with speed g. Where g = 0 the servo
     torque cancels ω × G and ω stands still (a uniform rotation about a fixed inertial axis);
     where g < 0 the body retraces the ZV orbit backwards (τ decreases)."""
-    t, g, tau = sol.t, sol.g, sol.tau
+    t, g, tau = sol.t, sol["g"], sol["tau"]
+    q_norm, law = sol["Q_norm"], sol["L"]
+    regularised = sol["regularised"] > 0
     report = {"min_g": None, "t_min_g": None, "crossings": [], "negative_intervals": [], "frozen": None,
               "regularised_times": [], "messages": []}
     if t.size == 0:
@@ -288,7 +167,7 @@ def tau_report(model: OrthogonalModel, sol: OrthogonalSolution, freeze_tol: floa
         w = g[j] / (g[j] - g[j + 1]) if g[j] != g[j + 1] else 0.0
         tc = float(t[j] + w * (t[j + 1] - t[j]))
         entry = {"t": tc, "tau": float(tau[j] + w * (tau[j + 1] - tau[j])),
-                 "q_norm": float(sol.q_norm[j] + w * (sol.q_norm[j + 1] - sol.q_norm[j])),
+                 "q_norm": float(q_norm[j] + w * (q_norm[j + 1] - q_norm[j])),
                  "L": float(model.law(tc)), "direction": "down" if g[j] > g[j + 1] else "up"}
         report["crossings"].append(entry)
     negative = g < 0
@@ -302,9 +181,9 @@ def tau_report(model: OrthogonalModel, sol: OrthogonalSolution, freeze_tol: floa
     rate = float(np.linalg.norm(dy[:3]))
     if abs(g[-1]) < freeze_tol or rate < freeze_tol:
         report["frozen"] = {"t": float(t[-1]), "g": float(g[-1]), "omega_rate": rate, "tau": float(tau[-1]),
-                            "q_norm": float(sol.q_norm[-1]), "L": float(sol.law[-1])}
-    if np.any(sol.regularised):
-        report["regularised_times"] = [float(t[sol.regularised].min()), float(t[sol.regularised].max())]
+                            "q_norm": float(q_norm[-1]), "L": float(law[-1])}
+    if np.any(regularised):
+        report["regularised_times"] = [float(t[regularised].min()), float(t[regularised].max())]
     msgs = report["messages"]
     msgs.append(f"g = dtau/dt >= {report['min_g']:.4g} (minimum at t = {report['t_min_g']:.6g}); "
                 f"tau(t_end) = {tau[-1]:.8g}")
@@ -332,7 +211,7 @@ def orbit_q_range(model: OrthogonalModel, omega0, span: float | None = None, n: 
     J, k = model.moments, model.rotor
     if span is None:
         span = 400.0 / (np.linalg.norm(omega0) + np.linalg.norm(k) / J.min() + 1e-300)
-    zv = _solve(model.torque_free(attitude=False), omega0, (0.0, span), n_out=n, rtol=1e-10, atol=1e-12)
+    zv = solve(model.torque_free(attitude=False), omega0, (0.0, span), n_out=n, rtol=1e-10, atol=1e-12)
     Q = np.cross(zv.omega, zv.omega * J + k)
     q = np.linalg.norm(Q, axis=1)
     return float(q.min()), float(q.max())
@@ -363,12 +242,12 @@ def _evaluate_at(model: Model, y0, tau, **options) -> np.ndarray:
     if np.any(forward):
         times = values[forward]
         grid = times if times[0] == 0 else np.concatenate([[0.0], times])
-        s = _solve(model, y0, (0.0, max(grid[-1], 1e-300)), t_eval=grid, **options).raise_for_status()
+        s = solve(model, y0, (0.0, max(grid[-1], 1e-300)), t_eval=grid, **options).raise_for_status()
         out[forward] = s.y[grid.size - times.size:]
     if np.any(backward):
         times = values[backward][::-1]
         grid = np.concatenate([[0.0], times])
-        s = _solve(model, y0, (0.0, grid[-1]), t_eval=grid, **options).raise_for_status()
+        s = solve(model, y0, (0.0, grid[-1]), t_eval=grid, **options).raise_for_status()
         out[backward] = s.y[1:][::-1]
     return out[inverse]
 
@@ -383,52 +262,12 @@ def torque_free_at_tau(model: OrthogonalModel, omega0, tau, quaternion0=None, **
 
 
 # ------------------------------------------------------------------------------ Euler angles
-def rz(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def rx(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def r313(psi: float, theta: float, phi: float) -> np.ndarray:
-    """Body → inertial rotation Rz(ψ) Rx(θ) Rz(φ) (paper (15): R^T e3 = (sinθ sinφ, sinθ cosφ, cosθ))."""
-    return rz(psi) @ rx(theta) @ rz(phi)
-
-
-def quaternion_from_matrix(R: np.ndarray) -> np.ndarray:
-    """Unit quaternion (w, x, y, z) of a rotation matrix (Shepperd's method)."""
-    t = np.trace(R)
-    i = int(np.argmax([t, R[0, 0], R[1, 1], R[2, 2]]))
-    if i == 0:
-        w = math.sqrt(1 + t) / 2
-        q = [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
-    elif i == 1:
-        x = math.sqrt(1 + 2 * R[0, 0] - t) / 2
-        q = [(R[2, 1] - R[1, 2]) / (4 * x), x, (R[0, 1] + R[1, 0]) / (4 * x), (R[0, 2] + R[2, 0]) / (4 * x)]
-    elif i == 2:
-        y = math.sqrt(1 + 2 * R[1, 1] - t) / 2
-        q = [(R[0, 2] - R[2, 0]) / (4 * y), (R[0, 1] + R[1, 0]) / (4 * y), y, (R[1, 2] + R[2, 1]) / (4 * y)]
-    else:
-        z = math.sqrt(1 + 2 * R[2, 2] - t) / 2
-        q = [(R[1, 0] - R[0, 1]) / (4 * z), (R[0, 2] + R[2, 0]) / (4 * z), (R[1, 2] + R[2, 1]) / (4 * z), z]
-    q = np.asarray(q)
-    return q / np.linalg.norm(q)
-
-
 def attitude_along_momentum(G0, psi0: float = 0.0) -> np.ndarray:
-    """The quaternion of R313(ψ0, θ0, φ0) with θ0, φ0 the angles of G0 in body axes, so that the
-    inertial z3 axis lies along G (the frame of the paper's Euler angles (15))."""
+    """The quaternion of Rz(ψ0) Rx(θ0) Rz(φ0) with θ0, φ0 the angles of G0 in body axes, so that
+    the inertial z3 axis lies along G (the frame of the paper's Euler angles (15))."""
     s = np.asarray(G0, float) / np.linalg.norm(G0)
-    return quaternion_from_matrix(r313(psi0, math.acos(max(-1.0, min(1.0, s[2]))), math.atan2(s[0], s[1])))
-
-
-def _angles_from_matrices(R: np.ndarray) -> np.ndarray:
-    """(n, 3) (ψ, θ, φ) z-x-z of body → inertial matrices (n, 3, 3)."""
-    theta = np.arccos(np.clip(R[:, 2, 2], -1, 1))
-    return np.column_stack([np.arctan2(R[:, 0, 2], -R[:, 1, 2]), theta, np.arctan2(R[:, 2, 0], R[:, 2, 1])])
+    return attitude.quaternion_from_euler([psi0, math.acos(max(-1.0, min(1.0, s[2]))), math.atan2(s[0], s[1])],
+                                          "zxz")
 
 
 def wrap(angle):
@@ -491,13 +330,18 @@ class NearlySpherical:
         return _core.Body(self.moments, self.k)
 
     @property
+    def q0(self) -> np.ndarray:
+        """The initial attitude: Rz(ψ0) Rx(θ0) Rz(φ0), inertial z3 along G."""
+        return attitude.quaternion_from_euler([self.psi0, self.theta0, self.phi0], "zxz")
+
+    @property
     def R0(self) -> np.ndarray:
-        return r313(self.psi0, self.theta0, self.phi0)
+        return attitude.rotation_matrix(self.q0)
 
     def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
         """ω0 = A⁻¹(G s0 − k) and q0 (inertial z3 along G)."""
         s0 = self.R0[2, :]
-        return (self.G * s0 - self.k) / self.moments, quaternion_from_matrix(self.R0)
+        return (self.G * s0 - self.k) / self.moments, self.q0
 
     def exact(self, tau, **options) -> np.ndarray:
         """(n, 3) (ψ, θ, φ) of the ZV gyrostat with the true moments (the reference in τ)."""
@@ -507,11 +351,15 @@ class NearlySpherical:
         """(n, 3) (ψ, θ, φ) of the zeroth approximation (21), closed form."""
         tau = np.atleast_1d(np.asarray(tau, float))
         knorm = float(np.linalg.norm(self.k))
-        R = np.empty((tau.size, 3, 3))
-        for i, s in enumerate(tau):
-            B = _rotation(self.k / knorm, knorm * s / self.J) if knorm > 0 else np.eye(3)
-            R[i] = rz(self.G * s / self.J) @ self.R0 @ B.T
-        return _angles_from_matrices(R)
+        # R(τ) = Rz(Gτ/J) R0 Rot(k̂, |k|τ/J)ᵀ as quaternions: q_z(Gτ/J) ⊗ q0 ⊗ q_k(−|k|τ/J)
+        half_z = 0.5 * self.G * tau / self.J
+        spin = np.column_stack([np.cos(half_z), 0 * tau, 0 * tau, np.sin(half_z)])
+        q = attitude.multiply(spin, np.broadcast_to(self.q0, (tau.size, 4)))
+        if knorm > 0:
+            half_k = -0.5 * knorm * tau / self.J
+            about_k = np.column_stack([np.cos(half_k), np.outer(np.sin(half_k), self.k / knorm)])
+            q = attitude.multiply(q, about_k)
+        return attitude.euler_angles(q, "zxz")
 
     def first(self, tau, **options) -> np.ndarray:
         """(n, 3) (ψ, θ, φ) of the first approximation (21) + μ(22), ψ row corrected."""
@@ -523,9 +371,9 @@ class NearlySpherical:
     def _zv_angles(self, moments, tau, **options) -> np.ndarray:
         model = Model(_core.Body(np.asarray(moments, float), self.k), attitude=True)
         s0 = self.R0[2, :]
-        y0 = np.concatenate([(self.G * s0 - self.k) / moments, quaternion_from_matrix(self.R0)])
+        y0 = np.concatenate([(self.G * s0 - self.k) / moments, self.q0])
         y = _evaluate_at(model, y0, tau, **options)
-        return Solution(np.zeros(len(y)), y, {}, {}, "success", "", "").euler_angles()
+        return attitude.euler_angles(y[:, 3:7], "zxz")
 
     # ---- k = 0 (rigid nearly spherical body)
     def _P(self, phi):
@@ -583,279 +431,3 @@ class NearlySpherical:
         integrand = 1.0 / (np.abs(P) * self.G * np.sqrt(1 - u * u))
         period = self.J / abs(self.mu) * integrand.mean() * 2 * np.pi
         return float(np.sign(P[0] * math.cos(self.theta0) * self.mu) * 2 * np.pi / period)
-
-
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rodrigues: rotation by angle about the unit axis."""
-    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
-
-
-# ------------------------------------------------------------------------------ scenes
-UNITS = {"t": "s", "p": "rad/s", "q": "rad/s", "r": "rad/s", "q_w": "1", "q_x": "1", "q_y": "1", "q_z": "1",
-         "tau": "s", "g": "1", "L": "N m", "Q_norm": "kg m^2/s^2", "angular_momentum_norm": "kg m^2/s",
-         "h": "kg m^2/s^2", "theta_G": "rad", "phi_G": "rad", "psi": "rad", "theta": "rad", "phi": "rad"}
-
-
-@dataclass
-class OrthogonalScene:
-    """A scene file with ``kind = "orthogonal_torque"``::
-
-        kind = "orthogonal_torque"
-        title = "..."
-        [body]                      # a triaxial gyrostat, or instead [nearly_spherical]
-        moments = [2.0, 3.0, 4.0]
-        rotor = [0.3, -0.2, 0.5]
-        [nearly_spherical]          # A_j = J + mu J_j; the initial state from G, theta0, phi0, psi0
-        J = 2.0; Jj = [1.0, -0.6, 1.6]; mu = 0.05; rotor = [0.6, 0.8, 0.0]; G = 2.0
-        theta0 = 1.0; phi0 = 1.1435; psi0 = 0.0
-        [initial]                   # with [body]: omega and (optional) attitude quaternion
-        omega = [1.0, 0.5, -0.8]
-        attitude = [1.0, 0.0, 0.0, 0.0]   # optional; default: inertial z3 along G(0), psi0 = 0
-        [[runs]]                    # one run per magnitude law
-        name = "constant"
-        law = { kind = "constant", value = 0.15 }     # or harmonic / polynomial / tabulated
-        [integration]
-        method = "dop853"; rtol = 1e-10; atol = 1e-12; t_span = [0.0, 60.0]; n_out = 1201; eta = 1e-3
-    """
-
-    name: str
-    title: str
-    body: _core.Body
-    omega0: np.ndarray
-    quaternion0: np.ndarray
-    runs: list
-    method: str
-    rtol: float
-    atol: float
-    t_span: tuple
-    n_out: int
-    eta: float
-    spherical: NearlySpherical | None = None
-
-    @classmethod
-    def from_toml(cls, path) -> "OrthogonalScene":
-        path = Path(path)
-        with path.open("rb") as handle:
-            data = tomllib.load(handle)
-        where = path.name
-        spherical = None
-        if "nearly_spherical" in data:
-            s = data["nearly_spherical"]
-            spherical = NearlySpherical(s["J"], s["Jj"], s["mu"], s.get("rotor", (0, 0, 0)), s.get("G", 1.0),
-                                        s.get("theta0", 1.0), s.get("phi0", 0.0), s.get("psi0", 0.0))
-            body = spherical.body()
-            omega0, q0 = spherical.initial_state()
-        elif "body" in data:
-            body = _core.Body(np.asarray(data["body"]["moments"], float),
-                              np.asarray(data["body"].get("rotor", (0, 0, 0)), float))
-            init = data.get("initial", {})
-            if "omega" not in init:
-                raise ValueError(f"{where}: [initial] needs 'omega'")
-            omega0 = np.asarray(init["omega"], float)
-            if "attitude" in init:
-                q0 = np.asarray(init["attitude"], float)
-            else:  # inertial z3 along G(0), ψ0 = 0: the Euler angles of (15)-(16)
-                q0 = attitude_along_momentum(np.asarray(body.moments) * omega0 + np.asarray(body.rotor))
-        else:
-            raise ValueError(f"{where}: needs [body] or [nearly_spherical]")
-        runs = data.get("runs", [])
-        if not runs:
-            raise ValueError(f"{where}: needs at least one [[runs]] with a law")
-        laws = [(str(r.get("name", f"run{i}")), law_from_spec(r["law"]), r["law"]) for i, r in enumerate(runs)]
-        integ = data.get("integration", {})
-        t_span = tuple(float(x) for x in integ.get("t_span", (0.0, 60.0)))
-        return cls(name=path.stem, title=str(data.get("title", path.stem)), body=body, omega0=omega0, quaternion0=q0,
-                   runs=laws, method=str(integ.get("method", "dop853")), rtol=float(integ.get("rtol", 1e-10)),
-                   atol=float(integ.get("atol", 1e-12)), t_span=t_span, n_out=int(integ.get("n_out", 1201)),
-                   eta=float(integ.get("eta", ETA)), spherical=spherical)
-
-
-def _save(columns: dict, folder: Path, stem: str) -> list[Path]:
-    from gyrostat.runner import write_columns
-
-    return write_columns(columns, folder, stem, UNITS)
-
-
-def _law_text(spec) -> str:
-    if isinstance(spec, (int, float)):
-        return f"L = {spec:g}"
-    kind = spec.get("kind", "constant")
-    if kind == "constant":
-        return f"L = {spec['value']:g}"
-    if kind == "harmonic":
-        terms = " ".join(f"{'+' if a >= 0 else '−'} {abs(a):g} sin({w:g}t)"
-                         for a, w in zip(spec.get("amplitudes", []), spec.get("frequencies", [])))
-        return f"L = {spec['mean']:g} {terms}"
-    return f"L: {kind}"
-
-
-def run_scene(path, out_dir, progress: bool = True) -> dict:
-    """Solves every run of an orthogonal-torque scene, compares with the torque-free solution at
-    τ(t) (and, for a nearly spherical body, with the approximations of §4), writes
-    result_<run>.csv/.npz, PNG plots and report.json into out_dir/<scene name>/."""
-    from gyrostat import plots as _plots  # noqa: F401  (sets the Agg backend)
-    from gyrostat.validity import ValidityWarning
-
-    scene = OrthogonalScene.from_toml(path)
-    folder = Path(out_dir) / scene.name
-    folder.mkdir(parents=True, exist_ok=True)
-    started = time.perf_counter()
-    t_eval = np.linspace(scene.t_span[0], scene.t_span[1], scene.n_out)
-    results, runs, files, broken = {}, {}, [], []
-    for name, law, spec in scene.runs:
-        model = OrthogonalModel(scene.body, law, attitude=True, eta=scene.eta)
-        sol = solve(model, scene.omega0, scene.t_span, quaternion0=scene.quaternion0, method=scene.method,
-                    rtol=scene.rtol, atol=scene.atol, t_eval=t_eval)
-        zv = torque_free_at_tau(model, scene.omega0, sol.tau)
-        extra = {"max_error_vs_torque_free_at_tau": float(np.max(np.abs(sol.omega - zv))),
-                 "tau_end": float(sol.tau[-1]), "min_g": sol.g_report["min_g"]}
-        regime = constant_law_regime(model, scene.omega0)
-        if regime:
-            sol.notes.append(regime)
-        if sol.g_report["crossings"] or sol.g_report["min_g"] <= 0:
-            broken.append(f"{name}: g = 1 - L/|Q| reaches {sol.g_report['min_g']:.3g} <= 0: tau(t) is not a "
-                          "homeomorphism (the paper's (10) assumes g > 0)")
-        if sol.g_report["regularised_times"]:
-            broken.append(f"{name}: |Q| < delta at some times: the prescribed L was not applied there")
-        zv_att = torque_free_at_tau(model, scene.omega0, sol.tau, scene.quaternion0)
-        exact_angles = Solution(sol.t, zv_att, {}, {}, "success", "", "").euler_angles()
-        approx = {"exact": exact_angles}
-        extra["max_psi_full_minus_zv"] = float(np.max(np.abs(wrap(sol.euler_angles()[:, 0] - exact_angles[:, 0]))))
-        if scene.spherical is not None:
-            ns = scene.spherical
-            zeroth, first = ns.zeroth(sol.tau), ns.first(sol.tau)
-            ang = sol.momentum_angles()
-            approx = {"exact": exact_angles, "zeroth": zeroth, "first": first}
-            for label, a in (("zeroth", zeroth), ("first", first)):
-                extra[f"max_error_{label}_theta"] = float(np.max(np.abs(ang[:, 0] - a[:, 1])))
-                extra[f"max_error_{label}_phi"] = float(np.max(np.abs(wrap(ang[:, 1] - a[:, 2]))))
-                extra[f"max_error_{label}_psi_vs_zv"] = float(np.max(np.abs(wrap(exact_angles[:, 0] - a[:, 0]))))
-            if not np.any(ns.k):
-                extra["mean_precession_rate_corrected_34"] = ns.mean_precession_rate()
-                extra["mean_spin_rate_quadrature"] = ns.mean_spin_rate()
-        results[name] = (sol, zv, approx, spec)
-        runs[name] = {"method": sol.method, "status": sol.status, "message": sol.message, "stats": sol.stats,
-                      "invariant_relative_change": {k: float(v[-1] / v[0] - 1) for k, v in sol.invariants.items()},
-                      "notes": sol.notes, **extra}
-        columns = {"t": sol.t, **{n: sol.y[:, i] for i, n in enumerate(model.state_names)}, **sol.invariants,
-                   "g": sol.g, "L": sol.law, "Q_norm": sol.q_norm, "theta_G": sol.momentum_angles()[:, 0],
-                   "phi_G": sol.momentum_angles()[:, 1]}
-        for n, v in zip(("psi", "theta", "phi"), sol.euler_angles().T):
-            columns[n] = v
-        files += _save(columns, folder, f"result_{name}")
-        if progress:
-            print(f"[{scene.name}] {name}: tau(T) = {sol.tau[-1]:.6g}", flush=True, file=__import__("sys").stderr)
-    files += _draw(scene, results, folder)
-    for text in broken:
-        warnings.warn(f"{scene.name}: {text}", ValidityWarning, stacklevel=2)
-    report = {"scene": scene.name, "title": scene.title, "model": "orthogonal_torque",
-              "model_reason": "full model in t with tau and the attitude quaternion (paper 004); the torque-free "
-                              "(Zhukovsky-Volterra) solution at tau(t) and, for a nearly spherical body, the "
-                              "approximations of section 4 for comparison",
-              "status": "success" if all(r[0].success for r in results.values()) else "failed",
-              "seconds": time.perf_counter() - started, "runs": runs, "broken_assumptions": broken}
-    json_path = folder / "report.json"
-    report["files"] = [str(f) for f in files + [json_path]]
-    json_path.write_text(json.dumps(report, indent=2, default=float) + "\n")
-    return report
-
-
-def _draw(scene: OrthogonalScene, results: dict, folder: Path) -> list[Path]:
-    import matplotlib.pyplot as plt
-
-    from gyrostat.plots import _finish
-
-    files = []
-    n = len(results)
-    # angular velocity with the torque-free solution at τ(t)
-    fig, axes = plt.subplots(n, 1, figsize=(8, 3.2 * n), sharex=True, squeeze=False)
-    for ax, (name, (sol, zv, _, spec)) in zip(axes[:, 0], results.items()):
-        for i, c in enumerate(("p", "q", "r")):
-            ax.plot(sol.t, sol.omega[:, i], label=f"{c} (full model)")
-            ax.plot(sol.t, zv[:, i], "k:", lw=1, label="ω_ZV(τ(t)) (torque-free)" if i == 0 else None)
-        ax.set_ylabel("ω [rad/s]")
-        ax.set_title(f"{scene.title}: {_law_text(spec)}")
-        ax.legend(loc="upper right", fontsize=7, ncol=2)
-        ax.grid(alpha=0.3)
-    axes[-1, 0].set_xlabel("t [s]")
-    files.append(_finish(fig, folder / "omega.png"))
-    # invariants: relative change
-    fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    for name, (sol, *_rest) in results.items():
-        for ax, key, label in zip(axes, ("angular_momentum_norm", "h"), ("|G|", "h = ω·Jω")):
-            v = sol.invariants[key]
-            ax.plot(sol.t, v / v[0] - 1, label=f"{label}, {name}")
-            ax.set_ylabel(f"{label}: relative change [1]")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(loc="upper left", fontsize=8)
-    axes[0].set_title(f"{scene.title}: invariants (exact for the servo torque)")
-    axes[1].set_xlabel("t [s]")
-    files.append(_finish(fig, folder / "invariants.png"))
-    # τ(t) and g(t)
-    fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    for name, (sol, *_rest) in results.items():
-        axes[0].plot(sol.t, sol.tau, label=f"τ(t), {name}")
-        line, = axes[1].plot(sol.t, sol.g, label=f"g = 1 − L/|Q|, {name}")
-        for c in sol.g_report["crossings"]:
-            axes[0].plot(c["t"], c["tau"], "o", ms=3, color=line.get_color())
-            axes[1].plot(c["t"], 0.0, "o", ms=3, color=line.get_color())
-    axes[0].plot(sol.t, sol.t - sol.t[0], "k:", lw=1, label="τ = t (no torque)")
-    axes[1].axhline(0.0, color="r", lw=0.8, ls="--", label="g = 0: τ stops")
-    axes[0].set_ylabel("τ [s]")
-    axes[1].set_ylabel("g = dτ/dt [1]")
-    axes[1].set_xlabel("t [s]")
-    axes[0].set_title(f"{scene.title}: time change τ(t) (paper (10))")
-    for ax, loc in zip(axes, ("upper left", "lower left")):
-        ax.grid(alpha=0.3)
-        ax.legend(loc=loc, fontsize=7, framealpha=0.8, ncol=2)
-    axes[0].text(0.99, 0.02, "dots: g = 0 (τ stops, then reverses)", transform=axes[0].transAxes, ha="right",
-                 fontsize=7)
-    files.append(_finish(fig, folder / "tau.png"))
-    # Euler angles (θ, φ of G in body axes; ψ) with the approximations at τ(t)
-    fig, axes = plt.subplots(3, n, figsize=(6 * n, 8), sharex=True, squeeze=False)
-    for j, (name, (sol, zv, approx, spec)) in enumerate(results.items()):
-        ang = sol.momentum_angles()
-        euler = sol.euler_angles()
-        ax_psi, ax_th, ax_ph = axes[:, j]
-        ax_th.plot(sol.t, ang[:, 0], label="full model")
-        ax_ph.plot(sol.t, np.unwrap(ang[:, 1]), label="full model")
-        ax_psi.plot(sol.t, np.unwrap(euler[:, 0]), label="full model (quaternion; inertial G moves)")
-        styles = {"exact": ("k:", "torque-free ZV at τ(t)"), "zeroth": ("--", "zeroth approx. (21) at τ(t)"),
-                  "first": ("-.", "first approx. (21)+μ(22) at τ(t)")}
-        for key, a in approx.items():
-            st, label = styles[key]
-            if key != "exact":
-                ax_th.plot(sol.t, a[:, 1], st, label=label)
-                ax_ph.plot(sol.t, np.unwrap(a[:, 2]), st, label=label)
-            ax_psi.plot(sol.t, np.unwrap(a[:, 0]), st, label=label)
-        ax_psi.set_title(f"{_law_text(spec)}")
-        ax_psi.set_ylabel("ψ precession [rad]")
-        ax_th.set_ylabel("θ nutation (of G in body) [rad]")
-        ax_ph.set_ylabel("φ proper rotation [rad]")
-        ax_ph.set_xlabel("t [s]")
-        for ax in axes[:, j]:
-            ax.grid(alpha=0.3)
-            ax.legend(loc="best", fontsize=6, framealpha=0.7)
-    fig.suptitle(f"{scene.title}: Euler angles z-x-z", fontsize=10)
-    files.append(_finish(fig, folder / "euler_angles.png"))
-    # errors of the approximations (nearly spherical only)
-    if scene.spherical is not None:
-        fig, axes = plt.subplots(1, n, figsize=(6 * n, 4), squeeze=False)
-        for ax, (name, (sol, zv, approx, spec)) in zip(axes[0], results.items()):
-            ang = sol.momentum_angles()
-            for key, st in (("zeroth", "--"), ("first", "-")):
-                a = approx[key]
-                ax.semilogy(sol.t, np.maximum(np.abs(ang[:, 0] - a[:, 1]), 1e-16), st, label=f"|Δθ| {key}")
-                ax.semilogy(sol.t, np.maximum(np.abs(wrap(approx["exact"][:, 0] - a[:, 0])), 1e-16), st,
-                            label=f"|Δψ| {key} (vs ZV ψ at τ(t))")
-            ax.set_xlabel("t [s]")
-            ax.set_ylabel("error [rad]")
-            ax.set_ylim(1e-6, 5.0)
-            ax.set_title(f"approximations at τ(t) vs full model, μ = {scene.spherical.mu:g}, {_law_text(spec)}",
-                         fontsize=9)
-            ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=7)
-        files.append(_finish(fig, folder / "approximation_errors.png"))
-    return files

@@ -1,4 +1,5 @@
-"""Plots of a scene's results (matplotlib, written to PNG files)."""
+"""Plots of a scene's results for every scene kind (matplotlib, written to PNG files), drawn from
+the states and named outputs the engine recorded."""
 
 from __future__ import annotations
 
@@ -11,7 +12,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from gyrostat.averaged import slow_variables  # noqa: E402
 from gyrostat.solution import Solution  # noqa: E402
+
+from gyrostat.lagrange import SEPARATRIX_LIMIT  # noqa: E402
+from gyrostat.validity import SMALL  # noqa: E402
 
 
 def _finish(fig, path: Path) -> Path:
@@ -23,6 +28,14 @@ def _finish(fig, path: Path) -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def _keep(fig, path: Path, wanted: bool, files: list[Path]) -> None:
+    """Writes a figure the scene asks for (and adds it to files); closes one it does not."""
+    if wanted:
+        files.append(_finish(fig, path))
+    else:
+        plt.close(fig)
 
 
 def omega(solution: Solution, title: str, path: Path, reference: Solution | None = None) -> Path:
@@ -41,7 +54,7 @@ def omega(solution: Solution, title: str, path: Path, reference: Solution | None
 
 def invariants(solution: Solution, title: str, path: Path) -> Path:
     fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    labels = {"angular_momentum_norm": ("|G|", "kg m²/s"), "kinetic_energy": ("T", "J")}
+    labels = {"angular_momentum_norm": ("|G|", "kg m²/s"), "kinetic_energy": ("T", "J"), "energy": ("E", "J")}
     for ax, (name, values) in zip(axes, solution.invariants.items()):
         symbol, unit = labels.get(name, (name, "1"))
         ax.plot(solution.t, values, label=symbol)
@@ -53,17 +66,25 @@ def invariants(solution: Solution, title: str, path: Path) -> Path:
     return _finish(fig, path)
 
 
-def euler_angles(solution: Solution, title: str, path: Path) -> Path:
-    angles = np.unwrap(solution.euler_angles(), axis=0)
+def _curves(t: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, title: str, path: Path,
+            legend: str = "upper right") -> Path:
+    """Curves against t on one axis."""
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    for i, name in enumerate(("ψ (precession)", "θ (nutation)", "φ (proper rotation)")):
-        ax.plot(solution.t, angles[:, i], label=name)
+    for label, values in curves.items():
+        ax.plot(t, values, label=label)
     ax.set_xlabel("t [s]")
-    ax.set_ylabel("Euler angles z-x-z [rad]")
-    ax.set_title(f"{title}: attitude")
-    ax.legend(loc="upper left", fontsize=8)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(loc=legend, fontsize=8)
     ax.grid(alpha=0.3)
     return _finish(fig, path)
+
+
+def euler_angles(solution: Solution, title: str, path: Path) -> Path:
+    angles = np.unwrap(solution.euler_angles(), axis=0)
+    names = ("ψ (precession)", "θ (nutation)", "φ (proper rotation)")
+    return _curves(solution.t, {name: angles[:, i] for i, name in enumerate(names)}, "Euler angles z-x-z [rad]",
+                   f"{title}: attitude", path, legend="upper left")
 
 
 def error(solution: Solution, reference: Solution, title: str, path: Path) -> Path:
@@ -81,8 +102,6 @@ def error(solution: Solution, reference: Solution, title: str, path: Path) -> Pa
 def slow_curves(solutions: dict[str, Solution], title: str, path: Path, kind: str) -> Path:
     """x = a², y = r² (kind "xy") or a and signed r (kind "slow") over time; the averaged model
     solid, the full model's a = √(p²+q²), r thin."""
-    from gyrostat.averaged import slow_variables
-
     fig, ax = plt.subplots(figsize=(8, 4.8))
     styles = {"averaged": dict(lw=2.0), "full": dict(lw=0.8, ls="--")}
     for name in ("full", "averaged"):
@@ -103,8 +122,6 @@ def slow_curves(solutions: dict[str, Solution], title: str, path: Path, kind: st
 
 def phase(solutions: dict[str, Solution], title: str, path: Path) -> Path:
     """The phase curve a² against r² (paper 002's y against x)."""
-    from gyrostat.averaged import slow_variables
-
     fig, ax = plt.subplots(figsize=(6.5, 5.5))
     for name, style in (("full", dict(lw=0.8, ls="--")), ("averaged", dict(lw=2.0))):
         if name in solutions:
@@ -119,9 +136,16 @@ def phase(solutions: dict[str, Solution], title: str, path: Path) -> Path:
     return _finish(fig, path)
 
 
-def draw_scene(scene, solutions: dict[str, Solution], folder: Path, reference: Solution | None = None) -> list[Path]:
+def mass(solution: Solution, title: str, path: Path) -> Path:
+    """The moving mass's displacement u relative to the carrier (the explicit damper model)."""
+    return _curves(solution.t, {name: solution[name] for name in ("u_1", "u_2", "u_3")},
+                   "displacement of the mass in body axes [m]", f"{title}: moving mass", path)
+
+
+def _rigid_body(scene, solutions: dict[str, Solution], derived: dict, folder: Path) -> list[Path]:
     files = []
     main = solutions.get("full", solutions.get("closed_form"))
+    reference = derived.get("reference")
     for plot in scene.plots:
         path = folder / f"{plot}.png"
         if plot in ("xy", "slow"):
@@ -134,8 +158,215 @@ def draw_scene(scene, solutions: dict[str, Solution], folder: Path, reference: S
             files.append(omega(main, scene.title, path, reference))
         elif plot == "invariants":
             files.append(invariants(main, scene.title, path))
-        elif plot == "euler_angles" and main.y.shape[1] >= 7:
+        elif plot == "euler_angles" and "q_w" in main.state_names:
             files.append(euler_angles(main, scene.title, path))
         elif plot == "error" and reference is not None:
             files.append(error(main, reference, scene.title, path))
+        elif plot == "mass":
+            files.append(mass(main, scene.title, path))
     return files
+
+
+
+
+def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: Path) -> list[Path]:
+    """slow.png (G_z, H, r), roots.png (u1, u2, u3 and cos θ), nutation.png (θ), validity.png."""
+    full, avg, exact_r = solutions["full"], solutions["averaged"], derived["exact_r"]
+    epsilon = scene.doc["torque"]["epsilon"]
+    tau_f, tau_a = epsilon * full.t, epsilon * avg.t
+    case = f"{scene.title} (ε = {epsilon:g})"
+    sf = dict(lw=0.6, color="tab:blue", alpha=0.8)
+    sa = dict(lw=1.8, ls="--", color="tab:orange")
+    files = []
+    wanted = set(scene.plots)
+
+    fig, axes = plt.subplots(4, 1, figsize=(8, 10), sharex=True)
+    for ax, key, label in zip(axes, ("G_z", "H", "r"), ("G_z [kg m²/s]", "H [J]", "r [rad/s]")):
+        ax.plot(tau_f, full[key], label="full model (ω, quaternion)", **sf)
+        ax.plot(tau_a, avg[key], label="averaged over nutation", **sa)
+        if key == "r":
+            ax.plot(tau_f[: exact_r.size], exact_r, "k:", lw=1.2, label="exact (3.3)")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper right")
+    n = min(tau_f.size, tau_a.size)
+    for key, color in (("G_z", "tab:blue"), ("H", "tab:red")):
+        axes[3].plot(tau_f[:n], full[key][:n] - avg[key][:n], lw=0.6, color=color, label=f"{key}: full − averaged")
+    axes[3].set_ylabel("difference [kg m²/s], [J]")
+    axes[3].grid(alpha=0.3)
+    axes[3].legend(fontsize=8, loc="upper right")
+    axes[0].set_title(f"{case}: first integrals")
+    axes[-1].set_xlabel("slow time τ = εt [s]")
+    _keep(fig, folder / "slow.png", "slow" in wanted, files)
+
+    fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True, gridspec_kw=dict(height_ratios=[1, 1.6]))
+    axes[0].plot(tau_f, full["u3"], label="u3 (full: roots of its G_z, H, r)", **sf)
+    axes[0].plot(tau_a, avg["u3"], label="u3 (averaged)", **sa)
+    axes[0].set_ylabel("u3 (≥ 1)")
+    axes[1].plot(tau_f, full["cos_theta"], lw=0.4, color="0.75", label="cos θ (full model)")
+    for key, color in (("u1", "tab:blue"), ("u2", "tab:green")):
+        axes[1].plot(tau_f, full[key], lw=0.8, color=color, label=f"{key} (full)")
+        axes[1].plot(tau_a, avg[key], lw=1.8, ls="--", color="tab:orange" if key == "u1" else "tab:red",
+                     label=f"{key} (averaged)")
+    axes[1].set_ylabel("u = cos θ: u1 ≤ cos θ ≤ u2")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper right")
+    axes[0].set_title(f"{case}: roots of the nutation cubic")
+    axes[-1].set_xlabel("slow time τ = εt [s]")
+    _keep(fig, folder / "roots.png", "roots" in wanted, files)
+
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.plot(tau_f, np.degrees(full["theta"]), lw=0.4, color="tab:blue", label="θ (full model)")
+    with np.errstate(invalid="ignore"):
+        for key, style in (("u1", "--"), ("u2", ":")):
+            ax.plot(tau_a, np.degrees(np.arccos(np.clip(avg[key], -1, 1))), ls=style, lw=1.6, color="tab:orange",
+                    label=f"arccos {key} (averaged)")
+    ax.set_xlabel("slow time τ = εt [s]")
+    ax.set_ylabel("nutation angle θ [deg]")
+    ax.set_title(f"{case}: nutation between its bounds")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    _keep(fig, folder / "nutation.png", "nutation" in wanted, files)
+
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.semilogy(tau_a, avg["adiabaticity"], label="N = rate · T_nut (must be ≪ 1)")
+    ax.semilogy(tau_a, np.maximum(1 - avg["m"], 1e-17), label="1 − k² (separatrix at 0)")
+    ax.semilogy(tau_a, np.maximum(avg["m"], 1e-17), label="k² (regular precession at 0)")
+    ax.axhline(SMALL, color="tab:blue", ls=":", lw=1, label=f"limit N = {SMALL}")
+    ax.axhline(SEPARATRIX_LIMIT, color="tab:orange", ls=":", lw=1, label=f"limit 1 − k² = {SEPARATRIX_LIMIT}")
+    ax.set_xlabel("slow time τ = εt [s]")
+    ax.set_ylabel("dimensionless")
+    ax.set_title(f"{case}: validity of the averaging (along the averaged solution)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8, loc="lower right")
+    _keep(fig, folder / "validity.png", "validity" in wanted, files)
+    return files
+
+
+def _law_text(spec) -> str:
+    if isinstance(spec, (int, float)):
+        return f"L = {spec:g}"
+    kind = spec.get("kind", "constant")
+    if kind == "constant":
+        return f"L = {spec['value']:g}"
+    if kind == "harmonic":
+        terms = " ".join(f"{'+' if a >= 0 else '−'} {abs(a):g} sin({w:g}t)"
+                         for a, w in zip(spec.get("amplitudes", []), spec.get("frequencies", [])))
+        return f"L = {spec['mean']:g} {terms}"
+    return f"L: {kind}"
+
+
+def _orthogonal_torque(scene, solutions: dict[str, Solution], derived: dict, folder: Path) -> list[Path]:
+    from gyrostat.orthogonal import wrap
+
+    laws = {spec["name"]: spec["law"] for spec in scene.doc["runs"]}
+    results = {run.name: (solutions[run.name], derived[run.name]["torque_free"], derived[run.name]["approximations"],
+                          laws[run.name]) for run in scene.runs if run.name in derived}
+    spherical = scene.kind.spherical(scene.doc)
+    wanted = set(scene.plots)
+    files = []
+    n = len(results)
+    if n == 0:
+        return files
+    # angular velocity with the torque-free solution at τ(t)
+    fig, axes = plt.subplots(n, 1, figsize=(8, 3.2 * n), sharex=True, squeeze=False)
+    for ax, (name, (sol, zv, _, spec)) in zip(axes[:, 0], results.items()):
+        for i, c in enumerate(("p", "q", "r")):
+            ax.plot(sol.t, sol.omega[:, i], label=f"{c} (full model)")
+            ax.plot(sol.t, zv[:, i], "k:", lw=1, label="ω_ZV(τ(t)) (torque-free)" if i == 0 else None)
+        ax.set_ylabel("ω [rad/s]")
+        ax.set_title(f"{scene.title}: {_law_text(spec)}")
+        ax.legend(loc="upper right", fontsize=7, ncol=2)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("t [s]")
+    _keep(fig, folder / "omega.png", "omega" in wanted, files)
+    # invariants: relative change
+    fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+    for name, (sol, *_rest) in results.items():
+        for ax, key, label in zip(axes, ("angular_momentum_norm", "h"), ("|G|", "h = ω·Jω")):
+            v = sol[key]
+            ax.plot(sol.t, v / v[0] - 1, label=f"{label}, {name}")
+            ax.set_ylabel(f"{label}: relative change [1]")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(loc="upper left", fontsize=8)
+    axes[0].set_title(f"{scene.title}: invariants (exact for the servo torque)")
+    axes[1].set_xlabel("t [s]")
+    _keep(fig, folder / "invariants.png", "invariants" in wanted, files)
+    # τ(t) and g(t)
+    fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+    for name, (sol, *_rest) in results.items():
+        axes[0].plot(sol.t, sol["tau"], label=f"τ(t), {name}")
+        line, = axes[1].plot(sol.t, sol["g"], label=f"g = 1 − L/|Q|, {name}")
+        for c in derived[name]["g_report"]["crossings"]:
+            axes[0].plot(c["t"], c["tau"], "o", ms=3, color=line.get_color())
+            axes[1].plot(c["t"], 0.0, "o", ms=3, color=line.get_color())
+    axes[0].plot(sol.t, sol.t - sol.t[0], "k:", lw=1, label="τ = t (no torque)")
+    axes[1].axhline(0.0, color="r", lw=0.8, ls="--", label="g = 0: τ stops")
+    axes[0].set_ylabel("τ [s]")
+    axes[1].set_ylabel("g = dτ/dt [1]")
+    axes[1].set_xlabel("t [s]")
+    axes[0].set_title(f"{scene.title}: time change τ(t) (paper (10))")
+    for ax, loc in zip(axes, ("upper left", "lower left")):
+        ax.grid(alpha=0.3)
+        ax.legend(loc=loc, fontsize=7, framealpha=0.8, ncol=2)
+    axes[0].text(0.99, 0.02, "dots: g = 0 (τ stops, then reverses)", transform=axes[0].transAxes, ha="right",
+                 fontsize=7)
+    _keep(fig, folder / "tau.png", "tau" in wanted, files)
+    # Euler angles (θ, φ of G in body axes; ψ) with the approximations at τ(t)
+    fig, axes = plt.subplots(3, n, figsize=(6 * n, 8), sharex=True, squeeze=False)
+    for j, (name, (sol, zv, approx, spec)) in enumerate(results.items()):
+        ang = np.column_stack([sol["theta_G"], sol["phi_G"]])
+        euler = sol.euler_angles()
+        ax_psi, ax_th, ax_ph = axes[:, j]
+        ax_th.plot(sol.t, ang[:, 0], label="full model")
+        ax_ph.plot(sol.t, np.unwrap(ang[:, 1]), label="full model")
+        ax_psi.plot(sol.t, np.unwrap(euler[:, 0]), label="full model (quaternion; inertial G moves)")
+        styles = {"exact": ("k:", "torque-free ZV at τ(t)"), "zeroth": ("--", "zeroth approx. (21) at τ(t)"),
+                  "first": ("-.", "first approx. (21)+μ(22) at τ(t)")}
+        for key, a in approx.items():
+            st, label = styles[key]
+            if key != "exact":
+                ax_th.plot(sol.t, a[:, 1], st, label=label)
+                ax_ph.plot(sol.t, np.unwrap(a[:, 2]), st, label=label)
+            ax_psi.plot(sol.t, np.unwrap(a[:, 0]), st, label=label)
+        ax_psi.set_title(f"{_law_text(spec)}")
+        ax_psi.set_ylabel("ψ precession [rad]")
+        ax_th.set_ylabel("θ nutation (of G in body) [rad]")
+        ax_ph.set_ylabel("φ proper rotation [rad]")
+        ax_ph.set_xlabel("t [s]")
+        for ax in axes[:, j]:
+            ax.grid(alpha=0.3)
+            ax.legend(loc="best", fontsize=6, framealpha=0.7)
+    fig.suptitle(f"{scene.title}: Euler angles z-x-z", fontsize=10)
+    _keep(fig, folder / "euler_angles.png", "euler_angles" in wanted, files)
+    # errors of the approximations (nearly spherical only)
+    if spherical is not None and "approximation_errors" in wanted:
+        fig, axes = plt.subplots(1, n, figsize=(6 * n, 4), squeeze=False)
+        for ax, (name, (sol, zv, approx, spec)) in zip(axes[0], results.items()):
+            ang = np.column_stack([sol["theta_G"], sol["phi_G"]])
+            for key, st in (("zeroth", "--"), ("first", "-")):
+                a = approx[key]
+                ax.semilogy(sol.t, np.maximum(np.abs(ang[:, 0] - a[:, 1]), 1e-16), st, label=f"|Δθ| {key}")
+                ax.semilogy(sol.t, np.maximum(np.abs(wrap(approx["exact"][:, 0] - a[:, 0])), 1e-16), st,
+                            label=f"|Δψ| {key} (vs ZV ψ at τ(t))")
+            ax.set_xlabel("t [s]")
+            ax.set_ylabel("error [rad]")
+            ax.set_ylim(1e-6, 5.0)
+            ax.set_title(f"approximations at τ(t) vs full model, μ = {spherical.mu:g}, {_law_text(spec)}",
+                         fontsize=9)
+            ax.grid(alpha=0.3, which="both")
+            ax.legend(fontsize=7)
+        files.append(_finish(fig, folder / "approximation_errors.png"))
+    return files
+
+
+DRAW = {"rigid_body": _rigid_body, "averaged": _rigid_body, "moving_mass": _rigid_body,
+        "lagrange_top": _lagrange_top, "orthogonal_torque": _orthogonal_torque}
+
+
+def draw_scene(scene, solutions: dict[str, Solution], derived: dict, folder: Path) -> list[Path]:
+    """The plots the scene asks for (``scene.plots``), by its kind; ``derived`` holds what the
+    kind's analysis computed beside the runs (gyrostat.runner)."""
+    return DRAW[scene.kind.name](scene, solutions, derived, folder)

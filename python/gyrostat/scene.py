@@ -1,6 +1,14 @@
 """Scenes: a body, its torques, an initial state, a horizon, an integrator and outputs, as TOML.
 
-A scene file looks like::
+One pipeline for every model family: the top-level key ``kind`` picks a scene kind from
+:data:`KINDS` (``rigid_body`` when absent), each kind declares its strict schema
+(:mod:`gyrostat.schema`: an unknown or misspelled key, a wrong type or a missing key is a
+one-line error naming the key, its table and the nearest valid key) and turns the validated
+document into runs (a model, an initial state, a span, integrator options). :mod:`gyrostat.runner`
+solves the runs with :func:`gyrostat.solve`, writes the results and the report, and draws the
+kind's plots. ``python -m gyrostat scene-format`` prints the reference of every kind.
+
+A rigid-body scene looks like::
 
     title = "Damped body under a constant torque"
     [body]
@@ -16,7 +24,7 @@ A scene file looks like::
     omega = [1.0, 0.5, -0.3]         # [rad/s]
     attitude = [1.0, 0.0, 0.0, 0.0]  # optional quaternion (w, x, y, z): integrates the attitude
     [integration]
-    model = "auto"                   # "auto" | "full" | "closed_form"
+    model = "auto"                   # auto | full | closed_form | averaged | compare
     method = "dop853"
     rtol = 1e-10
     atol = 1e-12
@@ -25,14 +33,6 @@ A scene file looks like::
     [outputs]
     plots = ["omega", "invariants", "euler_angles"]
     reference = "closed_form"        # optional: draw and measure against the closed form
-
-Other torques: ``viscous_cavity`` (density, viscosity, radius | p0), ``resistive_medium``
-(coefficients = [D_0, D_1, ...], D(t) = Σ D_k t^k), ``moving_mass_damper`` (mass, arm,
-frequency, damping). ``model = "averaged"`` solves the system averaged over the symmetric
-Euler–Poinsot motion in (a, r); ``model = "compare"`` solves the full and the averaged model
-side by side and reports their difference. Plots ``xy`` (x = a², y = r² over time), ``slow``
-(a and signed r), ``phase`` (a² against r²) serve the averaged scenes. Every scene's
-assumptions are checked (gyrostat.validity) and broken ones reported.
 """
 
 from __future__ import annotations
@@ -44,179 +44,524 @@ from pathlib import Path
 
 import numpy as np
 
-from gyrostat import _core
-from gyrostat.model import Model
+from gyrostat import _core, lagrange, orthogonal
+from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
+from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, OneOf, SceneError, Table, Variants, Vector,
+                             at_least, describe, increasing, non_negative, positive, validate)
 
-KNOWN_PLOTS = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase")
-KNOWN_MODELS = ("auto", "full", "closed_form", "averaged", "compare")
-
-
-def _vector(table: dict, key: str, size: int, where: str) -> np.ndarray:
-    if key not in table:
-        raise ValueError(f"{where}: missing '{key}'")
-    value = np.asarray(table[key], dtype=float)
-    if value.shape != (size,):
-        raise ValueError(f"{where}.{key} must have {size} numbers, got {table[key]!r}")
-    return value
+__all__ = ["Scene", "Run", "SceneError", "KINDS", "load", "scene_format"]
 
 
-def _torque(spec: dict, index: int):
-    where = f"torques[{index}]"
-    kind = spec.get("type")
-    if kind == "constant":
-        return _core.ConstantTorque(_vector(spec, "moment", 3, where))
-    if kind == "linear_damping":
-        if "matrix" in spec:
-            matrix = np.asarray(spec["matrix"], dtype=float)
-            if matrix.shape != (3, 3):
-                raise ValueError(f"{where}.matrix must be 3x3, got {spec['matrix']!r}")
-        elif "diagonal" in spec:
-            matrix = np.diag(_vector(spec, "diagonal", 3, where))
-        else:
-            raise ValueError(f"{where}: linear_damping needs 'matrix' (3x3) or 'diagonal' (3)")
-        return _core.LinearDamping(matrix)
-    if kind == "resistive_medium":
-        if "coefficients" not in spec:
-            raise ValueError(f"{where}: resistive_medium needs 'coefficients' (a list of 3x3 matrices, D(t) = sum D_k t^k)")
-        matrices = [np.asarray(c, dtype=float) for c in spec["coefficients"]]
-        for k, matrix in enumerate(matrices):
-            if matrix.shape != (3, 3):
-                raise ValueError(f"{where}.coefficients[{k}] must be 3x3")
-        return _core.ResistiveMedium(matrices)
-    if kind == "viscous_cavity":
-        for key in ("density", "viscosity"):
-            if key not in spec:
-                raise ValueError(f"{where}: viscous_cavity needs '{key}'")
-        if "radius" in spec:
-            return _core.ViscousCavity.sphere(float(spec["density"]), float(spec["viscosity"]), float(spec["radius"]))
-        if "p0" in spec:
-            return _core.ViscousCavity(float(spec["density"]), float(spec["viscosity"]), float(spec["p0"]))
-        raise ValueError(f"{where}: viscous_cavity needs 'radius' (sphere) or 'p0' (P = P0 I)")
-    if kind == "moving_mass_damper":
-        for key in ("mass", "arm", "frequency", "damping"):
-            if key not in spec:
-                raise ValueError(f"{where}: moving_mass_damper needs '{key}'")
-        return _core.MovingMassDamper(float(spec["mass"]), float(spec["arm"]), float(spec["frequency"]),
-                                      float(spec["damping"]))
-    raise ValueError(f"{where}.type = {kind!r} is not a known torque (constant, linear_damping, resistive_medium, "
-                     "viscous_cavity, moving_mass_damper)")
+# ------------------------------------------------------------------------------------ pieces
+def _finite(value, _=None):
+    if not math.isfinite(value):
+        raise ValueError("must be finite")
+
+
+def _all_finite(values):
+    if not np.all(np.isfinite(np.asarray(values, float))):
+        raise ValueError("must be finite numbers")
+
+
+def _span_order(values):
+    if not (math.isfinite(values[0]) and math.isfinite(values[1])):
+        raise ValueError("must be two finite times")
+
+
+def _nonzero_quaternion(values):
+    q = np.asarray(values, float)
+    if not np.all(np.isfinite(q)) or not np.any(q):
+        raise ValueError("must be a finite, non-zero quaternion (w, x, y, z)")
+
+
+TITLE = {
+    "kind": Field(str, default="rigid_body", doc="scene kind: " + ", ".join(
+        ("rigid_body", "averaged", "moving_mass", "lagrange_top", "orthogonal_torque"))),
+    "title": Field(str, default="", doc="a title for plots and reports"),
+    "description": Field(str, default="", doc="what the scene shows"),
+}
+
+METHOD = Field(Choice(*_core.methods()), default="dop853", doc="integrator (gyrostat.METHODS)")
+RTOL = Field(float, default=1e-8, doc="relative tolerance", check=positive)
+ATOL = Field(float, default=1e-10, doc="absolute tolerance", check=non_negative)
+N_OUT = Field(int, default=1001, doc="number of evenly spaced output times", check=at_least(2))
+T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=_span_order)
+
+BODY = Table({
+    "moments": Field(Vector(3), required=True, doc="principal moments A1, A2, A3", unit="kg m^2",
+                     check=_all_finite),
+    "rotor": Field(Vector(3), default=[0.0, 0.0, 0.0], doc="gyrostatic momentum k of the rotors",
+                   unit="kg m^2/s", check=_all_finite),
+})
+
+# The one registration table of the torques a scene may name: the schema of each, and how to
+# build it from the validated table.
+TORQUES: dict[str, tuple[Table, callable]] = {
+    "constant": (
+        Table({"moment": Field(Vector(3), required=True, doc="M in body axes", unit="N m", check=_all_finite)},
+              doc="a constant torque in body axes"),
+        lambda s: _core.ConstantTorque(s["moment"])),
+    "linear_damping": (
+        Table({"matrix": Field(Matrix(3, 3), doc="D (M = -D omega)", unit="N m s"),
+               "diagonal": Field(Vector(3), doc="the diagonal of D", unit="N m s")},
+              one_of=[("matrix", "diagonal")], doc="M = -D omega"),
+        lambda s: _core.LinearDamping(np.asarray(s["matrix"]) if "matrix" in s else np.diag(s["diagonal"]))),
+    "resistive_medium": (
+        Table({"coefficients": Field(ListOf(Matrix(3, 3), min_len=1), required=True,
+                                     doc="D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)")},
+              doc="a resistive medium whose resistance varies with time"),
+        lambda s: _core.ResistiveMedium([np.asarray(c) for c in s["coefficients"]])),
+    "viscous_cavity": (
+        Table({"density": Field(float, required=True, doc="rho", unit="kg/m^3", check=positive),
+               "viscosity": Field(float, required=True, doc="kinematic viscosity nu", unit="m^2/s", check=positive),
+               "radius": Field(float, doc="radius of a spherical cavity", unit="m", check=positive),
+               "p0": Field(float, doc="P0 of the cavity tensor P = P0 I", unit="m^5", check=positive)},
+              one_of=[("radius", "p0")], doc="a cavity filled with a highly viscous fluid"),
+        lambda s: (_core.ViscousCavity.sphere(s["density"], s["viscosity"], s["radius"]) if "radius" in s
+                   else _core.ViscousCavity(s["density"], s["viscosity"], s["p0"]))),
+    "moving_mass_damper": (
+        Table({"mass": Field(float, required=True, doc="mass m", unit="kg", check=positive),
+               "arm": Field(float, required=True, doc="distance rho of the mass on the z axis", unit="m",
+                            check=positive),
+               "frequency": Field(float, required=True, doc="Omega = sqrt(c/m)", unit="rad/s", check=positive),
+               "damping": Field(float, required=True, doc="lambda = delta/m", unit="1/s", check=positive)},
+              doc="Chernousko's quasi-static moving-mass damper"),
+        lambda s: _core.MovingMassDamper(s["mass"], s["arm"], s["frequency"], s["damping"])),
+}
+TORQUE = Variants("type", {name: table for name, (table, _) in TORQUES.items()}, doc="a perturbation torque")
+
+
+def _outputs(plots: tuple[str, ...], default: list[str], **extra: Field) -> Field:
+    """The [outputs] table of a kind: the plots it can draw (and what else it takes)."""
+    return Field(Table({"plots": Field(ListOf(str, choices=plots), default=default, doc="plots to draw"), **extra}),
+                 default={}, doc="what to draw")
+
+
+def _build(where: str, make, *args):
+    """A core object from validated values; its own ValueError becomes a SceneError naming the table."""
+    try:
+        return make(*args)
+    except ValueError as error:
+        raise SceneError(f"[{where}] {error}") from None
+
+
+def _body(doc: dict) -> _core.Body:
+    return _build("body", _core.Body, doc["body"]["moments"], doc["body"]["rotor"])
+
+
+def _torques(doc: dict) -> list:
+    return [_build(f"torques[{i}]", TORQUES[spec["type"]][1], spec) for i, spec in enumerate(doc.get("torques", []))]
 
 
 @dataclass
-class Scene:
-    """A runnable scene; build it with :meth:`Scene.from_toml` or :meth:`Scene.from_dict`."""
+class Run:
+    """One solve of a scene: a model, its initial state, the span and the integrator options."""
 
     name: str
-    title: str
-    body: _core.Body
-    torques: list
-    omega0: np.ndarray
-    attitude0: np.ndarray | None
-    model_choice: str
-    method: str
-    rtol: float
-    atol: float
+    model: ModelBase
+    y0: np.ndarray
     t_span: tuple[float, float]
-    n_out: int
-    plots: list[str] = field(default_factory=list)
-    reference: str | None = None
-    description: str = ""
+    options: dict
+
+
+# ------------------------------------------------------------------------------------ kinds
+class Kind:
+    """A scene kind: its schema, the runs it makes, the plots it draws (``plots`` names them)."""
+
+    name = ""
+    doc = ""
+    schema: Table
+    plots: tuple[str, ...] = ()
+
+    def runs(self, doc: dict) -> tuple[list[Run], str, str]:
+        """(runs, the model chosen, why)."""
+        raise NotImplementedError
+
+
+def _integration(doc: dict, **extra) -> dict:
+    integ = doc["integration"]
+    options = {"method": integ["method"], "rtol": integ["rtol"], "atol": integ["atol"], "n_out": integ["n_out"]}
+    options.update(extra)
+    return options
+
+
+class RigidBody(Kind):
+    name = "rigid_body"
+    doc = ("A rigid body or gyrostat under perturbation torques: the full model, its closed form when nothing "
+           "perturbs it, or the system averaged over the symmetric Euler-Poinsot motion in (a, r).")
+    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase")
+    models = ("auto", "full", "closed_form", "averaged", "compare")
+
+    @property
+    def schema(self) -> Table:
+        return Table({
+            **TITLE,
+            "body": Field(BODY, required=True, doc="the body"),
+            "torques": Field(ArrayOf(TORQUE), default=[], doc="perturbation torques; they add up"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), required=True, doc="angular velocity in body axes", unit="rad/s",
+                               check=_all_finite),
+                "attitude": Field(Vector(4), doc="attitude quaternion (w, x, y, z), body to inertial; "
+                                                 "giving it integrates the attitude", check=_nonzero_quaternion),
+            }), required=True, doc="the initial state"),
+            "integration": Field(Table({
+                "model": Field(Choice(*self.models), default="auto",
+                               doc="auto: the cheapest adequate model; compare: full and averaged side by side"),
+                "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
+            }), required=True, doc="the run"),
+            "outputs": _outputs(self.plots, ["omega", "invariants"],
+                                reference=Field(Choice("closed_form"), doc="draw and measure against the closed form")),
+        })
+
+    def needs_attitude(self, doc: dict) -> bool:
+        """The attitude is integrated only when the scene asks for it (an initial quaternion or
+        an Euler-angle plot)."""
+        return "attitude" in doc["initial"] or "euler_angles" in doc["outputs"]["plots"]
+
+    def choose(self, doc: dict, body, torques) -> tuple[str, str]:
+        """The cheapest model that answers the scene, and the reason for the choice."""
+        choice = doc["integration"]["model"]
+        free = not torques and not np.any(np.asarray(body.rotor))
+        attitude = self.needs_attitude(doc)
+        if choice == "closed_form":
+            if not free:
+                raise SceneError("[integration] model = 'closed_form' needs a rigid body (rotor k = 0) with no torque")
+            if attitude:
+                raise SceneError("[integration] model = 'closed_form' gives omega only; the scene asks for attitude")
+            return choice, "asked for by the scene"
+        if choice != "auto":
+            return choice, "asked for by the scene"
+        if free and not attitude:
+            return "closed_form", "no torque, no rotor, no attitude asked for: the closed form needs no integration"
+        reasons = [f"{len(torques)} torque(s)"] if torques else []
+        if np.any(np.asarray(body.rotor)):
+            reasons.append("a rotor (k != 0)")
+        if attitude:
+            reasons.append("attitude asked for")
+        return "full", "full model: " + ", ".join(reasons)
+
+    def runs(self, doc):
+        body, torques = _body(doc), _torques(doc)
+        choice, reason = self.choose(doc, body, torques)
+        omega = np.asarray(doc["initial"]["omega"], float)
+        t_span = tuple(doc["integration"]["t_span"])
+        options = _integration(doc)
+        runs = []
+        if choice == "closed_form":
+            runs.append(Run("closed_form", _build("body", TorqueFreeModel, body), omega, t_span, options))
+        if choice in ("full", "compare"):
+            attitude = self.needs_attitude(doc)
+            model = _build("torques", Model, body, torques, attitude)
+            q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
+            y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+            runs.append(Run("full", model, y0, t_span, options))
+        if choice in ("averaged", "compare"):
+            model = _build("torques", AveragedModel, body, torques)
+            runs.append(Run("averaged", model, np.array([math.hypot(omega[0], omega[1]), omega[2]]), t_span, options))
+        return runs, choice, reason
+
+
+class Averaged(RigidBody):
+    name = "averaged"
+    doc = ("The system averaged over the symmetric Euler-Poinsot motion in the slow variables (a, r) alone "
+           "(a rigid_body scene with model = 'averaged'; the initial state may be given as a and r).")
+    plots = ("xy", "slow", "phase")
+
+    @property
+    def schema(self) -> Table:
+        return Table({
+            **TITLE,
+            "body": Field(BODY, required=True, doc="the (nearly) symmetric body A1 ~ A2, no rotor"),
+            "torques": Field(ArrayOf(TORQUE), default=[], doc="perturbation torques; their averages add up"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), doc="angular velocity in body axes (gives a = |(p, q)|, r)", unit="rad/s",
+                               check=_all_finite),
+                "a": Field(float, doc="equatorial amplitude a = sqrt(p^2 + q^2)", unit="rad/s", check=non_negative),
+                "r": Field(float, doc="axial rate r (signed)", unit="rad/s", check=_finite),
+            }), required=True, doc="the initial state: omega, or a and r"),
+            "integration": Field(Table({"method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN,
+                                        "n_out": N_OUT}), required=True, doc="the run"),
+            "outputs": _outputs(self.plots, ["xy", "slow"]),
+        })
+
+    def runs(self, doc):
+        body, torques = _body(doc), _torques(doc)
+        initial = doc["initial"]
+        if "omega" in initial and ("a" in initial or "r" in initial):
+            raise SceneError("[initial] give omega, or a and r, not both")
+        if "omega" in initial:
+            omega = initial["omega"]
+            y0 = np.array([math.hypot(omega[0], omega[1]), omega[2]])
+        elif "a" in initial and "r" in initial:
+            y0 = np.array([initial["a"], initial["r"]])
+        else:
+            raise SceneError("[initial] needs omega, or both a and r")
+        model = _build("torques", AveragedModel, body, torques)
+        return ([Run("averaged", model, y0, tuple(doc["integration"]["t_span"]), _integration(doc))], "averaged",
+                "asked for by the scene kind")
+
+
+class MovingMass(Kind):
+    name = "moving_mass"
+    doc = ("The explicit moving-mass model (paper 001): a carrier and a point mass on a damped spring, "
+           "9 states, stiff for a strong damper (method cvode_bdf by default).")
+    plots = ("omega", "invariants", "mass")
+
+    @property
+    def schema(self) -> Table:
+        damper_table, _ = TORQUES["moving_mass_damper"]
+        return Table({
+            **TITLE,
+            "body": Field(BODY, required=True, doc="the system's moments with the mass at rest"),
+            "damper": Field(damper_table, required=True, doc="the mass, its arm, spring and damper"),
+            "torques": Field(ArrayOf(TORQUE), default=[], doc="external torques on the carrier"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), required=True, doc="angular velocity", unit="rad/s", check=_all_finite),
+                "start": Field(Choice("quasi_static", "at_rest"), default="quasi_static",
+                               doc="quasi_static: the mass on its forced motion; at_rest: u = v = 0"),
+            }), required=True, doc="the initial state"),
+            "integration": Field(Table({"method": Field(Choice(*_core.methods()), default="cvode_bdf",
+                                                        doc="integrator (stiff: cvode_bdf)"),
+                                        "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT}),
+                                 required=True, doc="the run"),
+            "outputs": _outputs(self.plots, list(self.plots)),
+        })
+
+    def runs(self, doc):
+        body, torques = _body(doc), _torques(doc)
+        d = doc["damper"]
+        model = _build("damper", MovingMassModel, body, d["mass"], d["arm"], d["frequency"], d["damping"], torques)
+        omega = np.asarray(doc["initial"]["omega"], float)
+        y0 = model.quasi_static_state(omega) if doc["initial"]["start"] == "quasi_static" else \
+            np.concatenate([omega, np.zeros(6)])
+        return ([Run("full", model, y0, tuple(doc["integration"]["t_span"]), _integration(doc))], "moving_mass",
+                "asked for by the scene kind: the explicit mass, spring and damper")
+
+
+class LagrangeTopKind(Kind):
+    name = "lagrange_top"
+    doc = ("Paper 003: the heavy symmetric top under M = eps(-a(tau) p, -a(tau) q, -b(tau) r), tau = eps t: the "
+           "full top in (omega, quaternion) next to the system averaged over the nutation in (G_z, H, r).")
+    plots = ("slow", "roots", "nutation", "validity")
+
+    @property
+    def schema(self) -> Table:
+        return Table({
+            **TITLE,
+            "body": Field(Table({"A": Field(float, required=True, doc="equatorial moment", unit="kg m^2",
+                                            check=positive),
+                                 "C": Field(float, required=True, doc="axial moment", unit="kg m^2", check=positive),
+                                 "mu": Field(float, required=True, doc="m g l", unit="N m", check=positive)}),
+                          required=True, doc="the top"),
+            "torque": Field(Table({"epsilon": Field(float, required=True, doc="eps", check=positive),
+                                   "a": Field(ListOf(float, min_len=1), required=True, doc="a_k: a(tau) = sum a_k tau^k"),
+                                   "b": Field(ListOf(float, min_len=1), required=True,
+                                              doc="b_k: b(tau) = sum b_k tau^k")}),
+                            required=True, doc="paper 003's torque (3.1)"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), required=True, doc="angular velocity in body axes", unit="rad/s",
+                               check=_all_finite),
+                "theta_deg": Field(float, default=0.0, doc="nutation angle", unit="deg", check=_finite),
+                "phi_deg": Field(float, default=0.0, doc="proper rotation angle", unit="deg", check=_finite),
+                "psi_deg": Field(float, default=0.0, doc="precession angle", unit="deg", check=_finite),
+            }), required=True, doc="the initial state (z-x-z Euler angles)"),
+            "integration": Field(Table({"method": METHOD, "rtol": Field(float, default=1e-10, doc="relative tolerance",
+                                                                        check=positive),
+                                        "atol": Field(float, default=1e-12, doc="absolute tolerance",
+                                                      check=non_negative),
+                                        "tau_end": Field(float, required=True, doc="end of the slow time tau = eps t",
+                                                         unit="s", check=positive),
+                                        "n_out": Field(int, default=4001, doc="number of output times",
+                                                       check=at_least(2))}),
+                                 required=True, doc="the run"),
+            "outputs": _outputs(self.plots, list(self.plots)),
+        })
+
+    def runs(self, doc):
+        b, tq, ini = doc["body"], doc["torque"], doc["initial"]
+        torque = _build("torque", lagrange.paper_torque, tq["epsilon"], tq["a"], tq["b"])
+        full = _build("body", lagrange.LagrangeTop, b["A"], b["C"], b["mu"], [torque])
+        averaged = _build("body", lagrange.LagrangeAveraged, b["A"], b["C"], b["mu"], [torque])
+        y0 = lagrange.initial_state(ini["omega"], math.radians(ini["theta_deg"]), math.radians(ini["phi_deg"]),
+                                    math.radians(ini["psi_deg"]))
+        span = (0.0, doc["integration"]["tau_end"] / tq["epsilon"])
+        options = _integration(doc)
+        return ([Run("full", full, y0, span, options), Run("averaged", averaged, y0, span, options)],
+                "full_and_averaged",
+                f"paper 003: full top (omega, quaternion) next to the nutation-averaged (G_z, H, r) system; "
+                f"epsilon = {tq['epsilon']:g}, a = {tq['a']}, b = {tq['b']}")
+
+
+LAW = Variants("kind", {
+    "constant": Table({"value": Field(float, required=True, doc="L", unit="N m", check=_finite)}),
+    "polynomial": Table({"coefficients": Field(ListOf(float, min_len=1), required=True, doc="c_i: L = sum c_i t^i")}),
+    "harmonic": Table({"mean": Field(float, required=True, doc="L0", unit="N m"),
+                       "amplitudes": Field(ListOf(float), default=[], doc="A_i", unit="N m"),
+                       "frequencies": Field(ListOf(float), default=[], doc="w_i", unit="rad/s"),
+                       "phases": Field(ListOf(float), doc="phi_i (default 0)", unit="rad")}),
+    "tabulated": Table({"times": Field(ListOf(float, min_len=2), required=True, doc="t_i", unit="s",
+                                       check=increasing),
+                        "values": Field(ListOf(float, min_len=2), required=True, doc="L_i", unit="N m"),
+                        "interpolation": Field(Choice("linear", "cubic"), default="linear", doc="between points")}),
+}, doc="the magnitude law L(t)")
+
+
+class OrthogonalTorqueKind(Kind):
+    name = "orthogonal_torque"
+    doc = ("Paper 004: a gyrostat under the servo torque L(t) Q/|Q|, Q = omega x G, one run per magnitude law, "
+           "compared with the torque-free gyrostat at tau(t) and, for a nearly spherical body, with the "
+           "approximations of section 4.")
+    plots = ("omega", "invariants", "tau", "euler_angles", "approximation_errors")
+
+    @property
+    def schema(self) -> Table:
+        return Table({
+            **TITLE,
+            "body": Field(BODY, doc="a gyrostat (or give [nearly_spherical])"),
+            "nearly_spherical": Field(Table({
+                "J": Field(float, required=True, doc="mean moment", unit="kg m^2", check=positive),
+                "Jj": Field(Vector(3), required=True, doc="A_j = J + mu J_j", unit="kg m^2"),
+                "mu": Field(float, required=True, doc="small parameter mu"),
+                "rotor": Field(Vector(3), default=[0.0, 0.0, 0.0], doc="rotor momentum k", unit="kg m^2/s"),
+                "G": Field(float, default=1.0, doc="|G|", unit="kg m^2/s", check=positive),
+                "theta0": Field(float, default=1.0, doc="initial nutation of G in body axes", unit="rad"),
+                "phi0": Field(float, default=0.0, doc="initial proper rotation", unit="rad"),
+                "psi0": Field(float, default=0.0, doc="initial precession", unit="rad"),
+            }), doc="a nearly spherical gyrostat A_j = J + mu J_j, its initial state from G and the Euler angles"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), doc="angular velocity (with [body])", unit="rad/s", check=_all_finite),
+                "attitude": Field(Vector(4), doc="quaternion (w, x, y, z); default: inertial z along G(0)",
+                                  check=_nonzero_quaternion),
+            }), default={}, doc="the initial state (with [body])"),
+            "runs": Field(ArrayOf(Table({"name": Field(str, required=True, doc="the run's name"),
+                                         "law": Field(OneOf(float, LAW), required=True,
+                                                      doc="L(t): a number, or a table with its kind")})),
+                          required=True, doc="one run per magnitude law"),
+            "integration": Field(Table({"method": METHOD,
+                                        "rtol": Field(float, default=1e-10, doc="relative tolerance", check=positive),
+                                        "atol": Field(float, default=1e-12, doc="absolute tolerance",
+                                                      check=non_negative),
+                                        "t_span": Field(Vector(2), default=[0.0, 60.0], doc="(t0, t1)", unit="s",
+                                                        check=_span_order),
+                                        "n_out": Field(int, default=1201, doc="number of output times",
+                                                       check=at_least(2)),
+                                        "eta": Field(float, default=orthogonal.ETA,
+                                                     doc="regularisation: delta = eta |omega| |G|", check=positive)}),
+                                 default={}, doc="the runs' integration"),
+            "outputs": _outputs(self.plots, list(self.plots)),
+        })
+
+    def spherical(self, doc: dict):
+        s = doc.get("nearly_spherical")
+        if s is None:
+            return None
+        return _build("nearly_spherical", orthogonal.NearlySpherical, s["J"], s["Jj"], s["mu"], s["rotor"], s["G"],
+                      s["theta0"], s["phi0"], s["psi0"])
+
+    def runs(self, doc):
+        if ("body" in doc) == ("nearly_spherical" in doc):
+            raise SceneError("needs exactly one of [body] or [nearly_spherical]"
+                             + ("; both are given" if "body" in doc else "; none is given"))
+        spherical = self.spherical(doc)
+        if spherical is not None:
+            body = spherical.body()
+            omega0, q0 = spherical.initial_state()
+            if doc["initial"]:
+                raise SceneError("[initial] is not used with [nearly_spherical] (the state follows from G and the angles)")
+        else:
+            body = _body(doc)
+            if "omega" not in doc["initial"]:
+                raise SceneError("[initial] is missing required key 'omega' (angular velocity in body axes [rad/s])")
+            omega0 = np.asarray(doc["initial"]["omega"], float)
+            if "attitude" in doc["initial"]:
+                q0 = np.asarray(doc["initial"]["attitude"], float)
+                q0 = q0 / np.linalg.norm(q0)
+            else:  # inertial z3 along G(0), ψ0 = 0: the Euler angles of (15)-(16)
+                q0 = orthogonal.attitude_along_momentum(np.asarray(body.moments) * omega0 + np.asarray(body.rotor))
+        integ = doc["integration"]
+        runs = []
+        for i, spec in enumerate(doc["runs"]):
+            law = _build(f"runs[{i}].law", orthogonal.law_from_spec, spec["law"])
+            model = _build(f"runs[{i}]", orthogonal.OrthogonalModel, body, law, (), True, integ["eta"])
+            runs.append(Run(spec["name"], model, np.concatenate([omega0, q0, [0.0]]), tuple(integ["t_span"]),
+                            _integration(doc)))
+        names = [r.name for r in runs]
+        if len(set(names)) != len(names):
+            raise SceneError(f"[runs] names must differ; got {names}")
+        return (runs, "orthogonal_torque", "full model in t with tau and the attitude quaternion (paper 004); the "
+                "torque-free (Zhukovsky-Volterra) solution at tau(t) and, for a nearly spherical body, the "
+                "approximations of section 4 for comparison")
+
+
+KINDS: dict[str, Kind] = {kind.name: kind for kind in (RigidBody(), Averaged(), MovingMass(), LagrangeTopKind(),
+                                                       OrthogonalTorqueKind())}
+"""The registry of scene kinds, by the name a scene gives as ``kind``."""
+
+
+# ------------------------------------------------------------------------------------ scenes
+@dataclass
+class Scene:
+    """A validated scene: its kind, its document (defaults filled in) and its runs."""
+
+    name: str
+    kind: Kind
+    doc: dict
+    runs: list[Run] = field(default_factory=list)
+    model_choice: str = ""
+    model_reason: str = ""
+
+    @property
+    def title(self) -> str:
+        return self.doc["title"] or self.name
+
+    @property
+    def description(self) -> str:
+        return self.doc["description"]
+
+    @property
+    def plots(self) -> list[str]:
+        return list(self.doc["outputs"]["plots"])
+
+    @classmethod
+    def from_dict(cls, data: dict, name: str = "scene") -> "Scene":
+        if not isinstance(data, dict):
+            raise SceneError(f"a scene is a table of keys, got {type(data).__name__}")
+        kind_name = data.get("kind", "rigid_body")
+        if kind_name not in KINDS:
+            import difflib
+
+            close = difflib.get_close_matches(str(kind_name), list(KINDS), n=1, cutoff=0.6)
+            raise SceneError(f"kind = {kind_name!r} is not a scene kind ({', '.join(KINDS)})"
+                             + (f"; did you mean {close[0]!r}?" if close else ""))
+        kind = KINDS[kind_name]
+        doc = validate(kind.schema, data)
+        runs, choice, reason = kind.runs(doc)
+        return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason)
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Scene":
         path = Path(path)
-        with path.open("rb") as handle:
-            try:
+        try:
+            with path.open("rb") as handle:
                 data = tomllib.load(handle)
-            except tomllib.TOMLDecodeError as error:
-                raise ValueError(f"{path}: not valid TOML: {error}") from None
+        except tomllib.TOMLDecodeError as error:
+            raise SceneError(f"not valid TOML: {error}") from None
+        except OSError as error:
+            raise SceneError(f"cannot read the scene: {error.strerror}") from None
         return cls.from_dict(data, name=path.stem)
 
-    @classmethod
-    def from_dict(cls, data: dict, name: str = "scene") -> "Scene":
-        body_spec = data.get("body")
-        if not isinstance(body_spec, dict):
-            raise ValueError("scene: missing [body] table")
-        moments = _vector(body_spec, "moments", 3, "body")
-        rotor = _vector(body_spec, "rotor", 3, "body") if "rotor" in body_spec else np.zeros(3)
-        body = _core.Body(moments, rotor)
-        torques = [_torque(spec, i) for i, spec in enumerate(data.get("torques", []))]
-        initial = data.get("initial", {})
-        omega0 = _vector(initial, "omega", 3, "initial")
-        attitude0 = _vector(initial, "attitude", 4, "initial") if "attitude" in initial else None
-        if attitude0 is not None:
-            norm = float(np.linalg.norm(attitude0))
-            if not math.isfinite(norm) or norm == 0.0:
-                raise ValueError(f"initial.attitude = {initial['attitude']!r} is not a usable quaternion")
-            attitude0 = attitude0 / norm
-        integ = data.get("integration", {})
-        model_choice = integ.get("model", "auto")
-        if model_choice not in KNOWN_MODELS:
-            raise ValueError(f"integration.model = {model_choice!r}; choose one of {', '.join(KNOWN_MODELS)}")
-        t_span = _vector(integ, "t_span", 2, "integration")
-        outputs = data.get("outputs", {})
-        plots = list(outputs.get("plots", ["omega", "invariants"]))
-        for plot in plots:
-            if plot not in KNOWN_PLOTS:
-                raise ValueError(f"outputs.plots: {plot!r} is not one of {', '.join(KNOWN_PLOTS)}")
-        reference = outputs.get("reference")
-        if reference not in (None, "closed_form"):
-            raise ValueError(f"outputs.reference = {reference!r}; only 'closed_form' is known")
-        return cls(
-            name=name,
-            title=str(data.get("title", name)),
-            description=str(data.get("description", "")),
-            body=body,
-            torques=torques,
-            omega0=omega0,
-            attitude0=attitude0,
-            model_choice=model_choice,
-            method=str(integ.get("method", "dop853")),
-            rtol=float(integ.get("rtol", 1e-8)),
-            atol=float(integ.get("atol", 1e-10)),
-            t_span=(float(t_span[0]), float(t_span[1])),
-            n_out=int(integ.get("n_out", 1001)),
-            plots=plots,
-            reference=reference,
-        )
 
-    @property
-    def needs_attitude(self) -> bool:
-        """The attitude is integrated only when the scene asks for it (an initial quaternion or
-        an Euler-angle plot)."""
-        return self.attitude0 is not None or "euler_angles" in self.plots
+def load(path: str | Path) -> Scene:
+    """Reads and validates a scene file; every problem is a one-line :class:`SceneError`."""
+    return Scene.from_toml(path)
 
-    def model(self) -> Model:
-        return Model(self.body, self.torques, attitude=self.needs_attitude)
 
-    def averaged_model(self):
-        from gyrostat.model import AveragedModel
-
-        return AveragedModel(self.body, self.torques)
-
-    @property
-    def slow0(self) -> np.ndarray:
-        """(a, r) of the initial state: a = √(p² + q²), r signed."""
-        return np.array([math.hypot(self.omega0[0], self.omega0[1]), self.omega0[2]])
-
-    def choose_model(self) -> tuple[str, str]:
-        """The cheapest model that answers the scene, and the reason for the choice."""
-        free = not self.torques and not np.any(np.asarray(self.body.rotor))
-        if self.model_choice == "closed_form":
-            if not free:
-                raise ValueError("integration.model = 'closed_form' needs a rigid body (k = 0) with no torque")
-            if self.needs_attitude:
-                raise ValueError("integration.model = 'closed_form' gives omega only; the scene asks for attitude")
-            return "closed_form", "asked for by the scene"
-        if self.model_choice in ("full", "averaged", "compare"):
-            return self.model_choice, "asked for by the scene"
-        if free and not self.needs_attitude:
-            return "closed_form", "no torque, no rotor, no attitude asked for: the closed form needs no integration"
-        reasons = []
-        if self.torques:
-            reasons.append(f"{len(self.torques)} torque(s)")
-        if np.any(np.asarray(self.body.rotor)):
-            reasons.append("a rotor (k != 0)")
-        if self.needs_attitude:
-            reasons.append("attitude asked for")
-        return "full", "full model: " + ", ".join(reasons)
+def scene_format() -> str:
+    """The reference of every scene kind (Markdown), from the schemas themselves."""
+    parts = ["# Scene files\n", "The top-level key `kind` selects one of the kinds below (`rigid_body` when absent).\n"]
+    for kind in KINDS.values():
+        parts.append(f"\n## kind = \"{kind.name}\"\n\n{kind.doc}\n\nPlots: {', '.join(kind.plots)}.\n")
+        parts.append(describe(kind.schema, title=f"{kind.name}: top level"))
+    parts.append("\n## Torques (`[[torques]]`, by `type`)\n")
+    parts.append(describe(Table({"torques": Field(ArrayOf(TORQUE), doc="torques")}), title="torques"))
+    return "\n".join(parts)

@@ -1,76 +1,167 @@
-"""The result of a run: arrays, statistics, status."""
+"""The result of a run of any model: times, states and named outputs, statistics, status."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
+from gyrostat import _core
 
-@dataclass
+_RATES = ("p", "q", "r")
+_QUATERNION = ("q_w", "q_x", "q_y", "q_z")
+
+
 class Solution:
-    """A trajectory.
+    """A trajectory of any model, as recorded by the engine.
 
     Attributes
     ----------
     t: (n,) output times.
-    y: (n, dim) states: ω = (p, q, r) and, with attitude, the quaternion (w, x, y, z) that
-       rotates body axes into inertial axes.
-    invariants: name → (n,) array: ``angular_momentum_norm`` |G| = |Jω + k| and
-       ``kinetic_energy`` T = ½ ω·Jω.
+    y: (n, dim) states; ``state_names`` names the columns.
+    outputs: name → (n,) array of the quantities the engine recorded at each output time
+       (invariants such as |G| and T, derived quantities such as Euler angles, τ, g, k²);
+       ``output_names`` lists them, ``conserved`` names the first integrals among them.
+    solution[name]: a state component or an output by name.
+    omega, quaternion: the angular velocity (n, 3) and attitude quaternion (n, 4) where the
+       model has them (a clear error otherwise).
     stats: steps, rhs_evals, rejected_steps, jacobian_evals, nonlinear_conv_failures, last_step.
-    status: ``"success"`` or why the run stopped (``max_steps_reached``,
-       ``step_size_underflow``, ``non_finite_state``, ``solver_failure``, ``invalid_input``);
-       a failed run keeps its partial trajectory.
+    status: ``"success"`` or why the run stopped (``max_steps_reached``, ``step_size_underflow``,
+       ``non_finite_state``, ``solver_failure``, ``invalid_input``, ``interrupted``); a failed
+       or interrupted run keeps its partial trajectory.
     message: the reason in words (empty on success).
     method: the integrator (or ``"closed_form"``).
+    notes: remarks added after the run (assumptions checked, paper-specific analysis).
+
+    The arrays are views of the engine's memory, made on first access: no copy, no physics
+    recomputed in Python.
     """
 
-    t: np.ndarray
-    y: np.ndarray
-    invariants: dict[str, np.ndarray]
-    stats: dict[str, float]
-    status: str
-    message: str
-    method: str
-    notes: list[str] = field(default_factory=list)
+    __slots__ = ("_result", "_columns", "notes", "model")
+
+    def __init__(self, result: _core.Result, model=None):
+        self._result = result
+        self._columns = None
+        self.notes: list[str] = []
+        self.model = model
+
+    # ---- arrays
+    @property
+    def t(self) -> np.ndarray:
+        return self._result.t
 
     @property
-    def success(self) -> bool:
-        return self.status == "success"
+    def y(self) -> np.ndarray:
+        return self._result.y
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(self._result.state_names)
+
+    @property
+    def output_names(self) -> tuple[str, ...]:
+        return tuple(self._result.output_names)
+
+    @property
+    def outputs(self) -> dict[str, np.ndarray]:
+        values = self._result.outputs
+        return {name: values[:, i] for i, name in enumerate(self._result.output_names)}
+
+    @property
+    def conserved(self) -> tuple[str, ...]:
+        """The outputs that are first integrals of the unperturbed model (|G|, T, G_z, H, …)."""
+        return tuple(n for n, c in zip(self._result.output_names, self._result.output_conserved) if c)
+
+    @property
+    def invariants(self) -> dict[str, np.ndarray]:
+        """The conserved outputs by name (a subset of :attr:`outputs`)."""
+        outputs = self.outputs
+        return {name: outputs[name] for name in self.conserved}
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name == "t":
+            return self.t
+        if self._columns is None:
+            self._columns = {name: ("y", i) for i, name in enumerate(self._result.state_names)}
+            self._columns.update({name: ("outputs", i) for i, name in enumerate(self._result.output_names)})
+        try:
+            where, i = self._columns[name]
+        except KeyError:
+            raise KeyError(f"{name!r} is neither a state component ({', '.join(self.state_names)}) nor an output "
+                           f"({', '.join(self.output_names)}) of this solution") from None
+        return getattr(self._result, where)[:, i]
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._result.state_names or name in self._result.output_names
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """t, every state component and every output, by name (what the CSV/NPZ writers save)."""
+        columns = {"t": self.t}
+        y = self.y
+        columns.update({name: y[:, i] for i, name in enumerate(self._result.state_names)})
+        columns.update(self.outputs)
+        return columns
 
     @property
     def omega(self) -> np.ndarray:
         """(n, 3) angular velocity in body axes."""
+        if tuple(self._result.state_names[:3]) != _RATES:
+            raise ValueError(f"this solution has no angular velocity in its state ({', '.join(self.state_names)})")
         return self.y[:, :3]
 
     @property
     def quaternion(self) -> np.ndarray:
-        """(n, 4) attitude quaternion (w, x, y, z); raises if the attitude was not integrated."""
-        if self.y.shape[1] < 7:
-            raise ValueError("this solution has no attitude: solve a Model(..., attitude=True)")
-        return self.y[:, 3:7]
+        """(n, 4) attitude quaternion (w, x, y, z), body → inertial."""
+        names = self._result.state_names
+        if "q_w" not in names:
+            raise ValueError(f"this solution has no attitude: its state is ({', '.join(names)}); "
+                             "solve a model with attitude (e.g. Model(..., attitude=True))")
+        first = names.index("q_w")
+        return self.y[:, first:first + 4]
 
-    def euler_angles(self) -> np.ndarray:
-        """(n, 3) Euler angles (ψ precession, θ nutation, φ proper rotation), z-x-z convention.
+    def euler_angles(self, convention: str = "zxz") -> np.ndarray:
+        """(n, 3) Euler angles of the attitude: ``"zxz"`` (ψ precession, θ nutation, φ proper
+        rotation; recorded by the engine) or ``"zyx"`` (yaw, pitch, roll). At the singular
+        angles the free rotation is put in ψ and φ = 0 (see :mod:`gyrostat.attitude`)."""
+        if convention == "zxz" and "psi" in self._result.output_names:
+            return np.column_stack([self["psi"], self["theta"], self["phi"]])
+        from gyrostat import attitude
 
-        Output only: they are singular at θ = 0 and π, where ψ and φ are split arbitrarily
-        (ψ is set to 0 there). The attitude is integrated as a quaternion.
-        """
-        w, x, y, z = self.quaternion.T
-        # Rotation matrix body → inertial; z-x-z: R = Rz(ψ) Rx(θ) Rz(φ).
-        r33 = 1 - 2 * (x * x + y * y)
-        r13 = 2 * (x * z + w * y)
-        r23 = 2 * (y * z - w * x)
-        r31 = 2 * (x * z - w * y)
-        r32 = 2 * (y * z + w * x)
-        theta = np.arccos(np.clip(r33, -1.0, 1.0))
-        psi = np.arctan2(r13, -r23)
-        phi = np.arctan2(r31, r32)
-        return np.column_stack([psi, theta, phi])
+        return attitude.euler_angles(self.quaternion, convention)
+
+    # ---- run information
+    @property
+    def stats(self) -> dict[str, float]:
+        s = self._result.stats
+        return {"steps": s.steps, "rhs_evals": s.rhs_evals, "rejected_steps": s.rejected_steps,
+                "jacobian_evals": s.jacobian_evals, "nonlinear_conv_failures": s.nonlinear_conv_failures,
+                "last_step": s.last_step}
+
+    @property
+    def status(self) -> str:
+        return self._result.status
+
+    @property
+    def message(self) -> str:
+        return self._result.message
+
+    @property
+    def method(self) -> str:
+        return self._result.method
+
+    @property
+    def success(self) -> bool:
+        return self._result.success
 
     def raise_for_status(self) -> "Solution":
         """Raises RuntimeError with the message when the run failed; returns self otherwise."""
         if not self.success:
             raise RuntimeError(f"{self.method}: {self.status}: {self.message}")
         return self
+
+    def __len__(self) -> int:
+        return len(self._result.t)
+
+    def __repr__(self) -> str:
+        t = self.t
+        span = f"t in [{t[0]:.6g}, {t[-1]:.6g}]" if len(t) else "no outputs"
+        return (f"<Solution {self.method}: {self.status}, {len(t)} outputs, {span}; state ({', '.join(self.state_names)});"
+                f" outputs ({', '.join(self.output_names)})>")

@@ -1,200 +1,267 @@
-"""solve, solve_ensemble and the closed form of the torque-free body."""
+"""One solve and one solve_ensemble for every model family, on the C++ engine."""
 
 from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.model import Model
+from gyrostat.model import ModelBase
 from gyrostat.solution import Solution
 
 METHODS: tuple[str, ...] = tuple(_core.methods())
 """Integrators: ``dop853`` (fixed-size, allocation-free; the default for non-stiff problems),
 ``taylor`` (adaptive-order Taylor series for the polynomial right-hand sides of the gyrostat
 with constant and linear torques: the fastest at tight tolerances), ``cvode_bdf`` (stiff),
-``cvode_adams``, ``arkode_fehlberg8``, ``arkode_verner6`` (see docs/integrators.md)."""
+``cvode_adams``, ``arkode_fehlberg8``, ``arkode_verner6`` (see docs/integrators.md). A model
+that needs no integration (:class:`gyrostat.TorqueFreeModel`) is evaluated in closed form
+whatever the method."""
+
+Options = _core.Options
+"""Every integrator option with its default, in one place (the C++ engine's ``Options``):
+``method``, ``rtol``, ``atol``, ``t_eval``, ``n_out``, ``every_step``, ``max_steps``,
+``first_step``, ``max_step``. ``repr(gyrostat.Options())`` shows the defaults."""
+
+_DEFAULT = _core.Options()
+_OPTION_NAMES = ("method", "rtol", "atol", "t_eval", "n_out", "every_step", "max_steps", "first_step", "max_step")
+_NUMBER_OPTIONS = {"rtol": float, "atol": float, "n_out": int, "max_steps": int, "first_step": float, "max_step": float}
 
 
-def _output_times(t_span, t_eval, n_out) -> tuple[float, float, list[float]]:
-    if len(t_span) != 2:
-        raise ValueError(f"t_span must be (t0, t1), got {t_span!r}")
-    t0, t1 = float(t_span[0]), float(t_span[1])
-    if t_eval is not None and n_out is not None:
+def make_options(options: Options | None = None, **given) -> Options:
+    """An :class:`Options` from keyword arguments (None: the default), starting from ``options``
+    when given. Bad values raise ValueError naming the option and the value."""
+    if options is None and all(v is None for v in given.values()):
+        return _DEFAULT
+    result = Options()
+    if options is not None:
+        for name in _OPTION_NAMES:
+            setattr(result, name, getattr(options, name))
+    for name, value in given.items():
+        if value is None:
+            continue
+        if name == "method":
+            if value not in METHODS:
+                raise ValueError(f"unknown method {value!r}; choose one of {', '.join(METHODS)}")
+            if value == "arkode_verner6":
+                warnings.warn(
+                    "arkode_verner6: the ARKODE_VERNER_8_5_6 table of SUNDIALS 6.4 converges at order 3, not 6 "
+                    "(measured; see docs/integrators.md): expect global errors far above rtol; prefer dop853",
+                    UserWarning, stacklevel=3)
+        elif name == "t_eval":
+            value = np.asarray(value, dtype=float)
+            if value.ndim != 1:
+                raise ValueError(f"t_eval must be one-dimensional, got shape {value.shape}")
+        elif name in _NUMBER_OPTIONS:
+            kind = _NUMBER_OPTIONS[name]
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+                raise ValueError(f"{name} = {value!r} must be a number")
+            if kind is int:
+                if not math.isfinite(value) or value != int(value):
+                    raise ValueError(f"{name} = {value!r} must be a whole number")
+                if abs(value) > 2**62:
+                    raise ValueError(f"{name} = {value!r} is too large")
+            value = kind(value)
+        elif name == "every_step":
+            value = bool(value)
+        else:
+            raise TypeError(f"unknown option {name!r}; options are {', '.join(_OPTION_NAMES)}")
+        setattr(result, name, value)
+    return result
+
+
+_CACHE: dict[tuple, Options] = {}
+
+
+def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step) -> Options:
+    """make_options, with the Options of recent keyword combinations kept (they are never
+    modified once made): repeated calls with the same options cost a dictionary look-up."""
+    if t_eval is None and options is None:
+        key = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step)
+        try:
+            return _CACHE[key]
+        except KeyError:
+            made = make_options(method=method, rtol=rtol, atol=atol, n_out=n_out, every_step=every_step,
+                                max_steps=max_steps, first_step=first_step, max_step=max_step)
+            if len(_CACHE) >= 256:
+                _CACHE.clear()
+            _CACHE[key] = made
+            return made
+        except TypeError:  # an unhashable value: checked (and refused) by make_options
+            pass
+    elif n_out is not None and t_eval is not None:
         raise ValueError("give t_eval or n_out, not both")
-    if t_eval is None:
-        n = 1001 if n_out is None else int(n_out)
-        if n < 2:
-            raise ValueError(f"n_out = {n_out} must be at least 2")
-        if not (math.isfinite(t0) and math.isfinite(t1)):
-            raise ValueError(f"t_span = ({t0}, {t1}) must be finite")
-        t_eval = np.linspace(t0, t1, n)
-    t_eval = np.asarray(t_eval, dtype=float)
-    if t_eval.ndim != 1:
-        raise ValueError(f"t_eval must be one-dimensional, got shape {t_eval.shape}")
-    return t0, t1, t_eval.tolist()
+    return make_options(options, method=method, rtol=rtol, atol=atol, t_eval=t_eval, n_out=n_out,
+                        every_step=every_step, max_steps=max_steps, first_step=first_step, max_step=max_step)
 
 
-def _state(model, y0) -> np.ndarray:
-    y0 = np.asarray(y0, dtype=float).ravel()
-    if model.attitude and y0.size == 3:
-        y0 = np.concatenate([y0, [1.0, 0.0, 0.0, 0.0]])
-    if y0.size != model.dim:
-        raise ValueError(f"initial state has {y0.size} components; this model needs {model.dim} ({', '.join(model.state_names)})")
-    return y0
+def _bad_call(core, y0, t0, t1) -> ValueError:
+    """The argument a failed call to the engine could not take, named (instead of pybind11's dump)."""
+    if not isinstance(t0, (int, float, np.integer, np.floating)) or not isinstance(t1, (int, float, np.integer,
+                                                                                        np.floating)):
+        return ValueError(f"t_span must be two numbers (t0, t1), got ({t0!r}, {t1!r})")
+    return ValueError(f"y0 must be a 1-D array of numbers, got {np.asarray(y0).dtype} values")
 
 
-def _solution(result: _core.Result) -> Solution:
-    stats = result.stats
-    return Solution(
-        t=np.asarray(result.t),
-        y=np.asarray(result.y),
-        invariants={name: np.asarray(result.invariants[:, i]) for i, name in enumerate(result.invariant_names)},
-        stats={
-            "steps": stats.steps,
-            "rhs_evals": stats.rhs_evals,
-            "rejected_steps": stats.rejected_steps,
-            "jacobian_evals": stats.jacobian_evals,
-            "nonlinear_conv_failures": stats.nonlinear_conv_failures,
-            "last_step": stats.last_step,
-        },
-        status=result.status,
-        message=result.message,
-        method=result.method,
-    )
+_BASE_CHECK = ModelBase.check
 
 
-def _check_method(method: str) -> None:
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-    if method == "arkode_verner6":
-        warnings.warn(
-            "arkode_verner6: the ARKODE_VERNER_8_5_6 table of SUNDIALS 6.4 converges at order 3, not 6 "
-            "(measured; see docs/integrators.md): expect global errors far above rtol; prefer dop853",
-            UserWarning, stacklevel=3)
+def _core_model(model):
+    try:
+        return model._core
+    except AttributeError:
+        raise TypeError(f"model must be a gyrostat model (Model, AveragedModel, MovingMassModel, TorqueFreeModel, "
+                        f"lagrange.LagrangeTop, lagrange.LagrangeAveraged, orthogonal.OrthogonalModel), not "
+                        f"{type(model).__name__}") from None
 
 
-def solve(
-    model,
-    y0,
-    t_span,
-    *,
-    method: str = "dop853",
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
-    t_eval=None,
-    n_out: int | None = None,
-    every_step: bool = False,
-    max_steps: int = 1_000_000,
-    first_step: float = 0.0,
-    max_step: float = math.inf,
-    check_validity: bool = True,
-) -> Solution:
-    """Integrates a model (:class:`Model`, :class:`AveragedModel`, :class:`MovingMassModel`)
-    from y0 over t_span = (t0, t1).
+def _span(t_span) -> tuple[float, float]:
+    try:
+        t0, t1 = t_span
+        return float(t0), float(t1)
+    except (TypeError, ValueError):
+        raise ValueError(f"t_span must be (t0, t1), got {t_span!r}") from None
 
-    For an averaged model the assumptions of the averaging (fast frequency against the slow
-    rates along the solution, near symmetry, the torques' own conditions) are checked after the
-    run: broken ones are warned about (:class:`gyrostat.ValidityWarning`) and listed in
-    ``solution.notes``; ``check_validity=False`` skips this.
 
-    Outputs are at ``t_eval`` or, by default, at ``n_out`` = 1001 evenly spaced times (dense
-    output between steps, so memory grows with the outputs, not with the steps). With
-    ``every_step=True`` every accepted step is recorded too.
+def _progress(progress):
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        import sys
 
-    A run that fails (too many steps, step-size underflow, a non-finite state) returns the
-    partial trajectory with ``status`` and ``message`` saying why; bad input (negative rtol,
-    NaN state, t_eval outside the span) raises ValueError naming the value.
-    """
-    _check_method(method)
-    t0, t1, times = _output_times(t_span, t_eval, n_out)
-    y = _state(model, y0)
-    result = _core.solve(model._core, y, t0, t1, method, float(rtol), float(atol), times, bool(every_step),
-                         int(max_steps), float(first_step), float(max_step))
-    solution = _solution(result)
-    if check_validity and getattr(model, "kind", "") == "averaged" and solution.t.size:
-        from gyrostat import validity
+        def report(fraction: float) -> None:
+            print(f"\r{100 * fraction:5.1f} %", end="", file=sys.stderr, flush=True)
 
-        broken = [a for a in validity.check(model, solution.y, solution.t, warn=True) if not a.holds]
-        solution.notes += [f"assumption broken: {a}" for a in broken]
+        return report
+    if not callable(progress):
+        raise TypeError(f"progress must be None, a bool or a callable of the fraction done, not {type(progress).__name__}")
+    return progress
+
+
+def _checked(solution: Solution, model, check_validity: bool) -> Solution:
+    if solution.status == "interrupted":
+        warnings.warn(f"interrupted: {solution.message}", RuntimeWarning, stacklevel=3)
+    if check_validity and type(model).check is not _BASE_CHECK and len(solution):
+        from gyrostat.validity import ValidityWarning
+
+        for assumption in model.check(solution):
+            if not assumption.holds:
+                solution.notes.append(f"assumption broken: {assumption}")
+                warnings.warn(str(assumption), ValidityWarning, stacklevel=3)
     return solution
 
 
-def solve_ensemble(
-    models: Model | Sequence[Model],
-    y0s,
-    t_span,
-    *,
-    method: str = "dop853",
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
-    t_eval=None,
-    n_out: int | None = None,
-    every_step: bool = False,
-    max_steps: int = 1_000_000,
-    first_step: float = 0.0,
-    max_step: float = math.inf,
-    threads: int = 0,
-) -> list[Solution]:
-    """Integrates N trajectories in one call on a pool of C++ threads (GIL released).
+def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = None, atol: float | None = None,
+          t_eval=None, n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
+          first_step: float | None = None, max_step: float | None = None, options: Options | None = None,
+          progress: bool | Callable[[float], object] | None = None, check_validity: bool = True) -> Solution:
+    """Solves any model from the initial state ``y0`` over ``t_span = (t0, t1)``.
 
-    ``y0s`` is (N, dim); ``models`` is one model for all members or a sequence of N. Results
-    come in index order and equal single :func:`solve` runs exactly. A member with bad input
-    gets ``status == "invalid_input"`` and its message; the others are unaffected.
-    ``threads`` ≤ 0 uses every hardware thread.
+    Parameters
+    ----------
+    model:
+        :class:`gyrostat.Model`, :class:`gyrostat.AveragedModel`, :class:`gyrostat.MovingMassModel`,
+        :class:`gyrostat.TorqueFreeModel`, :class:`gyrostat.lagrange.LagrangeTop`,
+        :class:`gyrostat.lagrange.LagrangeAveraged` or :class:`gyrostat.orthogonal.OrthogonalModel`.
+    y0:
+        The initial state (``model.state_names``), or a shorter one where the model completes it
+        (ω alone for a model with attitude: identity quaternion; τ(0) = 0 for the orthogonal
+        torque; a full top state for the averaged top: its (G_z, H, r)).
+    method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step:
+        Integrator options; None keeps the default of :class:`gyrostat.Options` (the one place
+        where defaults live: ``dop853``, rtol 1e-8, atol 1e-10, ``n_out`` = 1001 evenly spaced
+        output times). Outputs come from each method's dense output between steps, so memory
+        grows with the outputs asked for, not with the steps; ``every_step=True`` records every
+        accepted step as well. ``options`` gives them all at once.
+    progress:
+        A callable of the fraction done, called from the run at most every 0.1 s (``True``:
+        a percentage on stderr). Progress never changes the trajectory.
+    check_validity:
+        For an averaged model, check its assumptions along the solution; broken ones are warned
+        about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.
+
+    Returns
+    -------
+    Solution
+        Times, states and the model's named outputs recorded during the run. A failing run
+        (too many steps, step-size underflow, a non-finite state) returns its partial trajectory
+        with ``status`` and ``message``; Ctrl-C stops the run within a fraction of a second and
+        returns what was computed with status ``"interrupted"``. Bad input (negative rtol, NaN
+        state, t_eval outside the span, a state of the wrong size) raises ValueError naming the value.
     """
-    _check_method(method)
-    if not isinstance(models, (list, tuple)):
+    try:
+        core = model._core
+    except AttributeError:
+        core = _core_model(model)
+    opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step)
+    try:
+        t0, t1 = t_span
+    except (TypeError, ValueError):
+        t0, t1 = _span(t_span)
+    y0 = np.asarray(y0, dtype=float)
+    if y0.ndim != 1:
+        raise ValueError(f"y0 must be one state (a 1-D array), got shape {y0.shape}")
+    try:
+        result = _core.solve(core, y0, t0, t1, opts, progress if progress is None else _progress(progress))
+    except TypeError:
+        raise _bad_call(core, y0, t0, t1) from None
+    solution = Solution(result, model)
+    if result.success and (not check_validity or type(model).check is _BASE_CHECK):
+        return solution
+    return _checked(solution, model, check_validity)
+
+
+def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, threads: int = 0,
+                   method: str | None = None, rtol: float | None = None, atol: float | None = None, t_eval=None,
+                   n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
+                   first_step: float | None = None, max_step: float | None = None, options: Options | None = None,
+                   progress: bool | Callable[[float], object] | None = None,
+                   check_validity: bool = True) -> list[Solution]:
+    """Solves N trajectories in one call on a pool of C++ threads (GIL released).
+
+    ``models`` is one model for every member or a sequence of N (different parameters, or
+    different families, per member); ``y0s`` is (N, dim), or a sequence of N states (of each
+    member's own size, short states completed as in :func:`solve`). Results come in index order
+    and equal single :func:`solve` runs bit for bit. A member with bad input gets
+    ``status == "invalid_input"`` and its message; the others are unaffected. ``threads`` ≤ 0
+    uses every hardware thread. ``progress`` is called with the fraction of members finished;
+    Ctrl-C stops the members running (status ``"interrupted"``, partial trajectories kept) and
+    those not started (empty, ``"interrupted"``). Options as in :func:`solve`.
+    """
+    if isinstance(models, ModelBase):
         models = [models]
     models = list(models)
     if not models:
         raise ValueError("solve_ensemble needs at least one model")
-    y0s = np.asarray(y0s, dtype=float)
-    if y0s.ndim != 2:
-        raise ValueError(f"y0s must be (N, dim), got shape {y0s.shape}")
-    if models[0].attitude and y0s.shape[1] == 3:
-        y0s = np.hstack([y0s, np.tile([1.0, 0.0, 0.0, 0.0], (y0s.shape[0], 1))])
-    if len(models) not in (1, y0s.shape[0]):
-        raise ValueError(f"{len(models)} models for {y0s.shape[0]} initial states: give 1 or {y0s.shape[0]}")
-    if y0s.shape[1] != models[0].dim:
-        raise ValueError(f"y0s has {y0s.shape[1]} columns; the model needs {models[0].dim}")
-    t0, t1, times = _output_times(t_span, t_eval, n_out)
-    results = _core.solve_ensemble([m._core for m in models], y0s, t0, t1, method, float(rtol), float(atol), times,
-                                   bool(every_step), int(max_steps), float(first_step), float(max_step), int(threads))
-    return [_solution(r) for r in results]
+    cores = [_core_model(m) for m in models]
+    if isinstance(y0s, np.ndarray) or (y0s and not isinstance(y0s[0], (list, tuple, np.ndarray))):
+        y0s = np.asarray(y0s, dtype=float)
+        if y0s.ndim != 2:
+            raise ValueError(f"y0s must be (N, dim), got shape {y0s.shape}")
+        count = y0s.shape[0]
+    else:
+        y0s = [np.asarray(y, dtype=float).ravel() for y in y0s]
+        count = len(y0s)
+    if len(models) not in (1, count):
+        raise ValueError(f"{len(models)} models for {count} initial states: give 1 or {count}")
+    opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step)
+    t0, t1 = _span(t_span)
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
+        raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
+    results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), _progress(progress))
+    solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
+    return [_checked(s, s.model, check_validity) if s.success else s for s in solutions]
 
 
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
-    """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no integration.
+    """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no
+    integration. The same as ``solve(TorqueFreeModel(body), omega0, (t_eval[0], t_eval[-1]),
+    t_eval=t_eval)``."""
+    from gyrostat.model import TorqueFreeModel
 
-    Valid for a body without rotor (k = 0) and no torque; the attitude is not part of the closed
-    form. Returns a :class:`Solution` with ``method == "closed_form"`` and the invariants.
-    """
-    omega0 = np.asarray(omega0, dtype=float).ravel()
-    if omega0.size != 3:
-        raise ValueError(f"omega0 must have 3 components, got {omega0.size}")
     t = np.asarray(t_eval, dtype=float).ravel()
-    if not np.all(np.isfinite(t)):
-        raise ValueError("t_eval has non-finite values")
-    exact = _core.TorqueFreeSolution(body, omega0, float(t[0]) if t.size else 0.0)
-    omega = np.asarray(exact.omega(t.tolist()))
-    moments = np.asarray(body.moments)
-    solution = Solution(
-        t=t,
-        y=omega,
-        invariants={
-            "angular_momentum_norm": np.linalg.norm(omega * moments, axis=1),
-            "kinetic_energy": 0.5 * np.sum(moments * omega**2, axis=1),
-        },
-        stats={"steps": 0, "rhs_evals": 0, "rejected_steps": 0, "jacobian_evals": 0,
-               "nonlinear_conv_failures": 0, "last_step": 0.0},
-        status="success",
-        message="",
-        method="closed_form",
-    )
-    solution.notes.append(
-        f"closed form: m = k^2 = {exact.modulus_squared:.6g}, period of omega = {exact.period:.6g}")
-    return solution
+    if t.size == 0:
+        raise ValueError("t_eval is empty")
+    return solve(TorqueFreeModel(body), omega0, (t[0], t[-1]), t_eval=t)

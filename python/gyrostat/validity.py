@@ -145,10 +145,8 @@ def check_scene(scene, warn: bool = True) -> list[Assumption]:
 
     if not isinstance(scene, Scene):
         scene = Scene.from_toml(scene)
-    choice, _ = scene.choose_model()
     results: list[Assumption] = []
-    if choice in ("full", "compare"):
-        results += check(scene.model(), scene.omega0, warn=warn)
-    if choice in ("averaged", "compare"):
-        results += check(scene.averaged_model(), scene.slow0, warn=warn)
+    for run in scene.runs:
+        if run.model.kind in ("full", "averaged", "moving_mass"):
+            results += check(run.model, run.model.initial_state(run.y0), warn=warn)
     return results

@@ -7,6 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <algorithm>
+#include <atomic>
+
+#include "gyrostat/engine.hpp"
 #include "gyrostat/ensemble.hpp"
 #include "gyrostat/integrate/solve.hpp"
 #include "gyrostat/model/averaged.hpp"
@@ -29,6 +33,13 @@ static int failures = 0, passes = 0;
             std::printf("FAIL %s:%d: %s  [%s]\n", __FILE__, __LINE__, what, #cond); \
         }                                                                          \
     } while (0)
+
+/// The named output `name` of a Result at output row `row`.
+static double output(const integrate::Result& r, const char* name, std::size_t row) {
+    const auto it = std::find(r.output_names.begin(), r.output_names.end(), name);
+    if (it == r.output_names.end()) throw std::out_of_range(std::string("no output ") + name);
+    return r.outputs[row * r.output_names.size() + static_cast<std::size_t>(it - r.output_names.begin())];
+}
 
 template <class F>
 static bool throws_invalid(F f) {
@@ -72,10 +83,11 @@ int main() {
                     r.stats.steps);
         CHECK(err < bound, integrate::method_name(m));
         // |G| and T conserved to the tolerance level
-        const double g0 = r.invariants[0], e0 = r.invariants[1];
+        const double g0 = output(r, "angular_momentum_norm", 0), e0 = output(r, "kinetic_energy", 0);
         double drift = 0.0;
         for (std::size_t i = 0; i < r.size(); ++i)
-            drift = std::max({drift, std::abs(r.invariants[2 * i] - g0) / g0, std::abs(r.invariants[2 * i + 1] - e0) / e0});
+            drift = std::max({drift, std::abs(output(r, "angular_momentum_norm", i) - g0) / g0,
+                              std::abs(output(r, "kinetic_energy", i) - e0) / e0});
         CHECK(drift < bound, "invariant drift");  // |G|, T ~ 1: same size as the state error
     }
 
@@ -162,8 +174,10 @@ int main() {
         o.atol = 1e-13;
         const auto r = integrate::solve(mm, 0.0, mm.quasi_static_state(Vec3(0.8, 0.0, 1.0)), 20.0, o);
         CHECK(r.success(), "moving mass BDF");
-        CHECK(std::abs(r.invariants[2] / r.invariants[0] - 1.0) < 1e-8, "moving mass |K| conserved");
-        CHECK(r.invariants[3] < r.invariants[1], "moving mass energy dissipated");
+        const std::size_t last = r.size() - 1;
+        CHECK(std::abs(output(r, "angular_momentum_norm", last) / output(r, "angular_momentum_norm", 0) - 1.0) < 1e-8,
+              "moving mass |K| conserved");
+        CHECK(output(r, "energy", last) < output(r, "energy", 0), "moving mass energy dissipated");
     }
 
     // Lagrange top without perturbation: G_z, H, r conserved (rtol 1e-11 over 60 s: 1e-9).
@@ -176,8 +190,9 @@ int main() {
         o.rtol = 1e-11;
         o.atol = 1e-13;
         const auto r = integrate::solve(top, 0.0, y0, 60.0, o);
-        double drift = 0.0;
-        for (int k = 0; k < 3; ++k) drift = std::max(drift, std::abs(r.invariants[3 + k] - r.invariants[k]));
+        const std::size_t last = r.size() - 1;
+        double drift = std::abs(r.y[7 * last + 2] - r.y[2]);  // r
+        for (const char* name : {"G_z", "H"}) drift = std::max(drift, std::abs(output(r, name, last) - output(r, name, 0)));
         CHECK(r.success() && drift < 1e-9, "Lagrange top first integrals");
     }
 
@@ -193,9 +208,100 @@ int main() {
         const auto r = integrate::solve(servo, 0.0, y0, 60.0, o);
         const std::size_t last = r.size() - 1;
         CHECK(r.success(), "orthogonal torque run");
-        CHECK(std::abs(r.invariants[2 * last] / r.invariants[0] - 1.0) < 1e-9, "orthogonal |G|");
-        CHECK(std::abs(r.invariants[2 * last + 1] / r.invariants[1] - 1.0) < 1e-9, "orthogonal h");
+        CHECK(std::abs(output(r, "angular_momentum_norm", last) / output(r, "angular_momentum_norm", 0) - 1.0) < 1e-9,
+              "orthogonal |G|");
+        CHECK(std::abs(output(r, "h", last) / output(r, "h", 0) - 1.0) < 1e-9, "orthogonal h");
         CHECK(r.y[4 * last + 3] > 0.0 && r.y[4 * last + 3] < 60.0, "tau advances slower than t");
+    }
+
+    // The engine: every family through one variant, one solve, one ensemble (mixed families).
+    {
+        const Body sym(Vec3(1.5, 1.5, 1.0));
+        const TorqueSet damping({torque::LinearDamping(0.01 * Mat3::Identity())});
+        std::vector<AnyModel> models{model::Gyrostat<false>(body, damping),
+                                     model::Gyrostat<true>(body, damping),
+                                     model::AveragedSymmetric(Body(Vec3(8.0, 8.0, 4.0)),
+                                                              TorqueSet({torque::ViscousCavity(1260.0, 1000.0, 0.48)})),
+                                     model::MovingMass(Body(Vec3(4.0, 4.0, 2.0)), 1.0, 1.0, 10.0, 98.0, TorqueSet{}),
+                                     model::LagrangeTop(sym, 0.5, damping),
+                                     model::LagrangeAveraged(sym, 0.5, damping),
+                                     model::OrthogonalTorque<false>(Body(Vec3(2.0, 3.0, 4.0)), model::MagnitudeLaw::constant(0.1)),
+                                     model::OrthogonalTorque<true>(Body(Vec3(2.0, 3.0, 4.0)), model::MagnitudeLaw::constant(0.1)),
+                                     model::TorqueFree(body)};
+        Eigen::VectorXd top0(7);
+        top0 << 0.1, 0.0, 1.7, std::cos(0.25), std::sin(0.25), 0.0, 0.0;
+        std::vector<Eigen::VectorXd> starts{Eigen::Vector3d(w0), Eigen::Vector3d(w0), Eigen::Vector2d(1.0, 1.0),
+                                            Eigen::VectorXd::Zero(9), top0, top0, Eigen::Vector3d(w0),
+                                            Eigen::Vector3d(w0), Eigen::Vector3d(w0)};
+        starts[3].head<3>() = Vec3(1.0, 0.0, 1.0);
+        integrate::Options o;
+        o.method = Method::CvodeBdf;  // works for every family (the closed form ignores it)
+        o.n_out = 11;
+        std::vector<const AnyModel*> pointers;
+        for (const auto& m : models) pointers.push_back(&m);
+        const auto ensemble = solve_ensemble(pointers, starts, 0.0, 2.0, o, 2);
+        bool same = ensemble.size() == models.size();
+        for (std::size_t i = 0; i < models.size() && same; ++i) {
+            const auto single = solve(models[i], 0.0, starts[i], 2.0, o);
+            same = single.success() && single.y == ensemble[i].y && single.outputs == ensemble[i].outputs &&
+                   static_cast<int>(single.state_names.size()) == dim(models[i]) && single.t.size() == 11;
+        }
+        CHECK(same, "every family through the engine; ensemble of mixed families equals single runs");
+        CHECK(ensemble[1].y[3] == 1.0 && ensemble[1].state_names[3] == "q_w", "omega alone starts at the identity");
+        CHECK(ensemble[6].y[3] == 0.0 && ensemble[6].state_names[3] == "tau", "tau starts at 0");
+        CHECK(ensemble[8].method == "closed_form", "the torque-free model needs no integration");
+        CHECK(std::abs(ensemble[5].y[0] - output(ensemble[4], "G_z", 0)) < 1e-15,
+              "the averaged top starts from the full top's G_z");
+        CHECK(throws_invalid([&] {
+                  Eigen::VectorXd zero_attitude = Eigen::VectorXd::Zero(7);
+                  zero_attitude[0] = 1.0;
+                  solve(models[1], 0.0, zero_attitude, 1.0, o);
+              }),
+              "a zero quaternion is refused");
+    }
+
+    // Control: progress does not change the trajectory; a poll returning false interrupts the
+    // run (status Interrupted, outputs so far kept); a stop flag interrupts an ensemble.
+    {
+        const AnyModel damped = model::Gyrostat<true>(body, TorqueSet({torque::LinearDamping(1e-4 * Mat3::Identity())}));
+        integrate::Options o;
+        o.rtol = 1e-10;
+        o.n_out = 2001;
+        const auto plain = solve(damped, 0.0, Eigen::Vector3d(w0), 2000.0, o);
+        integrate::Control watch;
+        watch.interval = 0.0;  // poll as often as the ticker allows
+        long polls = 0;
+        double last = -1.0;
+        bool monotone = true;
+        watch.poll = [&](double fraction) {
+            monotone = monotone && fraction >= last && fraction <= 1.0;
+            last = fraction;
+            return ++polls > 0;
+        };
+        const auto watched = solve(damped, 0.0, Eigen::Vector3d(w0), 2000.0, o, &watch);
+        CHECK(polls > 10 && monotone, ("progress is reported, in order: " + std::to_string(polls) + " polls over " +
+                                       std::to_string(plain.stats.steps) + " steps").c_str());
+        CHECK(watched.y == plain.y && watched.stats.steps == plain.stats.steps, "progress leaves the run bit-identical");
+        integrate::Control stop_early;
+        stop_early.interval = 0.0;
+        stop_early.poll = [](double fraction) { return fraction < 0.25; };
+        for (Method m : {Method::Dop853, Method::Taylor, Method::CvodeBdf, Method::ArkodeFehlberg8}) {
+            o.method = m;
+            const auto stopped = solve(damped, 0.0, Eigen::Vector3d(w0), 2000.0, o, &stop_early);
+            const std::size_t n = stopped.size();  // polled every 64 steps: stops at 25 % or soon after
+            CHECK(stopped.status == integrate::Status::Interrupted && n > 1 && n < 2001 &&
+                      stopped.t[n - 1] >= 0.2 * 2000.0 && stopped.t == std::vector<double>(plain.t.begin(), plain.t.begin() + n),
+                  integrate::method_name(m));
+        }
+        std::atomic<bool> stop{true};
+        integrate::Control stopped_before;
+        stopped_before.stop = &stop;
+        std::vector<const AnyModel*> members(4, &damped);
+        const auto none = solve_ensemble(members, std::vector<Eigen::VectorXd>(4, Eigen::Vector3d(w0)), 0.0, 10.0, o, 2,
+                                         &stopped_before);
+        bool all_interrupted = true;
+        for (const auto& r : none) all_interrupted = all_interrupted && r.status == integrate::Status::Interrupted;
+        CHECK(all_interrupted, "a stopped ensemble returns its members as interrupted");
     }
 
     std::printf("%d passed, %d failed\n", passes, failures);

@@ -3,54 +3,126 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <exception>
+#include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
+#include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/solve.hpp"
 
 namespace gyrostat {
 
-/// Solves member i from (t0, initial_states[i]) to t1 with systems[i] (or systems[0] for every
-/// member when one system is given), on `threads` threads (≤ 0: one per hardware thread).
-/// Results come in index order and are identical to single runs: each member runs the same code
-/// on its own data. A member that throws (bad input) gets status InvalidInput and the message;
-/// the others are unaffected.
-template <class System>
-std::vector<integrate::Result> solve_ensemble(const std::vector<System>& systems,
-                                              const std::vector<typename System::State>& initial_states, double t0,
-                                              double t1, const integrate::Options& options, int threads = 0) {
-    const std::size_t n = initial_states.size();
-    if (systems.size() != 1 && systems.size() != n)
-        throw std::invalid_argument("solve_ensemble: " + std::to_string(systems.size()) + " systems for " +
-                                    std::to_string(n) + " initial states (give 1 or " + std::to_string(n) + ")");
-    integrate::validate(options, t0, t1);
-    std::vector<integrate::Result> results(n);
-    std::atomic<std::size_t> next{0};
+/// Runs `solve_member(i, control)` for i = 0..n−1 on `threads` threads (≤ 0: one per hardware
+/// thread) and returns the results in index order. Each member runs the same code on its own
+/// data, so results equal single runs bit for bit. A member that throws gets status
+/// InvalidInput and the message; the others are unaffected. With a `control`, the calling
+/// thread reports the fraction of members finished through control->poll; when poll returns
+/// false, running members stop (status Interrupted, partial trajectory kept) and members not
+/// started yet are returned empty with status Interrupted. When a thread cannot be created the
+/// ensemble runs on the threads it has (at least the calling one).
+template <class SolveMember>
+std::vector<integrate::Result> run_ensemble(std::size_t n, SolveMember&& solve_member, int threads,
+                                            const integrate::Control* control = nullptr) {
+    using integrate::Result;
+    std::vector<Result> results(n);
+    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<bool> stop{false};
+    std::mutex mutex;
+    std::condition_variable finished;
+    // The caller's wish to stop, through its poll or its own stop flag, at a fraction done.
+    auto caller_continues = [&](double fraction) {
+        if (control->stop && control->stop->load()) return false;
+        return !control->poll || control->poll(fraction);
+    };
+    integrate::Control member_control;
+    member_control.stop = &stop;
+    if (control && control->stop && control->stop->load()) stop = true;  // stopped before it started
+    const bool inline_only = threads == 1 || n <= 1;
+    if (inline_only && control) {  // the calling thread polls between its own steps
+        member_control.interval = control->interval;
+        member_control.poll = [&](double fraction) {
+            return caller_continues((static_cast<double>(done.load()) + fraction) / static_cast<double>(n));
+        };
+    }
     auto worker = [&]() {
         for (std::size_t i = next++; i < n; i = next++) {
-            const System& system = systems.size() == 1 ? systems[0] : systems[i];
-            try {
-                results[i] = integrate::solve(system, t0, initial_states[i], t1, options);
-            } catch (const std::exception& e) {
-                results[i] = integrate::Result{};
-                results[i].method = integrate::method_name(options.method);
-                results[i].dim = System::dim;
-                results[i].status = integrate::Status::InvalidInput;
-                results[i].message = "member " + std::to_string(i) + ": " + e.what();
+            if (stop.load()) {
+                results[i].status = integrate::Status::Interrupted;
+                results[i].message = "member " + std::to_string(i) + ": not started, the ensemble was interrupted";
+            } else {
+                try {
+                    results[i] = solve_member(i, &member_control);
+                } catch (const std::exception& e) {
+                    results[i] = Result{};
+                    results[i].status = integrate::Status::InvalidInput;
+                    results[i].message = "member " + std::to_string(i) + ": " + e.what();
+                }
+                if (results[i].status == integrate::Status::Interrupted) stop = true;  // the caller asked
             }
+            ++done;
+            std::lock_guard<std::mutex> lock(mutex);
+            finished.notify_all();
         }
     };
     unsigned count = threads > 0 ? static_cast<unsigned>(threads) : std::max(1u, std::thread::hardware_concurrency());
     count = static_cast<unsigned>(std::min<std::size_t>(count, std::max<std::size_t>(n, 1)));
-    if (count <= 1) {
+    if (inline_only || count <= 1) {
         worker();
         return results;
     }
     std::vector<std::thread> pool;
     pool.reserve(count);
-    for (unsigned k = 0; k < count; ++k) pool.emplace_back(worker);
+    for (unsigned k = 0; k < count; ++k) {
+        try {
+            pool.emplace_back(worker);
+        } catch (const std::system_error&) {
+            break;  // no more threads to be had: the ones started (or this one) do the work
+        }
+    }
+    if (pool.empty()) {
+        worker();
+        return results;
+    }
+    if (control) {
+        std::unique_lock<std::mutex> lock(mutex);
+        const auto interval = std::chrono::duration<double>(control->interval);
+        while (done.load() < n) {
+            finished.wait_for(lock, interval);
+            lock.unlock();
+            if (!stop.load() && !caller_continues(static_cast<double>(done.load()) / static_cast<double>(n))) stop = true;
+            lock.lock();
+        }
+    }
     for (auto& thread : pool) thread.join();
+    return results;
+}
+
+/// The ensemble of one model type: member i solves systems[i] (or systems[0] for every member
+/// when one system is given) from (t0, initial_states[i]) to t1.
+template <class System>
+std::vector<integrate::Result> solve_ensemble(const std::vector<System>& systems,
+                                              const std::vector<typename System::State>& initial_states, double t0,
+                                              double t1, const integrate::Options& options, int threads = 0,
+                                              const integrate::Control* control = nullptr) {
+    const std::size_t n = initial_states.size();
+    if (systems.size() != 1 && systems.size() != n)
+        throw std::invalid_argument("solve_ensemble: " + std::to_string(systems.size()) + " systems for " +
+                                    std::to_string(n) + " initial states (give 1 or " + std::to_string(n) + ")");
+    integrate::validate(options, t0, t1);
+    auto results = run_ensemble(
+        n,
+        [&](std::size_t i, const integrate::Control* member) {
+            return integrate::solve(systems.size() == 1 ? systems[0] : systems[i], t0, initial_states[i], t1, options,
+                                    member);
+        },
+        threads, control);
+    for (auto& r : results)
+        if (r.state_names.empty()) integrate::describe<System>(r), r.method = integrate::method_name(options.method);
     return results;
 }
 

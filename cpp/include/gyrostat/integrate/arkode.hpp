@@ -10,6 +10,11 @@ namespace gyrostat::integrate {
 
 namespace arkode_detail {
 
+struct ErkDeleter {
+    void operator()(void* mem) const { ERKStepFree(&mem); }
+};
+
+/// Owns the ERKStep memory (released even when set-up throws).
 template <class System>
 class ErkStepper {
 public:
@@ -17,39 +22,35 @@ public:
     // output time instead of interpolating, so outputs carry the method's accuracy.
     static constexpr bool exact_outputs = true;
 
-    ErkStepper(ARKODE_ERKTableID table, const sundials::Context& ctx, N_Vector y, double t0, const Options& o,
-               sundials::CallbackData<System>& data, sundials::ErrorLog& log) {
+    ErkStepper(ARKODE_ERKTableID table, SUNContext ctx, N_Vector y, double t0, const Options& o,
+               sundials::CallbackData<System>& data, sundials::ErrorLog& log)
+        : mem_(sundials::created(ERKStepCreate(&sundials::rhs_callback<System>, t0, y, ctx), "ERKStepCreate")) {
         using namespace sundials;
-        mem_ = ERKStepCreate(&rhs_callback<System>, t0, y, ctx);
-        if (mem_ == nullptr) throw std::runtime_error("ERKStepCreate failed");
-        check(ERKStepSetErrHandlerFn(mem_, &ErrorLog::handler, &log), "ERKStepSetErrHandlerFn");
-        check(ERKStepSetTableNum(mem_, table), "ERKStepSetTableNum");
-        check(ERKStepSStolerances(mem_, o.rtol, o.atol), "ERKStepSStolerances");
-        check(ERKStepSetUserData(mem_, &data), "ERKStepSetUserData");
-        check(ERKStepSetMaxHnilWarns(mem_, 1), "ERKStepSetMaxHnilWarns");
-        if (o.first_step > 0.0) check(ERKStepSetInitStep(mem_, o.first_step), "ERKStepSetInitStep");
-        if (std::isfinite(o.max_step)) check(ERKStepSetMaxStep(mem_, o.max_step), "ERKStepSetMaxStep");
-        if constexpr (System::has_projection)
-            check(ERKStepSetPostprocessStepFn(mem_, &project_callback<System>), "ERKStepSetPostprocessStepFn");
+        void* mem = mem_.get();
+        check(ERKStepSetErrHandlerFn(mem, &ErrorLog::handler, &log), "ERKStepSetErrHandlerFn");
+        check(ERKStepSetTableNum(mem, table), "ERKStepSetTableNum");
+        check(ERKStepSStolerances(mem, o.rtol, o.atol), "ERKStepSStolerances");
+        check(ERKStepSetUserData(mem, &data), "ERKStepSetUserData");
+        check(ERKStepSetMaxHnilWarns(mem, 1), "ERKStepSetMaxHnilWarns");
+        check(ERKStepSetMaxNumSteps(mem, -1), "ERKStepSetMaxNumSteps");  // the driver counts steps over the whole run
+        if (o.first_step > 0.0) check(ERKStepSetInitStep(mem, o.first_step), "ERKStepSetInitStep");
+        if (std::isfinite(o.max_step)) check(ERKStepSetMaxStep(mem, o.max_step), "ERKStepSetMaxStep");
+        if constexpr (model::system::has_projection<System>::value)
+            check(ERKStepSetPostprocessStepFn(mem, &project_callback<System>), "ERKStepSetPostprocessStepFn");
     }
-    ~ErkStepper() { ERKStepFree(&mem_); }
-    ErkStepper(const ErkStepper&) = delete;
-    ErkStepper& operator=(const ErkStepper&) = delete;
 
-    int evolve(double tout, N_Vector y, double* t, bool one_step) {
-        return ERKStepEvolve(mem_, tout, y, t, one_step ? ARK_ONE_STEP : ARK_NORMAL);
-    }
+    int evolve(double tout, N_Vector y, double* t) { return ERKStepEvolve(mem_.get(), tout, y, t, ARK_ONE_STEP); }
     bool suggest_stiff() const { return true; }
-    void set_stop_time(double t) { sundials::check(ERKStepSetStopTime(mem_, t), "ERKStepSetStopTime"); }
-    void set_max_steps(long n) { sundials::check(ERKStepSetMaxNumSteps(mem_, n), "ERKStepSetMaxNumSteps"); }
-    void interpolate(double t, N_Vector y) { sundials::check(ERKStepGetDky(mem_, t, 0, y), "ERKStepGetDky"); }
+    void set_stop_time(double t) { sundials::check(ERKStepSetStopTime(mem_.get(), t), "ERKStepSetStopTime"); }
+    void interpolate(double t, N_Vector y) { sundials::check(ERKStepGetDky(mem_.get(), t, 0, y), "ERKStepGetDky"); }
 
     Stats stats() const {
+        void* mem = mem_.get();
         Stats s;
-        ERKStepGetNumSteps(mem_, &s.steps);
-        ERKStepGetNumRhsEvals(mem_, &s.rhs_evals);
-        ERKStepGetNumErrTestFails(mem_, &s.rejected_steps);
-        ERKStepGetLastStep(mem_, &s.last_step);
+        ERKStepGetNumSteps(mem, &s.steps);
+        ERKStepGetNumRhsEvals(mem, &s.rhs_evals);
+        ERKStepGetNumErrTestFails(mem, &s.rejected_steps);
+        ERKStepGetLastStep(mem, &s.last_step);
         return s;
     }
     static Status classify(int flag) {
@@ -75,7 +76,7 @@ public:
     }
 
 private:
-    void* mem_ = nullptr;
+    std::unique_ptr<void, ErkDeleter> mem_;
 };
 
 }  // namespace arkode_detail
@@ -83,26 +84,11 @@ private:
 /// Integrates with ARKODE's explicit Runge–Kutta stepper and the given Butcher table.
 template <class System>
 Result arkode_erk(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
-                  ARKODE_ERKTableID table, Method method) {
-    validate(options, t0, t1);
-    require_finite(y0, "initial state y0");
-    Result result;
-    result.method = method_name(method);
-    sundials::Context ctx;
-    sundials::Vector y = sundials::make_vector(System::dim, ctx);
-    typename System::State start = y0;
-    system.project(start);
-    Eigen::Map<typename System::State>(N_VGetArrayPointer(y.get())) = start;
-    sundials::CallbackData<System> data{&system};
-    sundials::ErrorLog log;
-    if (t0 == t1) {  // nothing to integrate: every output time is t0
-        Recorder<System> record(system, result, 1);
-        for (double t : output_times(options, t0, t1)) record.push(t, start);
-        return result;
-    }
-    arkode_detail::ErkStepper<System> stepper(table, ctx, y.get(), t0, options, data, log);
-    sundials::drive(system, stepper, y.get(), t0, t1, options, data, log, result);
-    return result;
+                  ARKODE_ERKTableID table, Method method, const Control* control = nullptr) {
+    return sundials::run(system, t0, y0, t1, options, method, control,
+                         [&](SUNContext ctx, N_Vector y, sundials::CallbackData<System>& data, sundials::ErrorLog& log) {
+                             return arkode_detail::ErkStepper<System>(table, ctx, y, t0, options, data, log);
+                         });
 }
 
 }  // namespace gyrostat::integrate

@@ -16,7 +16,7 @@ template <class System>
 std::complex<double> dominant_eigenvalue(const System& system, double t, const typename System::State& y) {
     using State = typename System::State;
     Eigen::Matrix<double, System::dim, System::dim> jac;
-    if constexpr (System::has_jacobian) {
+    if constexpr (model::system::has_jacobian<System>::value) {
         system.jacobian(t, y, jac);
     } else {
         State f0, f1, yp = y;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/diagnose.hpp"
 #include "gyrostat/integrate/dop853_tableau.hpp"
 #include "gyrostat/integrate/options.hpp"
@@ -32,7 +33,8 @@ double rms(const State& v) {
 /// Integrates `system` from (t0, y0) to t1. Never throws on a failing run: the result carries the
 /// partial trajectory, the status and the reason. Throws std::invalid_argument on bad options.
 template <class System>
-Result dop853(const System& system, double t0, const typename System::State& y0, double t1, const Options& options) {
+Result dop853(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
+              const Control* control = nullptr) {
     using namespace dop853_detail;
     namespace tab = dop853_tableau;
     using State = typename System::State;
@@ -53,7 +55,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
 
     double t = t0;
     State y = y0;
-    system.project(y);
+    model::system::project(system, y);
     State f;
     system.rhs(t, y, f);
     ++stats.rhs_evals;
@@ -87,8 +89,13 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
 
     std::array<State, tab::n_stages_extended> k;
     State y_new, f_new, err5, err3, scale;
+    Ticker ticker(control, t0, t1);
 
     while (direction * (t - t1) < 0.0) {
+        if (!ticker.keep_going(t)) {
+            mark_interrupted(result, t);
+            return result;
+        }
         if (stats.steps >= options.max_steps) {
             result.status = Status::MaxStepsReached;
             result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
@@ -207,7 +214,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
             }
         }
 
-        if constexpr (System::has_projection) {
+        if constexpr (model::system::has_projection<System>::value) {
             system.project(y_new);
             system.rhs(t_new, y_new, f_new);
             ++stats.rhs_evals;

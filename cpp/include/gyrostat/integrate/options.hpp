@@ -19,14 +19,17 @@ enum class Method {
 Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names
 const char* method_name(Method m);
 std::vector<std::string> method_names();
-bool method_is_explicit(Method m);
 
+/// Every option of every integrator, with its default: the one place where defaults live
+/// (the Python layer reads them from here).
 struct Options {
     Method method = Method::Dop853;
     double rtol = 1e-8;
     double atol = 1e-10;
-    /// Output times (monotone in the direction of integration, inside [t0, t1]). Empty: t0 and t1.
+    /// Output times (monotone in the direction of integration, inside [t0, t1]). When empty:
+    /// n_out evenly spaced times from t0 to t1 (n_out = 0: t0 and t1 only).
     std::vector<double> t_eval;
+    long n_out = 1001;
     /// Also record every accepted step (memory then grows with the steps: asked for explicitly).
     bool every_step = false;
     long max_steps = 1'000'000;                                   ///< over the whole run
@@ -41,6 +44,7 @@ enum class Status {
     NonFiniteState,      ///< the state or its derivative became inf/NaN
     SolverFailure,       ///< any other failure reported by SUNDIALS (convergence, setup)
     InvalidInput,        ///< an ensemble member whose input was rejected (the others still run)
+    Interrupted,         ///< stopped on request (Control::poll returned false, or Ctrl-C)
 };
 const char* status_name(Status s);
 
@@ -53,15 +57,17 @@ struct Stats {
     double last_step = 0.0;    ///< size of the last accepted step (0 when none)
 };
 
-/// A trajectory: n output times, n×dim states (row-major), n×n_inv invariants.
+/// A trajectory: n output times, n×dim states and n×n_outputs named outputs (row-major).
 /// A failed run keeps everything up to the failure and says why in `message`.
 struct Result {
     std::string method;
     int dim = 0;
+    std::vector<std::string> state_names;
+    std::vector<std::string> output_names;
+    std::vector<bool> output_conserved;   ///< per output: a first integral of the unperturbed model
     std::vector<double> t;
     std::vector<double> y;
-    std::vector<std::string> invariant_names;
-    std::vector<double> invariants;
+    std::vector<double> outputs;
     Stats stats;
     Status status = Status::Success;
     std::string message;
@@ -74,7 +80,7 @@ struct Result {
 /// std::invalid_argument naming the bad value.
 void validate(const Options& options, double t0, double t1);
 
-/// The output times: t_eval or {t0, t1}.
+/// The output times: t_eval, or n_out evenly spaced times, or {t0, t1}.
 std::vector<double> output_times(const Options& options, double t0, double t1);
 
 }  // namespace gyrostat::integrate

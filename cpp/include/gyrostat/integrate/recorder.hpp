@@ -1,4 +1,4 @@
-// Collects outputs (time, state, invariants) into a Result; shared by every integrator.
+// Collects outputs (time, state, named outputs) into a Result; shared by every integrator.
 #pragma once
 
 #include <cmath>
@@ -9,30 +9,51 @@
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/integrate/options.hpp"
+#include "gyrostat/model/system.hpp"
 
 namespace gyrostat::integrate {
+
+/// Names the state and the outputs of `System` in a Result (also for a run that fails before
+/// its first output, so that an empty Result still says what it would hold).
+template <class System>
+void describe(Result& result) {
+    namespace sys = model::system;
+    result.dim = System::dim;
+    result.state_names.assign(System::state_names.begin(), System::state_names.end());
+    result.output_names.clear();
+    result.output_conserved.clear();
+    if constexpr (sys::has_outputs<System>::value) {
+        for (const auto& info : System::outputs_info) {
+            result.output_names.emplace_back(info.name);
+            result.output_conserved.push_back(info.conserved);
+        }
+    }
+}
 
 template <class System>
 class Recorder {
 public:
     using State = typename System::State;
+    static constexpr int n_outputs = model::system::n_outputs<System>();
 
     Recorder(const System& system, Result& result, std::size_t expected) : system_(system), result_(result) {
-        result_.dim = System::dim;
-        result_.invariant_names.assign(System::invariant_names.begin(), System::invariant_names.end());
+        describe<System>(result_);
         result_.t.reserve(expected);
         result_.y.reserve(expected * System::dim);
-        result_.invariants.reserve(expected * System::n_invariants);
+        result_.outputs.reserve(expected * n_outputs);
     }
 
-    /// Records y(t); constrained parts (a quaternion) are projected back onto their manifold first.
+    /// Records y(t) and the model's named outputs there; constrained parts (a quaternion) are
+    /// projected back onto their manifold first.
     void push(double t, State y) {
-        system_.project(y);
+        model::system::project(system_, y);
         result_.t.push_back(t);
         result_.y.insert(result_.y.end(), y.data(), y.data() + System::dim);
-        double inv[System::n_invariants > 0 ? System::n_invariants : 1];
-        system_.invariants(t, y, inv);
-        result_.invariants.insert(result_.invariants.end(), inv, inv + System::n_invariants);
+        if constexpr (n_outputs > 0) {
+            double out[n_outputs];
+            model::system::outputs(system_, t, y, out);
+            result_.outputs.insert(result_.outputs.end(), out, out + n_outputs);
+        }
     }
 
 private:
@@ -52,6 +73,12 @@ bool all_finite(const State& y) {
     for (Eigen::Index i = 0; i < y.size(); ++i)
         if (!std::isfinite(y[i])) return false;
     return true;
+}
+
+/// Ends a run that was asked to stop: status Interrupted, and where.
+inline void mark_interrupted(Result& result, double t) {
+    result.status = Status::Interrupted;
+    result.message = "interrupted at t = " + format_number(t, 17) + " on request; the outputs up to there are kept";
 }
 
 }  // namespace gyrostat::integrate

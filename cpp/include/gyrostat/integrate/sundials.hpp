@@ -4,6 +4,8 @@
 
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_nonlinearsolver.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <cmath>
@@ -39,11 +41,31 @@ Vector make_vector(int n, SUNContext ctx);
 /// Collects SUNDIALS's error and warning messages instead of letting them reach stderr.
 struct ErrorLog {
     std::string last_error;
-    long warnings = 0;
-    std::string last_warning;
     bool step_below_resolution = false;  ///< SUNDIALS warned "t + h = t"
     static void handler(int error_code, const char* module, const char* function, char* msg, void* data);
 };
+
+/// Owners of the SUNDIALS objects a stepper creates, released in reverse order of creation even
+/// when a later set-up call throws.
+struct MatrixDeleter {
+    void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
+};
+struct LinearSolverDeleter {
+    void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
+};
+struct NonlinearSolverDeleter {
+    void operator()(_generic_SUNNonlinearSolver* s) const { SUNNonlinSolFree(s); }
+};
+using Matrix = std::unique_ptr<_generic_SUNMatrix, MatrixDeleter>;
+using LinearSolver = std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter>;
+using NonlinearSolver = std::unique_ptr<_generic_SUNNonlinearSolver, NonlinearSolverDeleter>;
+
+/// Throws std::runtime_error("<what> failed") when a SUNDIALS constructor returned null.
+template <class Pointer>
+Pointer created(Pointer p, const char* what) {
+    if (p == nullptr) throw std::runtime_error(std::string(what) + " failed");
+    return p;
+}
 
 /// What the C callbacks see: the system and whether a non-finite derivative was met.
 template <class System>
@@ -77,9 +99,9 @@ template <class System>
 int jacobian_callback(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user_data, N_Vector, N_Vector,
                       N_Vector) {
     auto* data = static_cast<CallbackData<System>*>(user_data);
-    typename System::Jacobian j;
+    model::system::Jacobian<System> j;
     data->system->jacobian(t, StateMap<System>(N_VGetArrayPointer(y)), j);
-    Eigen::Map<typename System::Jacobian>(SM_DATA_D(jac)) = j;
+    Eigen::Map<model::system::Jacobian<System>>(SM_DATA_D(jac)) = j;
     return all_finite(Eigen::Map<const Eigen::VectorXd>(j.data(), j.size())) ? 0 : 1;
 }
 
@@ -89,7 +111,7 @@ int project_callback(double /*t*/, N_Vector y, void* user_data) {
     auto* data = static_cast<CallbackData<System>*>(user_data);
     Eigen::Map<typename System::State> state(N_VGetArrayPointer(y));
     typename System::State projected = state;
-    data->system->project(projected);
+    model::system::project(*data->system, projected);
     state = projected;
     return 0;
 }

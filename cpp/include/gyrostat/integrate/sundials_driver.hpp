@@ -1,21 +1,29 @@
-// The output loop shared by the CVODE and ARKODE integrators.
+// What CVODE and ARKODE runs share: the set-up of a run (checks, context, state vector), and the
+// loop that steps, records the outputs and reports failures.
 #pragma once
 
+#include <optional>
+
+#include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/diagnose.hpp"
 #include "gyrostat/integrate/sundials.hpp"
 
 namespace gyrostat::integrate::sundials {
 
 /// A SUNDIALS stepper as the driver sees it (see CvodeStepper, ErkStepper):
-///   int evolve(double tout, N_Vector y, double* t, bool one_step);
-///   void set_stop_time(double); void set_max_steps(long);
-///   void interpolate(double t, N_Vector y);   // dense output inside the last step
+///   int evolve(double tout, N_Vector y, double* t);   // one step (ONE_STEP mode)
+///   void set_stop_time(double);
+///   void interpolate(double t, N_Vector y);           // dense output inside the last step
 ///   Stats stats(); Status classify(int flag); std::string flag_name(int flag);
-///   static constexpr bool exact_outputs;      // step to each output time instead of interpolating
-///   bool suggest_stiff() const;                // non-stiff method: diagnose stiffness on failure
+///   static constexpr bool exact_outputs;              // step to each output time instead of interpolating
+///   bool suggest_stiff() const;                       // non-stiff method: diagnose stiffness on failure
+///
+/// The driver always takes one step per call, so that it can record every step on request and
+/// be stopped between two steps; the step sequence is the one CVODE/ARKODE take in NORMAL mode
+/// towards t1 (with the stop time at t1, or at each output for exact_outputs).
 template <class System, class Stepper>
 void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double t1, const Options& options,
-           CallbackData<System>& data, const ErrorLog& log, Result& result) {
+           const CallbackData<System>& data, const ErrorLog& log, Result& result, const Control* control) {
     using State = typename System::State;
     const std::vector<double> outputs = output_times(options, t0, t1);
     Recorder<System> record(system, result, outputs.size());
@@ -26,8 +34,7 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
     while (next < outputs.size() && outputs[next] == t0) record.push(t0, state()), ++next;
 
     double t = t0;
-    int flag = 0;
-    stepper.set_stop_time(t1);
+    long steps = 0;
     auto finish = [&](int failed_flag) {
         result.stats = stepper.stats();
         result.status = stepper.classify(failed_flag);
@@ -57,42 +64,60 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
             (result.status == Status::MaxStepsReached || result.status == Status::StepSizeUnderflow))
             result.message += stiffness_hint(system, t, state(), result.stats.last_step, std::abs(t1 - t0));
     };
-    auto budget_left = [&]() { return options.max_steps - stepper.stats().steps; };
+    auto stop_time = [&]() { return Stepper::exact_outputs && next < outputs.size() ? outputs[next] : t1; };
 
-    if (options.every_step) {
-        while (direction * (t - t1) < 0.0) {
-            if (budget_left() <= 0) return finish(-1000);
-            stepper.set_max_steps(budget_left());
-            const double t_before = t;
-            flag = stepper.evolve(t1, y, &t, true);
-            if (flag < 0) return finish(flag);
-            if (next < outputs.size() && direction * (outputs[next] - t) < 0.0) {
-                Vector tmp(N_VClone(y));
-                while (next < outputs.size() && direction * (outputs[next] - t) < 0.0) {
-                    if (direction * (outputs[next] - t_before) > 0.0) {
-                        stepper.interpolate(outputs[next], tmp.get());
-                        record.push(outputs[next], State(StateMap<System>(N_VGetArrayPointer(tmp.get()))));
-                    }
-                    ++next;
-                }
-            }
-            const State y_now = state();
-            bool recorded = false;
-            while (next < outputs.size() && outputs[next] == t) record.push(t, y_now), ++next, recorded = true;
-            if (!recorded) record.push(t, y_now);
+    double stop = stop_time();
+    stepper.set_stop_time(stop);
+    Vector interpolated(N_VClone(y));
+    Ticker ticker(control, t0, t1);
+    while (direction * (t - t1) < 0.0) {
+        if (!ticker.keep_going(t)) {
+            result.stats = stepper.stats();
+            mark_interrupted(result, t);
+            return;
         }
-    } else {
-        for (; next < outputs.size(); ++next) {
-            const double tout = outputs[next];
-            if (budget_left() <= 0) return finish(-1000);
-            stepper.set_max_steps(budget_left());
-            if constexpr (Stepper::exact_outputs) stepper.set_stop_time(tout);
-            flag = stepper.evolve(tout, y, &t, false);
-            if (flag < 0) return finish(flag);
-            record.push(tout, state());
+        if (steps >= options.max_steps) return finish(-1000);
+        // tout matters on the first call only (the initial step is sized against it): the first output
+        const int flag = stepper.evolve(next < outputs.size() ? outputs[next] : t1, y, &t);
+        if (flag < 0) return finish(flag);
+        ++steps;
+        while (next < outputs.size() && direction * (outputs[next] - t) < 0.0) {
+            stepper.interpolate(outputs[next], interpolated.get());
+            record.push(outputs[next], State(StateMap<System>(N_VGetArrayPointer(interpolated.get()))));
+            ++next;
         }
+        bool recorded = false;
+        while (next < outputs.size() && outputs[next] == t) record.push(t, state()), ++next, recorded = true;
+        if (options.every_step && !recorded) record.push(t, state());
+        if (stop != stop_time() && direction * (t - t1) < 0.0) stepper.set_stop_time(stop = stop_time());
     }
     result.stats = stepper.stats();
+}
+
+/// A CVODE or ARKODE run from (t0, y0) to t1: checks the input, sets up the context and the
+/// state vector, makes the stepper with `make(context, y, data, log)` and drives it.
+template <class System, class MakeStepper>
+Result run(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
+           Method method, const Control* control, MakeStepper&& make) {
+    validate(options, t0, t1);
+    require_finite(y0, "initial state y0");
+    Result result;
+    result.method = method_name(method);
+    typename System::State start = y0;
+    model::system::project(system, start);
+    if (t0 == t1) {  // nothing to integrate: every output time is t0
+        Recorder<System> record(system, result, 1);
+        for (double t : output_times(options, t0, t1)) record.push(t, start);
+        return result;
+    }
+    Context context;
+    Vector y = make_vector(System::dim, context);
+    Eigen::Map<typename System::State>(N_VGetArrayPointer(y.get())) = start;
+    CallbackData<System> data{&system};
+    ErrorLog log;
+    auto stepper = make(context, y.get(), data, log);
+    drive(system, stepper, y.get(), t0, t1, options, data, log, result, control);
+    return result;
 }
 
 }  // namespace gyrostat::integrate::sundials

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -22,18 +23,14 @@ namespace gyrostat::model {
 /// slow_rate()). A near-symmetric body B = A(1 + χε) contributes nothing to (ȧ, ṙ) at first
 /// order: the asymmetry only shifts the phase.
 ///
-/// Invariants reported: |G| = √(A²a² + C²r²) (kept by internal torques: cavity, damper) and
-/// T = ½(A a² + C r²).
+/// Outputs recorded: |G| = √(A²a² + C²r²) (kept by internal torques: cavity, damper),
+/// T = ½(A a² + C r²), the papers' x = a² and y = r², the fast frequency |(C − A) r / A| and
+/// the ratio slow rate / fast frequency that must stay ≪ 1 for the averaging to hold.
 class AveragedSymmetric {
 public:
     static constexpr int dim = 2;
-    static constexpr bool has_jacobian = false;
-    static constexpr bool has_projection = false;
-    static constexpr bool has_taylor = false;
-    static constexpr int max_taylor_order = 0;
-    static constexpr int n_invariants = 2;
     using State = Eigen::Vector2d;
-    using Jacobian = Eigen::Matrix2d;
+    static constexpr std::array<const char*, dim> state_names{"a", "r"};
 
     AveragedSymmetric(Body body, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)) {
         if (body_.rotor().squaredNorm() != 0.0)
@@ -50,8 +47,6 @@ public:
     const TorqueSet& torques() const { return torques_; }
     double A() const { return A_; }
     double C() const { return C_; }
-    /// (B − A)/A: the near-symmetry parameter χε of paper 002.
-    double asymmetry() const { return (body_.moments()[1] - A_) / A_; }
     /// |φ̇| = |(C − A) r / A|.
     double fast_frequency(double r) const { return std::abs((C_ - A_) * r / A_); }
     /// max(|ȧ/a|, |ṙ/r|): the rate at which the slow variables change.
@@ -65,16 +60,27 @@ public:
 
     /// (ȧ, ṙ) = Σ_i averaged contribution of torque i at (a, r), moments (A, A, C).
     void rhs(double t, const State& y, State& dy) const { dy = torques_.averaged(t, y[0], y[1], A_, C_); }
-    void jacobian(double, const State&, Jacobian&) const {}
-    void project(State&) const {}
-    template <int Order>
-    void taylor_coefficients(double, const State&, State*) const {}
-    bool supports_taylor() const { return false; }
 
-    static constexpr std::array<const char*, n_invariants> invariant_names{"angular_momentum_norm", "kinetic_energy"};
-    void invariants(double, const State& y, double* out) const {
+    /// a = √(p² + q²) is an amplitude: a < 0 is not a state of the generating motion.
+    void check_state(const State& y) const {
+        if (!(y[0] >= 0.0))
+            throw std::invalid_argument("AveragedSymmetric: the amplitude a = sqrt(p^2 + q^2) must be >= 0; got a = " +
+                                        format_value(y[0]));
+    }
+
+    static constexpr std::array<OutputInfo, 6> outputs_info{{{"angular_momentum_norm", true},
+                                                             {"kinetic_energy", true},
+                                                             {"x", false},
+                                                             {"y", false},
+                                                             {"fast_frequency", false},
+                                                             {"slow_to_fast", false}}};
+    void outputs(double t, const State& y, double* out) const {
         out[0] = std::sqrt(A_ * A_ * y[0] * y[0] + C_ * C_ * y[1] * y[1]);
         out[1] = 0.5 * (A_ * y[0] * y[0] + C_ * y[1] * y[1]);
+        out[2] = y[0] * y[0];
+        out[3] = y[1] * y[1];
+        out[4] = fast_frequency(y[1]);
+        out[5] = out[4] > 0.0 ? slow_rate(t, y) / out[4] : std::numeric_limits<double>::infinity();
     }
 
 private:

@@ -10,6 +10,7 @@
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -29,19 +30,17 @@ inline Mat3 skew(const Vec3& a) {
 /// q is the unit quaternion (w, x, y, z) that rotates body axes into inertial axes:
 /// x_inertial = q x_body q*. State layout: y = (p, q, r) or (p, q, r, q_w, q_x, q_y, q_z).
 ///
-/// Invariants reported along a trajectory:
+/// Outputs recorded along a trajectory:
 ///   |G| = |J ω + k|  (conserved without torques; the inertial vector G is conserved too),
-///   T = ½ ω·J ω      (conserved without torques; dT/dt = ω·ΣM).
+///   T = ½ ω·J ω      (conserved without torques; dT/dt = ω·ΣM),
+///   with the attitude: the z-x-z Euler angles ψ, θ, φ.
 template <bool WithAttitude>
 class Gyrostat {
 public:
     static constexpr int dim = WithAttitude ? 7 : 3;
-    static constexpr bool has_jacobian = true;
-    static constexpr bool has_projection = WithAttitude;
-    static constexpr bool has_taylor = true;  // when the torques are affine: see supports_taylor()
-    static constexpr int n_invariants = 2;
     using State = Eigen::Matrix<double, dim, 1>;
     using Jacobian = Eigen::Matrix<double, dim, dim>;
+    static constexpr auto state_names = rate_state_names<WithAttitude>();
 
     Gyrostat(Body body, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)) {}
 
@@ -172,17 +171,28 @@ public:
         }
     }
 
-    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
+    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (only with
+    /// the attitude: without it the model has no projection at all).
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
     void project(State& y) const {
-        if constexpr (WithAttitude) y.template segment<4>(3).normalize();
+        y.template segment<4>(3).normalize();
+    }
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
+    void check_state(const State& y) const {
+        check_quaternion(y.template segment<4>(3), "Gyrostat");
+    }
+    /// ω alone starts from the identity attitude.
+    State initial_state(const Eigen::VectorXd& given) const {
+        return complete_rate_state<State>(given, WithAttitude, state_names.data());
     }
 
-    static constexpr std::array<const char*, n_invariants> invariant_names{"angular_momentum_norm",
-                                                                           "kinetic_energy"};
-    void invariants(double /*t*/, const State& y, double* out) const {
+    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", true}, {"kinetic_energy", true}}};
+    static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
+    void outputs(double /*t*/, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();
         out[0] = body_.angular_momentum(omega).norm();
         out[1] = body_.kinetic_energy(omega);
+        if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out + 2);
     }
 
 private:

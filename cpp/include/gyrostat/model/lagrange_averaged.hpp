@@ -31,22 +31,19 @@ namespace gyrostat::model {
 /// implemented, use the full LagrangeTop. For the paper's (3.1), f = −ε a(εt), M3* = −ε b(εt) r,
 /// and r(t) = r0 exp(−(b0 τ + b1 τ²/2)/C) exactly (paper (3.3)).
 ///
-/// Validity (checked by the Python layer, not here): the nutation period T = 2K(m)/α must be short
-/// against the time scale of the slow variables (rate() · T ≪ 1); near the separatrix (1 − m → 0)
-/// and the triple root (α → 0) T grows and the averaging degrades. At m → 0 (regular
-/// precession) the right-hand side stays smooth (only the individual roots u1, u2 do not).
+/// Validity: the nutation period T = 2K(m)/α must be short against the time scale of the slow
+/// variables (N = rate() · T ≪ 1, recorded as the output `adiabaticity`); near the separatrix
+/// (1 − m → 0) and the triple root (α → 0) T grows and the averaging degrades. At m → 0
+/// (regular precession) the right-hand side stays smooth (only the individual roots u1, u2 do not).
 ///
-/// Invariants reported: u1, u2, u3 (the roots of the nutation cubic) for each output.
+/// Outputs recorded: u1 ≤ u2 ≤ u3 (the roots of the nutation cubic), m = k², v = ⟨cos θ⟩,
+/// T_nut and the adiabaticity number N = rate · T_nut.
+/// A full top state (ω, Q) given as the initial state is mapped to its (G_z, H, r).
 class LagrangeAveraged {
 public:
     static constexpr int dim = 3;
-    static constexpr bool has_jacobian = false;
-    static constexpr bool has_projection = false;
-    static constexpr bool has_taylor = false;
-    static constexpr int max_taylor_order = 0;
-    static constexpr int n_invariants = 3;
     using State = Eigen::Vector3d;
-    using Jacobian = Eigen::Matrix3d;
+    static constexpr std::array<const char*, dim> state_names{"G_z", "H", "r"};
 
     LagrangeAveraged(Body body, double mu, TorqueSet torques)
         : top_(std::move(body), mu, torques), torques_(std::move(torques)) {
@@ -96,18 +93,30 @@ public:
         dx[1] = f * (2.0 * H - C * r * r - 2.0 * mu * v) / A + m3 * r;
         dx[2] = m3 / C;
     }
-    void jacobian(double, const State&, Jacobian&) const {}
-    void project(State&) const {}
-    template <int Order>
-    void taylor_coefficients(double, const State&, State*) const {}
-    bool supports_taylor() const { return false; }
 
-    static constexpr std::array<const char*, n_invariants> invariant_names{"u1", "u2", "u3"};
-    void invariants(double /*t*/, const State& x, double* out) const {
+    /// (G_z, H, r) of a full top state (ω, Q); a state of size 3 is taken as it is.
+    State initial_state(const Eigen::VectorXd& given) const {
+        if (given.size() != LagrangeTop::dim)
+            throw std::invalid_argument("initial state has " + std::to_string(given.size()) +
+                                        " components; LagrangeAveraged needs (G_z, H, r) or a full top state "
+                                        "(p, q, r, q_w, q_x, q_y, q_z)");
+        LagrangeTop::State full = given;
+        top_.check_state(full);
+        full.segment<4>(3).normalize();
+        return top_.first_integrals(full);
+    }
+
+    static constexpr std::array<OutputInfo, 7> outputs_info{{{"u1", false},
+                                                             {"u2", false},
+                                                             {"u3", false},
+                                                             {"m", false},
+                                                             {"v", false},
+                                                             {"T_nut", false},
+                                                             {"adiabaticity", false}}};
+    void outputs(double t, const State& x, double* out) const {
         const Nutation n = nutation(top_.A(), top_.C(), top_.mu(), x[0], x[1], x[2]);
-        out[0] = n.u1;
-        out[1] = n.u2;
-        out[2] = n.u3;
+        const double values[] = {n.u1, n.u2, n.u3, n.m, n.v, n.period, rate(t) * n.period};
+        std::copy(std::begin(values), std::end(values), out);
     }
 
 private:

@@ -2,32 +2,20 @@
 // under small perturbation torques; its classical unperturbed solution in Jacobi sn.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <iterator>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/elliptic.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
-
-// ---------------------------------------------------------------------------------------------
-// Elliptic functions (GSL; compiled in lagrange.cpp). Every function takes the PARAMETER m = k²
-// (SciPy's convention and the paper's k²); GSL's complete integrals take the modulus k and are
-// called with k = √m inside. Out-of-range arguments throw std::invalid_argument naming the value.
-// ---------------------------------------------------------------------------------------------
-
-/// K(m) = ∫_0^{π/2} dϑ / √(1 − m sin²ϑ), 0 ≤ m ≤ 1 (K(1) = +∞).
-double elliptic_K(double m);
-/// E(m) = ∫_0^{π/2} √(1 − m sin²ϑ) dϑ, 0 ≤ m ≤ 1.
-double elliptic_E(double m);
-/// (sn, cn, dn)(u | m), 0 ≤ m ≤ 1.
-std::array<double, 3> jacobi_sn_cn_dn(double u, double m);
-/// W(m) = ⟨sn²⟩ over a period = (K − E)/(m K) = R_D(0, 1−m, 1) / (3 R_F(0, 1−m, 1)):
-/// W(0) = ½, W(1) = 1, no 0/0 at m → 0.
-double mean_sn_squared(double m);
 
 /// The nutation of the unperturbed top in terms of its first integrals (G_z, H, r).
 ///
@@ -88,20 +76,19 @@ inline Vec3 vertical_in_body(double w, double x, double y, double z) {
 /// Paper 003's torque (3.1) M = ε(−a(τ)p, −a(τ)q, −b(τ)r), τ = εt, is a ResistiveMedium with
 /// D_0 = ε diag(a0, a0, b0), D_1 = ε² diag(a1, a1, b1).
 ///
-/// Invariants reported (first integrals of the unperturbed top, paper (1.2)):
-///   G_z = A (p γ1 + q γ2) + C r γ3   (vertical angular momentum; dG_z/dt = M·γ),
-///   H   = ½ (A (p² + q²) + C r²) + μ γ3   (energy; dH/dt = M·ω),
-///   r                                  (axial spin; C dr/dt = M3).
+/// Outputs recorded (the first integrals of the unperturbed top, paper (1.2), then what the
+/// nutation cubic gives at them, then the attitude):
+///   G_z = A (p γ1 + q γ2) + C r γ3        (vertical angular momentum; dG_z/dt = M·γ),
+///   H   = ½ (A (p² + q²) + C r²) + μ γ3    (energy; dH/dt = M·ω),
+///   kinetic_energy = ½ (A (p² + q²) + C r²),
+///   u1 ≤ u2 ≤ u3, k² = m, v = ⟨cos θ⟩, T_nut = 2K(m)/α at (G_z, H, r) (Nutation),
+///   cos_theta = γ3, and the z-x-z Euler angles ψ, θ, φ of Q.
+/// (r, the axial spin, C dr/dt = M3, is a state.)
 class LagrangeTop {
 public:
     static constexpr int dim = 7;
-    static constexpr bool has_jacobian = false;  // CVODE builds it by difference quotients
-    static constexpr bool has_projection = true;
-    static constexpr bool has_taylor = false;
-    static constexpr int max_taylor_order = 0;
-    static constexpr int n_invariants = 3;
     using State = Eigen::Matrix<double, 7, 1>;
-    using Jacobian = Eigen::Matrix<double, 7, 7>;
+    static constexpr auto state_names = rate_state_names<true>();
 
     LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)), mu_(mu) {
         const Vec3& J = body_.moments();
@@ -136,20 +123,30 @@ public:
         dy[2] = M[2] / C_;
         dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), Vec3(p, q, r));
     }
-    void jacobian(double, const State&, Jacobian&) const {}
-    template <int Order>
-    void taylor_coefficients(double, const State&, State*) const {}
 
     /// Keeps |Q| = 1 to rounding (so |γ| = 1).
     void project(State& y) const { y.template segment<4>(3).normalize(); }
+    void check_state(const State& y) const { check_quaternion(y.template segment<4>(3), "LagrangeTop"); }
 
-    static constexpr std::array<const char*, n_invariants> invariant_names{"G_z", "H", "r"};
-    void invariants(double /*t*/, const State& y, double* out) const {
+    /// (G_z, H, r) of a state: the slow variables of the averaged top.
+    Vec3 first_integrals(const State& y) const {
         const Vec3 g = vertical_in_body(y[3], y[4], y[5], y[6]);
-        out[0] = A_ * (y[0] * g[0] + y[1] * g[1]) + C_ * y[2] * g[2];
-        out[1] = 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2];
-        out[2] = y[2];
+        return {A_ * (y[0] * g[0] + y[1] * g[1]) + C_ * y[2] * g[2],
+                0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2], y[2]};
     }
+
+    static constexpr std::array<OutputInfo, 10> own_outputs{{{"G_z", true},
+                                                             {"H", true},
+                                                             {"kinetic_energy", false},
+                                                             {"u1", false},
+                                                             {"u2", false},
+                                                             {"u3", false},
+                                                             {"m", false},
+                                                             {"v", false},
+                                                             {"T_nut", false},
+                                                             {"cos_theta", false}}};
+    static constexpr auto outputs_info = with_euler_outputs<true>(own_outputs);
+    void outputs(double /*t*/, const State& y, double* out) const;
 
 private:
     Body body_;
@@ -157,5 +154,17 @@ private:
     double mu_ = 0.0;
     double A_ = 0.0, C_ = 0.0;
 };
+
+inline void LagrangeTop::outputs(double /*t*/, const State& y, double* out) const {
+    const Vec3 integrals = first_integrals(y);
+    out[0] = integrals[0];
+    out[1] = integrals[1];
+    out[2] = 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]);
+    const Nutation n = nutation(A_, C_, mu_, integrals[0], integrals[1], integrals[2]);
+    const double roots[] = {n.u1, n.u2, n.u3, n.m, n.v, n.period};
+    std::copy(std::begin(roots), std::end(roots), out + 3);
+    out[9] = vertical_in_body(y[3], y[4], y[5], y[6])[2];
+    euler_outputs(y.template segment<4>(3), out + 10);
+}
 
 }  // namespace gyrostat::model

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -28,13 +29,8 @@ namespace gyrostat::model {
 class MovingMass {
 public:
     static constexpr int dim = 9;
-    static constexpr bool has_jacobian = false;  // CVODE builds it by difference quotients
-    static constexpr bool has_projection = false;
-    static constexpr bool has_taylor = false;
-    static constexpr int max_taylor_order = 0;
-    static constexpr int n_invariants = 2;
     using State = Eigen::Matrix<double, 9, 1>;
-    using Jacobian = Eigen::Matrix<double, 9, 9>;
+    static constexpr std::array<const char*, dim> state_names{"p", "q", "r", "u_1", "u_2", "u_3", "v_1", "v_2", "v_3"};
 
     MovingMass(Body system_body, double mass, double arm, double frequency, double damping, TorqueSet external)
         : body_(std::move(system_body)), torques_(std::move(external)), mu_(mass), rho_(arm),
@@ -75,15 +71,10 @@ public:
         const double a1 = f1 / carrier_[0], a2 = f2 / carrier_[1], a3 = f3 / carrier_[2];
         dy << a1, a2, a3, v1, v2, v3, R1 - (a2 * d3 - a3 * d2), R2 - (a3 * d1 - a1 * d3), R3 - (a1 * d2 - a2 * d1);
     }
-    void jacobian(double, const State&, Jacobian&) const {}
-    void project(State&) const {}
-    template <int Order>
-    void taylor_coefficients(double, const State&, State*) const {}
-    bool supports_taylor() const { return false; }
 
-    /// |K| and E (see above).
-    static constexpr std::array<const char*, n_invariants> invariant_names{"angular_momentum_norm", "energy"};
-    void invariants(double, const State& y, double* out) const {
+    /// |K| (conserved without external torques) and E (dissipated by the damper): see above.
+    static constexpr std::array<OutputInfo, 2> outputs_info{{{"angular_momentum_norm", true}, {"energy", false}}};
+    void outputs(double, const State& y, double* out) const {
         const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
         const Vec3 d = Vec3(0, 0, rho_) + u;
         const Vec3 s = w.cross(d) + v;

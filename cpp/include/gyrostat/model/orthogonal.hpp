@@ -12,6 +12,7 @@
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -158,20 +159,24 @@ private:
 /// relative δ²/2|Q|² everywhere: τ(60) moves by 7.6e-4 in scene S1.) Only ω = 0 has n_δ = 0:
 /// there M = 0 and g = 1 (nothing divides by zero).
 ///
-/// State layout: (p, q, r, τ) or (p, q, r, q_w, q_x, q_y, q_z, τ).
-/// Invariants reported: |G| = |Jω + k| and h = ω·Jω (exact without other torques).
+/// State layout: (p, q, r, τ) or (p, q, r, q_w, q_x, q_y, q_z, τ); τ(t0) = 0 when the initial
+/// state is given as ω (or ω and the quaternion).
+/// Outputs recorded: |G| = |Jω + k| and h = ω·Jω (exact without other torques), g = dτ/dt,
+/// L(t), |Q|, δ, `regularised` (1 where |Q| < δ: the prescribed L was not applied), the angles
+/// θ_G, φ_G of G in body axes (paper (15): G/|G| = (sin θ sin φ, sin θ cos φ, cos θ)) and, with
+/// the attitude, the z-x-z Euler angles ψ, θ, φ.
 template <bool WithAttitude>
 class OrthogonalTorque {
 public:
     static constexpr int dim = WithAttitude ? 8 : 4;
     static constexpr int tau_index = dim - 1;
-    static constexpr bool has_jacobian = false;  // CVODE BDF uses its difference-quotient Jacobian
-    static constexpr bool has_projection = WithAttitude;
-    static constexpr bool has_taylor = false;  // L(t)·Q/|Q| is not polynomial
-    static constexpr int max_taylor_order = 0;
-    static constexpr int n_invariants = 2;
     using State = Eigen::Matrix<double, dim, 1>;
-    using Jacobian = Eigen::Matrix<double, dim, dim>;
+    static constexpr auto state_names = [] {
+        if constexpr (WithAttitude)
+            return std::array<const char*, 8>{"p", "q", "r", "q_w", "q_x", "q_y", "q_z", "tau"};
+        else
+            return std::array<const char*, 4>{"p", "q", "r", "tau"};
+    }();
 
     /// smooth = true selects the form n_δ = √(|Q|² + δ²) of the docs' first recommendation
     /// (smooth everywhere, but the applied L is off by a relative δ²/2|Q|² at every |Q|).
@@ -188,9 +193,6 @@ public:
     double eta() const { return eta_; }
     bool smooth() const { return smooth_; }
     bool supports_taylor() const { return false; }
-
-    /// δ = η |ω| |G|, the regularisation threshold at ω.
-    double delta(const Vec3& omega) const { return eta_ * omega.norm() * body_.angular_momentum(omega).norm(); }
 
     /// n_δ(|Q|): |Q| above the threshold δ, (|Q|² + δ²)/(2δ) below it (or √(|Q|² + δ²) when smooth).
     double denominator(double q_norm, double delta) const {
@@ -233,20 +235,46 @@ public:
         dy[tau_index] = g;
     }
 
-    void jacobian(double, const State&, Jacobian& jac) const { jac.setZero(); }
-    template <int Order>
-    void taylor_coefficients(double, const State&, State*) const {}
-
-    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
+    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (only with
+    /// the attitude: without it the model has no projection at all).
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
     void project(State& y) const {
-        if constexpr (WithAttitude) y.template segment<4>(3).normalize();
+        y.template segment<4>(3).normalize();
+    }
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
+    void check_state(const State& y) const {
+        check_quaternion(y.template segment<4>(3), "OrthogonalTorque");
+    }
+    /// ω (or ω and the quaternion) alone: identity attitude, τ(t0) = 0.
+    State initial_state(const Eigen::VectorXd& given) const {
+        return complete_rate_state<State>(given, WithAttitude, state_names.data());
     }
 
-    static constexpr std::array<const char*, n_invariants> invariant_names{"angular_momentum_norm", "h"};
-    void invariants(double /*t*/, const State& y, double* out) const {
+    static constexpr std::array<OutputInfo, 9> own_outputs{{{"angular_momentum_norm", true},
+                                                            {"h", true},
+                                                            {"g", false},
+                                                            {"L", false},
+                                                            {"Q_norm", false},
+                                                            {"delta", false},
+                                                            {"regularised", false},
+                                                            {"theta_G", false},
+                                                            {"phi_G", false}}};
+    static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
+    void outputs(double t, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();
-        out[0] = body_.angular_momentum(omega).norm();
+        const Vec3 G = body_.angular_momentum(omega);
+        const double q_norm = omega.cross(G).norm();
+        const double d = eta_ * omega.norm() * G.norm();
+        out[0] = G.norm();
         out[1] = omega.dot(body_.moments().cwiseProduct(omega));
+        out[2] = tau_rate(t, omega);
+        out[3] = law_(t);
+        out[4] = q_norm;
+        out[5] = d;
+        out[6] = q_norm < d ? 1.0 : 0.0;
+        out[7] = std::atan2(std::hypot(G[0], G[1]), G[2]);
+        out[8] = std::atan2(G[0], G[1]);
+        if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out + 9);
     }
 
 private:

@@ -2,9 +2,12 @@
 // no integration at all. The cheapest answer for a scene with no torque and no rotor.
 #pragma once
 
+#include <Eigen/Geometry>
+#include <array>
 #include <vector>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/system.hpp"
 
 namespace gyrostat::model {
 
@@ -28,6 +31,7 @@ public:
     TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0 = 0.0);
 
     Vec3 omega(double t) const;
+    Vec3 at(double t) const { return omega(t); }                          ///< the flow's state at t
     std::vector<double> omega(const std::vector<double>& times) const;  ///< n×3, row-major
 
     double modulus_squared() const { return m_; }            ///< m = k² (0 for permanent rotation)
@@ -41,6 +45,34 @@ private:
     bool constant_ = false;
     int axis_[3] = {0, 1, 2};   // body axis index of 1', 2', 3'
     double a_ = 0, b_ = 0, c_ = 0, m_ = 0, nu_ = 0, u0_ = 0, sign3_ = 1;
+};
+
+/// The torque-free rigid body as a model that needs no integration (model/system.hpp, `flow`):
+/// state ω, outputs |G| and T (conserved exactly: the closed form keeps them to rounding).
+class TorqueFree {
+public:
+    static constexpr int dim = 3;
+    using State = Eigen::Vector3d;
+    static constexpr std::array<const char*, dim> state_names{"p", "q", "r"};
+
+    /// Throws std::invalid_argument for a gyrostat (k ≠ 0): no closed form here.
+    explicit TorqueFree(Body body);
+    const Body& body() const { return body_; }
+
+    TorqueFreeSolution flow(double t0, const State& y0) const { return TorqueFreeSolution(body_, y0, t0); }
+    /// ω̇ = J⁻¹ (Jω × ω), for checks and stiffness diagnostics (the solve never integrates it).
+    void rhs(double, const State& y, State& dy) const {
+        dy = body_.inverse_moments().cwiseProduct(body_.moments().cwiseProduct(y).cross(y));
+    }
+
+    static constexpr std::array<OutputInfo, 2> outputs_info{{{"angular_momentum_norm", true}, {"kinetic_energy", true}}};
+    void outputs(double, const State& y, double* out) const {
+        out[0] = body_.angular_momentum(y).norm();
+        out[1] = body_.kinetic_energy(y);
+    }
+
+private:
+    Body body_;
 };
 
 }  // namespace gyrostat::model

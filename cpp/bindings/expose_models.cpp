@@ -1,0 +1,119 @@
+// Bindings of the model of every family as one class `Model` (the engine's AnyModel), with one
+// constructor function per family and the few family-specific queries. Translation only.
+#include "convert.hpp"
+#include "expose.hpp"
+#include "gyrostat/engine.hpp"
+
+namespace gyrostat::bindings {
+
+namespace {
+
+/// The model held, when it is of type T; otherwise a ValueError naming both families.
+template <class T>
+const T& as(const AnyModel& model, const char* needed) {
+    if (const auto* m = std::get_if<T>(&model)) return *m;
+    throw py::value_error(std::string("this is a '") + family(model) + "' model; " + needed);
+}
+
+template <class T>
+const T* either(const AnyModel& model) {
+    return std::get_if<T>(&model);
+}
+
+}  // namespace
+
+void expose_models(py::module_& m) {
+    py::class_<BoundModel>(m, "Model", "A model of any family, as the engine integrates it.")
+        .def_property_readonly("family", [](const BoundModel& b) { return std::string(family(b.model)); })
+        .def_property_readonly("dim", [](const BoundModel& b) { return dim(b.model); })
+        .def_property_readonly("state_names", [](const BoundModel& b) { return state_names(b.model); })
+        .def_property_readonly("output_names", [](const BoundModel& b) { return output_names(b.model); })
+        .def("rhs", [](const BoundModel& b, double t, const Eigen::VectorXd& y) { return rhs(b.model, t, y); }, py::arg("t"),
+             py::arg("y"))
+        .def("initial_state", [](const BoundModel& b, const Eigen::VectorXd& y) { return initial_state(b.model, y); },
+             py::arg("given"))
+        // averaged symmetric system
+        .def("fast_frequency",
+             [](const BoundModel& b, double r) {
+                 return as<model::AveragedSymmetric>(b.model, "fast_frequency is for the averaged model").fast_frequency(r);
+             },
+             py::arg("r"))
+        .def("slow_rate",
+             [](const BoundModel& b, double t, const Eigen::Vector2d& y) {
+                 return as<model::AveragedSymmetric>(b.model, "slow_rate is for the averaged model").slow_rate(t, y);
+             },
+             py::arg("t"), py::arg("y"))
+        // explicit moving mass
+        .def("quasi_static_state",
+             [](const BoundModel& b, const Vec3& omega) -> Eigen::VectorXd {
+                 return as<model::MovingMass>(b.model, "quasi_static_state is for the moving-mass model").quasi_static_state(omega);
+             },
+             py::arg("omega"))
+        // averaged top
+        .def("rate",
+             [](const BoundModel& b, double t) {
+                 return as<model::LagrangeAveraged>(b.model, "rate is for the averaged Lagrange top").rate(t);
+             },
+             py::arg("t"))
+        // orthogonal servo torque
+        .def("tau_rate",
+             [](const BoundModel& b, const Eigen::VectorXd& t, const Eigen::MatrixXd& omega) {
+                 if (omega.cols() != 3 || omega.rows() != t.size())
+                     throw py::value_error("tau_rate: omega must be (n, 3) with n = len(t)");
+                 Eigen::VectorXd g(t.size());
+                 auto fill = [&](const auto& s) {
+                     for (Eigen::Index i = 0; i < t.size(); ++i) g[i] = s.tau_rate(t[i], omega.row(i).transpose());
+                 };
+                 if (const auto* s = either<model::OrthogonalTorque<false>>(b.model)) fill(*s);
+                 else fill(as<model::OrthogonalTorque<true>>(b.model, "tau_rate is for the orthogonal-torque model"));
+                 return g;
+             },
+             py::arg("t"), py::arg("omega"));
+
+    m.def(
+        "gyrostat_model",
+        [](const Body& body, const py::iterable& torques, bool attitude) -> BoundModel {
+            TorqueSet set(torques_from(torques));
+            if (attitude) return {model::Gyrostat<true>(body, set)};
+            return {model::Gyrostat<false>(body, set)};
+        },
+        py::arg("body"), py::arg("torques"), py::arg("attitude"));
+    m.def(
+        "averaged_model",
+        [](const Body& body, const py::iterable& torques) -> BoundModel {
+            return {model::AveragedSymmetric(body, TorqueSet(torques_from(torques)))};
+        },
+        py::arg("body"), py::arg("torques"));
+    m.def(
+        "moving_mass_model",
+        [](const Body& body, double mass, double arm, double frequency, double damping,
+           const py::iterable& torques) -> BoundModel {
+            return {model::MovingMass(body, mass, arm, frequency, damping, TorqueSet(torques_from(torques)))};
+        },
+        py::arg("body"), py::arg("mass"), py::arg("arm"), py::arg("frequency"), py::arg("damping"), py::arg("torques"));
+    m.def(
+        "lagrange_top_model",
+        [](const Body& body, double mu, const py::iterable& torques) -> BoundModel {
+            return {model::LagrangeTop(body, mu, TorqueSet(torques_from(torques)))};
+        },
+        py::arg("body"), py::arg("mu"), py::arg("torques"));
+    m.def(
+        "lagrange_averaged_model",
+        [](const Body& body, double mu, const py::iterable& torques) -> BoundModel {
+            return {model::LagrangeAveraged(body, mu, TorqueSet(torques_from(torques)))};
+        },
+        py::arg("body"), py::arg("mu"), py::arg("torques"));
+    m.def(
+        "orthogonal_model",
+        [](const Body& body, const model::MagnitudeLaw& law, const py::iterable& torques, bool attitude, double eta,
+           bool smooth) -> BoundModel {
+            TorqueSet set(torques_from(torques));
+            if (attitude) return {model::OrthogonalTorque<true>(body, law, set, eta, smooth)};
+            return {model::OrthogonalTorque<false>(body, law, set, eta, smooth)};
+        },
+        py::arg("body"), py::arg("law"), py::arg("torques"), py::arg("attitude"), py::arg("eta"), py::arg("smooth"));
+    m.def(
+        "torque_free_model", [](const Body& body) -> BoundModel { return {model::TorqueFree(body)}; }, py::arg("body"));
+}
+
+}  // namespace gyrostat::bindings

@@ -1,0 +1,67 @@
+// The engine: every model family behind one variant, one solve and one ensemble. The bindings
+// and any other front end call these; they never see an integrator or a model template.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/options.hpp"
+#include "gyrostat/model/averaged.hpp"
+#include "gyrostat/model/gyrostat.hpp"
+#include "gyrostat/model/lagrange_averaged.hpp"
+#include "gyrostat/model/lagrange_top.hpp"
+#include "gyrostat/model/moving_mass.hpp"
+#include "gyrostat/model/orthogonal.hpp"
+#include "gyrostat/model/torque_free.hpp"
+
+namespace gyrostat {
+
+/// Every model the library integrates (each implements model/system.hpp). Adding a model: its
+/// header, one alternative here, one solve_system overload (src/solve_*.cpp) and its binding.
+using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
+                              model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
+                              model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree>;
+
+/// The family of a model: "gyrostat", "averaged_symmetric", "moving_mass", "lagrange_top",
+/// "lagrange_averaged", "orthogonal_torque", "torque_free".
+const char* family(const AnyModel& model);
+int dim(const AnyModel& model);
+std::vector<std::string> state_names(const AnyModel& model);
+std::vector<std::string> output_names(const AnyModel& model);
+/// f(t, y) (for checks, not for speed).
+Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y);
+/// The full initial state from what was given (e.g. ω alone for a model with attitude).
+Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& given);
+
+/// Solves `model` from (t0, y0) to t1 (y0 may be short: see initial_state). Bad input throws
+/// std::invalid_argument naming the value; a failing run returns its partial trajectory.
+integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
+                        const integrate::Options& options, const integrate::Control* control = nullptr);
+
+/// Member i solves models[i] (or models[0] for all when one is given) from (t0, y0s[i]) to t1;
+/// models may differ in parameters and in family. Results in index order, each equal to its
+/// single run; a member with bad input gets status InvalidInput without touching the others.
+std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>& models,
+                                              const std::vector<Eigen::VectorXd>& y0s, double t0, double t1,
+                                              const integrate::Options& options, int threads = 0,
+                                              const integrate::Control* control = nullptr);
+
+// One overload per model type, each compiled in its own translation unit (src/solve_*.cpp).
+#define GYROSTAT_DECLARE_SOLVE(Model)                                                                        \
+    integrate::Result solve_system(const Model& model, double t0, const Eigen::VectorXd& y0, double t1,     \
+                                   const integrate::Options& options, const integrate::Control* control);
+GYROSTAT_DECLARE_SOLVE(model::Gyrostat<false>)
+GYROSTAT_DECLARE_SOLVE(model::Gyrostat<true>)
+GYROSTAT_DECLARE_SOLVE(model::AveragedSymmetric)
+GYROSTAT_DECLARE_SOLVE(model::MovingMass)
+GYROSTAT_DECLARE_SOLVE(model::LagrangeTop)
+GYROSTAT_DECLARE_SOLVE(model::LagrangeAveraged)
+GYROSTAT_DECLARE_SOLVE(model::OrthogonalTorque<false>)
+GYROSTAT_DECLARE_SOLVE(model::OrthogonalTorque<true>)
+GYROSTAT_DECLARE_SOLVE(model::TorqueFree)
+#undef GYROSTAT_DECLARE_SOLVE
+
+}  // namespace gyrostat

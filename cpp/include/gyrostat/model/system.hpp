@@ -1,0 +1,207 @@
+// The one model concept: what every system the engine integrates must give, what it may give,
+// and the defaults for what it does not (in one place, so that no model carries empty stubs).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "gyrostat/attitude.hpp"
+
+namespace gyrostat::model {
+
+/// A named quantity a model records at every output time (invariants and derived quantities).
+struct OutputInfo {
+    const char* name;
+    /// A first integral of the model without perturbation (|G|, T, G_z, H, …). Its relative
+    /// change along a run measures the perturbation's work, or the integration error where
+    /// nothing perturbs it. Derived quantities (angles, roots, rates) are not conserved.
+    bool conserved;
+};
+
+/// A System must give
+///   static constexpr int dim;                                    state size
+///   using State = Eigen::Matrix<double, dim, 1>;
+///   static constexpr std::array<const char*, dim> state_names;   one name per component
+///   void rhs(double t, const State& y, State& dy) const;         the right-hand side
+/// and may give (detected below; each line names the default when it is absent)
+///   void jacobian(double t, const State& y, Jacobian& J) const;  analytic ∂f/∂y
+///                                                                (default: difference quotients)
+///   void project(State& y) const;                                back onto a manifold (|q| = 1)
+///                                                                after each step (default: none)
+///   static constexpr int max_taylor_order;                       Taylor coefficients by recursion,
+///   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
+///   bool supports_taylor() const;                                (default: no Taylor method)
+///   static constexpr std::array<OutputInfo, n> outputs_info;     named outputs recorded at every
+///   void outputs(double t, const State& y, double* out) const;   output time (default: none)
+///   void check_state(const State& y) const;                      throws std::invalid_argument for
+///                                                                a state the model cannot reach
+///                                                                (default: finite is enough)
+///   State initial_state(const Eigen::VectorXd& given) const;     completes a shorter initial state
+///                                                                (ω alone → ω, identity quaternion)
+///                                                                (default: the size must be dim)
+/// A system that needs no integration gives instead of rhs
+///   auto flow(double t0, const State& y0) const;                 an object with State at(double t)
+namespace system {
+
+template <class S>
+using Jacobian = Eigen::Matrix<double, S::dim, S::dim>;
+
+template <class S, class = void>
+struct has_jacobian : std::false_type {};
+template <class S>
+struct has_jacobian<S, std::void_t<decltype(std::declval<const S&>().jacobian(
+                           0.0, std::declval<const typename S::State&>(), std::declval<Jacobian<S>&>()))>>
+    : std::true_type {};
+
+template <class S, class = void>
+struct has_projection : std::false_type {};
+template <class S>
+struct has_projection<S, std::void_t<decltype(std::declval<const S&>().project(std::declval<typename S::State&>()))>>
+    : std::true_type {};
+
+template <class S, class = void>
+struct has_taylor : std::false_type {};
+template <class S>
+struct has_taylor<S, std::void_t<decltype(S::max_taylor_order)>> : std::true_type {};
+
+template <class S, class = void>
+struct has_outputs : std::false_type {};
+template <class S>
+struct has_outputs<S, std::void_t<decltype(S::outputs_info)>> : std::true_type {};
+
+template <class S, class = void>
+struct has_state_check : std::false_type {};
+template <class S>
+struct has_state_check<S, std::void_t<decltype(std::declval<const S&>().check_state(
+                              std::declval<const typename S::State&>()))>> : std::true_type {};
+
+template <class S, class = void>
+struct has_initial_state : std::false_type {};
+template <class S>
+struct has_initial_state<S, std::void_t<decltype(std::declval<const S&>().initial_state(
+                                std::declval<const Eigen::VectorXd&>()))>> : std::true_type {};
+
+template <class S, class = void>
+struct is_closed_form : std::false_type {};
+template <class S>
+struct is_closed_form<S, std::void_t<decltype(std::declval<const S&>().flow(
+                             0.0, std::declval<const typename S::State&>()))>> : std::true_type {};
+
+template <class S>
+constexpr int n_outputs() {
+    if constexpr (has_outputs<S>::value)
+        return static_cast<int>(S::outputs_info.size());
+    else
+        return 0;
+}
+
+template <class S>
+void project(const S& s, typename S::State& y) {
+    if constexpr (has_projection<S>::value) s.project(y);
+}
+
+template <class S>
+bool supports_taylor(const S& s) {
+    if constexpr (has_taylor<S>::value)
+        return s.supports_taylor();
+    else
+        return false;
+}
+
+/// Writes the named outputs at (t, y). A model's output that cannot be evaluated there (a
+/// root that does not exist, a state outside its domain) is NaN, never an exception: outputs
+/// are recorded during the run and must not abort it.
+template <class S>
+void outputs(const S& s, double t, const typename S::State& y, double* out) {
+    if constexpr (has_outputs<S>::value) {
+        try {
+            s.outputs(t, y, out);
+        } catch (const std::exception&) {
+            for (int i = 0; i < n_outputs<S>(); ++i) out[i] = std::numeric_limits<double>::quiet_NaN();
+        }
+    }
+}
+
+template <class S>
+void check_state(const S& s, const typename S::State& y) {
+    if constexpr (has_state_check<S>::value) s.check_state(y);
+}
+
+std::string join_names(const char* const* names, int n);
+
+/// The full initial state from what the user gave: the model's own completion, or the state itself.
+template <class S>
+typename S::State initial_state(const S& s, const Eigen::VectorXd& given) {
+    if constexpr (has_initial_state<S>::value) {
+        if (given.size() != S::dim) return s.initial_state(given);
+    }
+    if (given.size() != S::dim)
+        throw std::invalid_argument("initial state has " + std::to_string(given.size()) + " components; this model needs " +
+                                    std::to_string(S::dim) + " (" + join_names(S::state_names.data(), S::dim) + ")");
+    return given;
+}
+
+}  // namespace system
+
+/// An attitude quaternion must be finite and not zero (it is normalised before use). Throws
+/// std::invalid_argument naming the value and the model.
+void check_quaternion(const Eigen::Vector4d& q, const char* model);
+
+/// State names of the models that may integrate the attitude: ω, then the quaternion.
+template <bool WithAttitude>
+constexpr auto rate_state_names() {
+    if constexpr (WithAttitude)
+        return std::array<const char*, 7>{"p", "q", "r", "q_w", "q_x", "q_y", "q_z"};
+    else
+        return std::array<const char*, 3>{"p", "q", "r"};
+}
+
+/// The z-x-z Euler angles (ψ, θ, φ) recorded by every model that integrates the attitude.
+inline constexpr std::array<OutputInfo, 3> euler_outputs_info{{{"psi", false}, {"theta", false}, {"phi", false}}};
+inline void euler_outputs(const Eigen::Vector4d& q, double* out) {
+    const Vec3 angles = euler_angles(q, EulerConvention::ZXZ);
+    out[0] = angles[0], out[1] = angles[1], out[2] = angles[2];
+}
+
+/// `first` followed by `second` (to append the Euler angles to a model's own outputs).
+template <std::size_t N, std::size_t M>
+constexpr std::array<OutputInfo, N + M> concat(const std::array<OutputInfo, N>& first, const std::array<OutputInfo, M>& second) {
+    std::array<OutputInfo, N + M> all{};
+    for (std::size_t i = 0; i < N; ++i) all[i] = first[i];
+    for (std::size_t i = 0; i < M; ++i) all[N + i] = second[i];
+    return all;
+}
+
+/// A model's own outputs, followed by the Euler angles when it integrates the attitude.
+template <bool WithAttitude, std::size_t N>
+constexpr auto with_euler_outputs(const std::array<OutputInfo, N>& own) {
+    if constexpr (WithAttitude)
+        return concat(own, euler_outputs_info);
+    else
+        return own;
+}
+
+/// The completion of a short initial state for the models whose state starts with ω (and the
+/// quaternion when `attitude`): ω alone (3), or ω and the quaternion (7) when the state has more
+/// after them. The quaternion defaults to the identity, what follows (e.g. τ(0)) to zero.
+template <class State>
+State complete_rate_state(const Eigen::VectorXd& given, bool attitude, const char* const* names) {
+    constexpr int dim = State::RowsAtCompileTime;
+    State y = State::Zero();
+    if (attitude) y[3] = 1.0;
+    if (given.size() == 3 || (attitude && given.size() == 7 && dim > 7)) {
+        y.head(given.size()) = given;
+        return y;
+    }
+    throw std::invalid_argument("initial state has " + std::to_string(given.size()) + " components; this model needs " +
+                                std::to_string(dim) + " (" + system::join_names(names, dim) + ") or omega alone (3)" +
+                                (attitude && dim > 7 ? " or omega and the quaternion (7)" : ""));
+}
+
+}  // namespace gyrostat::model

@@ -1,0 +1,120 @@
+// The engine's dispatch over AnyModel: names, right-hand side, solve and ensemble.
+#include "gyrostat/engine.hpp"
+
+#include "gyrostat/ensemble.hpp"
+
+namespace gyrostat {
+
+namespace {
+
+template <class T>
+struct Family;
+template <bool A>
+struct Family<model::Gyrostat<A>> {
+    static constexpr const char* name = "gyrostat";
+};
+template <>
+struct Family<model::AveragedSymmetric> {
+    static constexpr const char* name = "averaged_symmetric";
+};
+template <>
+struct Family<model::MovingMass> {
+    static constexpr const char* name = "moving_mass";
+};
+template <>
+struct Family<model::LagrangeTop> {
+    static constexpr const char* name = "lagrange_top";
+};
+template <>
+struct Family<model::LagrangeAveraged> {
+    static constexpr const char* name = "lagrange_averaged";
+};
+template <bool A>
+struct Family<model::OrthogonalTorque<A>> {
+    static constexpr const char* name = "orthogonal_torque";
+};
+template <>
+struct Family<model::TorqueFree> {
+    static constexpr const char* name = "torque_free";
+};
+
+template <class Visitor>
+decltype(auto) visit(const AnyModel& model, Visitor&& visitor) {
+    return std::visit(std::forward<Visitor>(visitor), model);
+}
+
+}  // namespace
+
+const char* family(const AnyModel& model) {
+    return visit(model, [](const auto& m) { return Family<std::decay_t<decltype(m)>>::name; });
+}
+
+int dim(const AnyModel& model) {
+    return visit(model, [](const auto& m) { return std::decay_t<decltype(m)>::dim; });
+}
+
+std::vector<std::string> state_names(const AnyModel& model) {
+    return visit(model, [](const auto& m) {
+        using S = std::decay_t<decltype(m)>;
+        return std::vector<std::string>(S::state_names.begin(), S::state_names.end());
+    });
+}
+
+std::vector<std::string> output_names(const AnyModel& model) {
+    return visit(model, [](const auto& m) {
+        integrate::Result r;
+        integrate::describe<std::decay_t<decltype(m)>>(r);
+        return r.output_names;
+    });
+}
+
+Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y) {
+    return visit(model, [&](const auto& m) -> Eigen::VectorXd {
+        using S = std::decay_t<decltype(m)>;
+        if (y.size() != S::dim)
+            throw std::invalid_argument("rhs: the state has " + std::to_string(y.size()) + " components; this model needs " +
+                                        std::to_string(S::dim) + " (" +
+                                        model::system::join_names(S::state_names.data(), S::dim) + ")");
+        typename S::State dy;
+        m.rhs(t, typename S::State(y), dy);
+        return dy;
+    });
+}
+
+Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& given) {
+    return visit(model, [&](const auto& m) -> Eigen::VectorXd { return model::system::initial_state(m, given); });
+}
+
+integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
+                        const integrate::Options& options, const integrate::Control* control) {
+    const Eigen::VectorXd start = y0;
+    return visit(model, [&](const auto& m) { return solve_system(m, t0, start, t1, options, control); });
+}
+
+std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>& models,
+                                              const std::vector<Eigen::VectorXd>& y0s, double t0, double t1,
+                                              const integrate::Options& options, int threads,
+                                              const integrate::Control* control) {
+    const std::size_t n = y0s.size();
+    if (models.empty()) throw std::invalid_argument("solve_ensemble: no model given");
+    if (models.size() != 1 && models.size() != n)
+        throw std::invalid_argument("solve_ensemble: " + std::to_string(models.size()) + " models for " +
+                                    std::to_string(n) + " initial states (give 1 or " + std::to_string(n) + ")");
+    integrate::validate(options, t0, t1);
+    auto results = run_ensemble(
+        n,
+        [&](std::size_t i, const integrate::Control* member) {
+            return solve(*(models.size() == 1 ? models[0] : models[i]), t0, y0s[i], t1, options, member);
+        },
+        threads, control);
+    for (std::size_t i = 0; i < n; ++i) {  // members that never ran still say what they would hold
+        auto& r = results[i];
+        if (!r.state_names.empty()) continue;
+        visit(*(models.size() == 1 ? models[0] : models[i]),
+              [&](const auto& m) { integrate::describe<std::decay_t<decltype(m)>>(r); });
+        r.method = integrate::method_name(options.method);
+    }
+    return results;
+}
+
+}  // namespace gyrostat

@@ -1,0 +1,120 @@
+"""What a run leaves on disk: units in one table, CSV/NPZ writers, and the report (report.json)."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+UNITS: dict[str, str] = {
+    # time and clocks
+    "t": "s", "tau": "s", "T_nut": "s",
+    # angular velocity and slow variables
+    "p": "rad/s", "q": "rad/s", "r": "rad/s", "a": "rad/s", "fast_frequency": "rad/s",
+    "x": "rad^2/s^2", "y": "rad^2/s^2",
+    # attitude
+    "q_w": "1", "q_x": "1", "q_y": "1", "q_z": "1",
+    "psi": "rad", "theta": "rad", "phi": "rad", "theta_G": "rad", "phi_G": "rad", "cos_theta": "1",
+    # moving mass
+    "u_1": "m", "u_2": "m", "u_3": "m", "v_1": "m/s", "v_2": "m/s", "v_3": "m/s",
+    # invariants
+    "angular_momentum_norm": "kg m^2/s", "kinetic_energy": "J", "energy": "J", "h": "kg m^2/s^2",
+    "G_z": "kg m^2/s", "H": "J",
+    # Lagrange top
+    "u1": "1", "u2": "1", "u3": "1", "m": "1", "v": "1", "adiabaticity": "1",
+    # orthogonal torque
+    "g": "1", "L": "N m", "Q_norm": "kg m^2/s^2", "delta": "kg m^2/s^2", "regularised": "1",
+    # averaged
+    "slow_to_fast": "1",
+}
+"""The unit of every named quantity the library writes ("1": dimensionless)."""
+
+
+def unit(name: str) -> str:
+    return UNITS.get(name, "1")
+
+
+def write_columns(columns: dict[str, np.ndarray], folder: Path, stem: str) -> list[Path]:
+    """STEM.csv (a column per quantity, its unit in the header) and STEM.npz (the same arrays by
+    name, plus their units as JSON under ``units``)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    csv_path = folder / f"{stem}.csv"
+    with csv_path.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow([f"{name} [{unit(name)}]" for name in columns])
+        writer.writerows(np.column_stack([np.asarray(v, float) for v in columns.values()]).tolist())
+    npz_path = folder / f"{stem}.npz"
+    np.savez(npz_path, **columns, units=json.dumps({name: unit(name) for name in columns}))
+    return [csv_path, npz_path]
+
+
+def write_solution(solution, folder: Path, stem: str = "result", extra: dict | None = None) -> list[Path]:
+    """t, the state and every output of a :class:`gyrostat.Solution` (plus ``extra`` columns)."""
+    columns = solution.columns()
+    if extra:
+        columns.update(extra)
+    return write_columns(columns, folder, stem)
+
+
+def _number(x):
+    """JSON has no NaN or infinity: they are written as null (and said so in the report)."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def change(values: np.ndarray, conserved: bool) -> dict:
+    """Start, end and the change of a recorded quantity; the relative change only for a
+    conserved quantity whose start is not negligible against its range (|start| > 1e-12 of
+    max |values|): a relative change of a quantity that starts at zero means nothing."""
+    values = np.asarray(values, float)
+    entry = {"start": _number(values[0]), "end": _number(values[-1]),
+             "max_abs_change": _number(np.max(np.abs(values - values[0])))}
+    scale = float(np.max(np.abs(values))) if values.size else 0.0
+    if conserved and abs(values[0]) > 1e-12 * scale and values[0] != 0:
+        entry["relative_change"] = _number((values[-1] - values[0]) / values[0])
+    return entry
+
+
+def run_report(solution) -> dict:
+    """The part of the report for one run: method, status, statistics, and for each conserved
+    output its change (relative where it means something), plus the notes."""
+    report = {"method": solution.method, "status": solution.status, "success": bool(solution.success),
+              "message": solution.message, "stats": solution.stats, "notes": list(solution.notes),
+              "conserved": {}}
+    if len(solution):
+        outputs = solution.outputs
+        for name in solution.conserved:
+            report["conserved"][name] = change(outputs[name], True)
+    return report
+
+
+def assumption_entry(a) -> dict:
+    return {"part": a.part, "statement": a.statement, "value": _number(a.value), "limit": _number(a.limit),
+            "holds": bool(a.holds), "note": a.note}
+
+
+def clean(value):
+    """Plain JSON values: numpy scalars and arrays to Python numbers and lists, NaN to null,
+    booleans kept as booleans."""
+    if isinstance(value, dict):
+        return {str(k): clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [clean(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return [clean(v) for v in value.tolist()]
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return _number(value)
+    return value
+
+
+def write_report(report: dict, folder: Path) -> Path:
+    path = folder / "report.json"
+    path.write_text(json.dumps(clean(report), indent=2) + "\n")
+    return path

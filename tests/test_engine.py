@@ -1,0 +1,244 @@
+"""One engine for every model family: each family through gyrostat.solve and
+gyrostat.solve_ensemble, the Solution's names and guards, progress and Ctrl-C.
+
+References written here: SciPy solve_ivp (DOP853, rtol 1e-12) on right-hand sides written in this
+file, and the quantities each model records recomputed here from the recorded states."""
+
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import gyrostat as g
+from gyrostat import lagrange, orthogonal
+
+BODY = g.Body([1.0, 2.0, 3.0])
+W0 = np.array([1.0, 0.5, -0.3])
+
+
+def _families():
+    """(name, model, y0, SciPy right-hand side written here for the state, or None)."""
+    J = np.array([1.0, 2.0, 3.0])
+    D = 0.05 * np.eye(3)
+
+    def euler(t, y):  # J ω̇ = −ω × Jω − D ω
+        w = y[:3]
+        return (np.cross(J * w, w) - D @ w) / J
+
+    def euler_attitude(t, y):
+        w, q = y[:3], y[3:7]
+        qw, qx, qy, qz = q
+        p, qq, r = w
+        dq = 0.5 * np.array([-qx * p - qy * qq - qz * r, qw * p + qy * r - qz * qq, qw * qq + qz * p - qx * r,
+                             qw * r + qx * qq - qy * p])
+        return np.concatenate([euler(t, y), dq])
+
+    A, C, mu, eps = 1.5, 1.0, 0.5, 0.01
+    torque = lagrange.paper_torque(eps, (1.0, 0.0), (1.0, 0.0))  # M = −ε(p, q, r)
+    top0 = lagrange.initial_state([0.1, 0.0, 1.7], 0.4)
+
+    def top(t, y):  # γ = third row of R(Q); A ṗ = (A − C) q r + μ γ2 − ε p, …
+        p, q, r, qw, qx, qy, qz = y
+        g1, g2 = 2 * (qx * qz - qw * qy), 2 * (qy * qz + qw * qx)
+        dq = 0.5 * np.array([-qx * p - qy * q - qz * r, qw * p + qy * r - qz * q, qw * q + qz * p - qx * r,
+                             qw * r + qx * q - qy * p])
+        return np.concatenate([[((A - C) * q * r + mu * g2 - eps * p) / A, ((C - A) * p * r - mu * g1 - eps * q) / A,
+                                -eps * r / C], dq])
+
+    Jo, k, L = np.array([2.0, 3.0, 4.0]), np.array([0.3, -0.2, 0.5]), 0.15
+
+    def servo(t, y):  # J ω̇ = −(1 − L/|Q|) Q, τ̇ = 1 − L/|Q|, Q = ω × (Jω + k)
+        w = y[:3]
+        Q = np.cross(w, Jo * w + k)
+        rate = 1 - L / np.linalg.norm(Q)
+        return np.concatenate([-rate * Q / Jo, [rate]])
+
+    return [
+        ("gyrostat", g.Model(BODY, [g.LinearDamping(D)]), W0, euler),
+        ("gyrostat_attitude", g.Model(BODY, [g.LinearDamping(D)], attitude=True),
+         np.concatenate([W0, [1.0, 0, 0, 0]]), euler_attitude),
+        ("torque_free", g.TorqueFreeModel(BODY), W0, lambda t, y: np.cross(J * y, y) / J),
+        ("averaged", g.AveragedModel(g.Body([8.0, 8.0, 4.0]), [g.ViscousCavity(1260, 1000, 0.48)]),
+         np.array([1.0, 1.0]), None),
+        ("moving_mass", g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), 1, 1, 10, 98), None, None),
+        ("lagrange_top", lagrange.LagrangeTop(A, C, mu, [torque]), top0, top),
+        ("lagrange_averaged", lagrange.LagrangeAveraged(A, C, mu, [torque]), top0, None),
+        ("orthogonal", orthogonal.OrthogonalModel(g.Body(Jo, k), L), np.concatenate([[1.0, 0.5, -0.8], [0.0]]), servo),
+    ]
+
+
+FAMILIES = _families()
+
+
+@pytest.mark.parametrize("name, model, y0, reference", FAMILIES, ids=[f[0] for f in FAMILIES])
+def test_every_family_solves_and_ensembles(name, model, y0, reference):
+    if y0 is None:
+        y0 = model.quasi_static_state([1.0, 0.0, 1.0])
+    method = "cvode_bdf" if name == "moving_mass" else "dop853"
+    options = dict(method=method, rtol=1e-11, atol=1e-13, n_out=21, check_validity=False)
+    sol = g.solve(model, y0, (0.0, 5.0), **options)
+    assert sol.success, sol.message
+    assert sol.state_names == model.state_names and sol.y.shape == (21, model.dim)
+    assert sol.output_names == model.output_names and all(sol[n].shape == (21,) for n in sol.output_names)
+    if reference is not None:
+        ref = solve_ivp(reference, (0.0, 5.0), model.initial_state(y0), method="DOP853", rtol=1e-12, atol=1e-14,
+                        t_eval=sol.t)
+        # both at tolerances ≤ 1e-11 over 5 time units of O(1) dynamics: 1e-9 leaves room for both
+        np.testing.assert_allclose(sol.y, ref.y.T, rtol=0, atol=1e-9)
+    # three members of the same family (different initial states): identical to single runs
+    y0s = [np.asarray(y0, float) * s for s in (1.0, 0.9, 1.1)] if name != "lagrange_averaged" else [y0] * 3
+    if "q_w" in model.state_names or name == "lagrange_averaged":  # keep the quaternion a rotation
+        y0s = [y0, y0, y0]
+    members = g.solve_ensemble(model, y0s, (0.0, 5.0), threads=2, **options)
+    for y, member in zip(y0s, members):
+        single = g.solve(model, y, (0.0, 5.0), **options)
+        assert np.array_equal(member.y, single.y) and np.array_equal(member.outputs[sol.output_names[0]],
+                                                                     single.outputs[sol.output_names[0]])
+
+
+def test_ensemble_mixes_families():
+    models = [f[1] for f in FAMILIES if f[2] is not None]
+    y0s = [f[2] for f in FAMILIES if f[2] is not None]
+    runs = g.solve_ensemble(models, y0s, (0.0, 2.0), n_out=5, rtol=1e-9, check_validity=False)
+    for model, y0, run in zip(models, y0s, runs):
+        single = g.solve(model, y0, (0.0, 2.0), n_out=5, rtol=1e-9, check_validity=False)
+        assert run.state_names == model.state_names and np.array_equal(run.y, single.y)
+
+
+def test_recorded_outputs_are_the_physics():
+    # The gyrostat with attitude: |G|, T from the recorded ω; Euler angles from the recorded q
+    # through SciPy's Rotation (intrinsic "ZXZ" = Rz Rx Rz), rounding only: 1e-12.
+    from scipy.spatial.transform import Rotation
+
+    model = g.Model(g.Body([1.0, 2.0, 3.0], [0.0, 0.1, 0.2]), [g.ConstantTorque([0.0, 0.0, 0.1])], attitude=True)
+    sol = g.solve(model, W0, (0, 20), n_out=101)
+    J, k = np.array([1.0, 2.0, 3.0]), np.array([0.0, 0.1, 0.2])
+    np.testing.assert_allclose(sol["angular_momentum_norm"], np.linalg.norm(sol.omega * J + k, axis=1), rtol=1e-14)
+    np.testing.assert_allclose(sol["kinetic_energy"], 0.5 * np.sum(J * sol.omega**2, axis=1), rtol=1e-14)
+    R = Rotation.from_quat(sol.quaternion[:, [1, 2, 3, 0]])
+    back = Rotation.from_euler("ZXZ", sol.euler_angles())
+    assert np.max((R.inv() * back).magnitude()) < 1e-12
+    assert sol.euler_angles()[0].tolist() == [0.0, 0.0, 0.0]  # the identity (was ψ = π)
+    # the orthogonal model: g = 1 − L/|Q|, |Q|, δ = η|ω||G| recomputed here (rounding: 1e-13)
+    Jo, kk, L = np.array([2.0, 3.0, 4.0]), np.array([0.3, -0.2, 0.5]), orthogonal.harmonic(0.1, [0.1], [1.3])
+    om = orthogonal.OrthogonalModel(g.Body(Jo, kk), L)
+    s = g.solve(om, [1.0, 0.5, -0.8], (0, 30), n_out=61)
+    G = s.omega * Jo + kk
+    Q = np.linalg.norm(np.cross(s.omega, G), axis=1)
+    law = 0.1 + 0.1 * np.sin(1.3 * s.t)
+    np.testing.assert_allclose(s["Q_norm"], Q, rtol=1e-13)
+    np.testing.assert_allclose(s["L"], law, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(s["g"], 1 - law / Q, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(s["delta"], 1e-3 * np.linalg.norm(s.omega, axis=1) * np.linalg.norm(G, axis=1),
+                               rtol=1e-13)
+
+
+def test_solution_guards_and_names():
+    mm = g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), 1, 1, 10, 98)
+    sol = g.solve(mm, mm.quasi_static_state([1, 0, 1]), (0, 1), method="cvode_bdf", n_out=3)
+    with pytest.raises(ValueError, match=r"no attitude: its state is \(p, q, r, u_1"):
+        sol.quaternion
+    with pytest.raises(KeyError, match="'psi' is neither a state component"):
+        sol["psi"]
+    assert sol["u_1"].shape == (3,) and "energy" in sol and sol.invariants.keys() == {"angular_momentum_norm"}
+    averaged = g.solve(g.AveragedModel(g.Body([8.0, 8.0, 4.0])), [1.0, 1.0], (0, 1), n_out=3, check_validity=False)
+    with pytest.raises(ValueError, match=r"no angular velocity in its state \(a, r\)"):
+        averaged.omega
+
+
+def test_bad_calls_name_what_is_wrong():
+    with pytest.raises(TypeError, match="model must be a gyrostat model"):
+        g.solve("not a model", W0, (0, 1))
+    with pytest.raises(ValueError, match=r"initial state has 5 components; this model needs 7 \(p, q, r, q_w"):
+        g.solve(g.Model(BODY, attitude=True), np.ones(5), (0, 1))
+    with pytest.raises(ValueError, match=r"t_span must be \(t0, t1\)"):
+        g.solve(g.Model(BODY), W0, (0, 1, 2))
+    with pytest.raises(ValueError, match="t_span must be two numbers"):
+        g.solve(g.Model(BODY), W0, ("zero", 1))
+    with pytest.raises(ValueError, match=r"n_out = 2.7 must be a whole number"):
+        g.solve(g.Model(BODY), W0, (0, 1), n_out=2.7)
+    with pytest.raises(ValueError, match="quaternion .* is not a rotation"):
+        g.solve(g.Model(BODY, attitude=True), [1, 0, 0, 0, 0, 0, 0], (0, 1))
+    with pytest.raises(ValueError, match="amplitude a = .* must be >= 0; got a = -1"):
+        g.solve(g.AveragedModel(g.Body([8.0, 8.0, 4.0])), [-1.0, 1.0], (0, 1))
+    with pytest.raises(ValueError, match="unknown method 'rk4'"):
+        g.solve(g.Model(BODY), W0, (0, 1), method="rk4")
+
+
+def test_options_are_one_object_with_the_defaults():
+    o = g.Options()
+    assert (o.method, o.rtol, o.atol, o.n_out, o.max_steps) == ("dop853", 1e-8, 1e-10, 1001, 1_000_000)
+    sol = g.solve(g.Model(BODY), W0, (0, 1))
+    assert len(sol) == 1001 and sol.method == "dop853"
+    o.rtol, o.n_out = 1e-12, 5
+    tight = g.solve(g.Model(BODY), W0, (0, 1), options=o)
+    assert len(tight) == 5 and g.Options().rtol == 1e-8  # a user's Options never changes the defaults
+
+
+def test_progress_is_reported_and_changes_nothing():
+    from gyrostat import _core
+
+    model = g.Model(BODY, [g.LinearDamping(1e-4 * np.eye(3))], attitude=True)
+    fractions = []
+    watched = g.solve(model, W0, (0, 3000), rtol=1e-10, n_out=101, progress=fractions.append)
+    plain = g.solve(model, W0, (0, 3000), rtol=1e-10, n_out=101)
+    assert np.array_equal(watched.y, plain.y) and watched.stats == plain.stats
+    # the engine polls at most every `interval` seconds (0.1 from gyrostat.solve); with 0 it
+    # reports every 64 steps: many reports, in order, and still the same trajectory
+    options = g.Options()
+    options.rtol, options.n_out = 1e-10, 101
+    result = _core.solve(model._core, np.concatenate([W0, [1.0, 0, 0, 0]]), 0.0, 3000.0, options,
+                         fractions.append, 0.0)
+    assert len(fractions) > 10 and fractions == sorted(fractions) and 0 <= fractions[0] and fractions[-1] <= 1
+    assert np.array_equal(np.asarray(result.y), plain.y)
+
+
+def _interrupt_soon(delay=0.3):
+    timer = threading.Timer(delay, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    return timer
+
+
+def test_ctrl_c_stops_a_solve_and_keeps_what_was_computed():
+    # a run that would take minutes: t up to 1e8 with at most 1e12 steps
+    model = g.Model(BODY, attitude=True)
+    timer = _interrupt_soon()
+    started = time.perf_counter()
+    with pytest.warns(RuntimeWarning, match="interrupted"):
+        sol = g.solve(model, W0, (0, 1e8), n_out=100001, max_steps=10**12)
+    elapsed = time.perf_counter() - started
+    timer.join()
+    assert sol.status == "interrupted" and "interrupted at t =" in sol.message
+    assert 1 < len(sol) < 100001 and np.all(np.isfinite(sol.y))
+    assert elapsed < 2.0  # stopped within the poll interval (0.1 s) plus the signal's delay
+
+
+def test_ctrl_c_stops_an_ensemble():
+    model = g.Model(BODY)
+    timer = _interrupt_soon()
+    started = time.perf_counter()
+    runs = g.solve_ensemble(model, np.tile(W0, (8, 1)), (0, 1e8), n_out=11, max_steps=10**12, threads=2)
+    timer.join()
+    assert time.perf_counter() - started < 2.0
+    assert {r.status for r in runs} == {"interrupted"}
+
+
+def test_progress_callback_error_is_raised():
+    def broken(fraction):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        g.solve(g.Model(BODY, attitude=True), W0, (0, 1e8), n_out=11, max_steps=10**12, progress=broken)
+
+
+def test_reprs_read():
+    # numbers as their shortest round-trip text (Python's repr drops ".0" too, like format_value)
+    assert repr(g.ConstantTorque([0, 0, 0.5])) == "ConstantTorque(moment=[0, 0, 0.5])"
+    assert repr(g.MovingMassDamper(1, 1, 10, 98)) == "MovingMassDamper(mass=1, arm=1, frequency=10, damping=98)"
+    assert repr(orthogonal.harmonic(0.1, [0.2], [1.3])) == \
+        "MagnitudeLaw.harmonic(mean=0.1, amplitudes=[0.2], frequencies=[1.3], phases=[0])"
+    assert "Model(" in repr(g.Model(BODY)) and "Options(method='dop853'" in repr(g.Options())
