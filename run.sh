@@ -78,6 +78,7 @@ case $command in
         cmake -S "$ROOT" -B "$ROOT/build/bench" -G Ninja -DGYROSTAT_BENCH=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
         cmake --build "$ROOT/build/bench" --target gyrostat_bench
         "$VENV/bin/python" "$ROOT/bench/work_precision.py" --bench-exe "$ROOT/build/bench/gyrostat_bench" "${@:2}"
+        "$VENV/bin/python" "$ROOT/bench/python_overhead.py"
         ;;
     *)
         echo "usage: bash run.sh main [OUT] | test | bench" >&2

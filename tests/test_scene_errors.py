@@ -139,3 +139,11 @@ def test_scene_format_documents_every_kind():
         assert f'kind = "{name}"' in text
     for key in ("moments", "tau_end", "nearly_spherical", "damping", "epsilon", "law"):
         assert key in text
+
+
+def test_docs_scene_reference_is_current():
+    # docs/scenes.md is `gyrostat scene-format`: regenerate it when a schema changes
+    from pathlib import Path
+
+    doc = Path(__file__).resolve().parent.parent / "docs" / "scenes.md"
+    assert doc.read_text() == scene_format() + "\n", "docs/scenes.md is stale: run `gyrostat scene-format > docs/scenes.md`"

@@ -97,3 +97,35 @@ def test_cli_reports_a_bad_file(tmp_path, capsys):
 def test_methods_command(capsys):
     assert main(["methods"]) == 0
     assert capsys.readouterr().out.split() == list(g.METHODS)
+
+
+def test_module_entry_point_and_version():
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "gyrostat", "--version"], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == f"gyrostat {g.__version__}" and g.__version__.count(".") == 2
+    methods = subprocess.run([sys.executable, "-m", "gyrostat", "methods"], capture_output=True, text=True, check=True)
+    assert methods.stdout.split() == list(g.METHODS)
+
+
+def test_report_is_plain_json_with_units_inputs_and_version(tmp_path):
+    path = next(p for p in example_scenes() if p.stem == "forced_damped")
+    main(["run", str(path), "--out", str(tmp_path), "--quiet"])
+    report = json.loads((tmp_path / "forced_damped" / "report.json").read_text())
+    assert report["version"] == g.__version__ and report["kind"] == "rigid_body"
+    assert report["inputs"]["integration"]["rtol"] == 1e-10 and report["units"]["kinetic_energy"] == "J"
+    assert all(isinstance(a["holds"], bool) for a in report["assumptions"])
+    conserved = report["runs"]["full"]["conserved"]
+    # damped and forced: T changes by a finite relative amount; Euler angles are not "conserved"
+    assert set(conserved) == {"angular_momentum_norm", "kinetic_energy"}
+    assert conserved["kinetic_energy"]["relative_change"] == pytest.approx(
+        conserved["kinetic_energy"]["end"] / conserved["kinetic_energy"]["start"] - 1, rel=1e-12)
+
+
+def test_relative_change_only_where_it_means_something():
+    from gyrostat.output import change
+
+    assert "relative_change" not in change(np.array([2e-16, 1.0, 0.5]), conserved=True)   # starts at ~0
+    assert "relative_change" not in change(np.array([1.0, 2.0]), conserved=False)        # not a first integral
+    assert change(np.array([2.0, 2.5]), conserved=True)["relative_change"] == 0.25

@@ -83,7 +83,11 @@ def main(argv: list[str] | None = None) -> int:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # printed in the report below
+                warnings.simplefilter("ignore", RuntimeWarning)   # an interrupted run: in its report
                 report = run_scene(path, args.out, progress=not args.quiet)
+        except KeyboardInterrupt:
+            print(f"{path}: interrupted", file=sys.stderr)
+            return 130
         except SceneError as error:
             print(f"{path}: error: {error}", file=sys.stderr)
             bad_scenes += 1
@@ -94,6 +98,9 @@ def main(argv: list[str] | None = None) -> int:
             continue
         _print_report(report)
         failures += report["status"] != "success"
+        if report["status"] == "interrupted":
+            print(f"{path}: interrupted; the outputs computed so far are written", file=sys.stderr)
+            return 130
     if bad_scenes + failures < len(paths):
         print(f"results in {args.out.resolve()}")
     return 2 if bad_scenes else (1 if failures else 0)

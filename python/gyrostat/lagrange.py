@@ -85,7 +85,7 @@ class LagrangeAveraged(_TopModel):
         return np.array([self._core.rate(float(s)) for s in np.atleast_1d(t)])
 
     def check(self, solution) -> list:
-        return check(self, solution.y, solution.t, warn=False)
+        return check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
 
 
 def initial_state(omega, theta: float, phi: float = 0.0, psi: float = 0.0) -> np.ndarray:
@@ -118,16 +118,22 @@ def unperturbed(model, y0, t, t0: float = 0.0) -> tuple[np.ndarray, "_core.Lagra
     return np.asarray(exact.u(np.asarray(t, float).ravel().tolist())), exact
 
 
-def check(model: LagrangeAveraged, slow, times, warn: bool = True) -> list[Assumption]:
+def check(model: LagrangeAveraged, slow, times, warn: bool = True, outputs: dict | None = None) -> list[Assumption]:
     """The averaged model's assumptions along a trajectory of (G_z, H, r) at `times`:
     adiabaticity N = rate·T_nut ≪ 1, distance from the separatrix 1 − k² ≥ 1e-3, and the regular
-    precession limit k² → 0 (reported; the averaging holds there). Warns for broken ones."""
+    precession limit k² → 0 (reported; the averaging holds there). Warns for broken ones.
+    ``outputs``: the outputs a solve recorded at those times (m, T_nut, adiabaticity), used as
+    they are; without them the nutation is evaluated at the given states."""
     slow = np.atleast_2d(np.asarray(slow, float))
     times = np.asarray(times, float)
-    table = nutation_table(model, slow)
-    rate = model.rate(times)
+    if outputs is not None:
+        table = {"m": outputs["m"], "T_nut": outputs["T_nut"]}
+        N = outputs["adiabaticity"]
+    else:
+        table = nutation_table(model, slow)
+        N = model.rate(times) * table["T_nut"]
     with np.errstate(invalid="ignore"):
-        N = np.where(np.isfinite(table["T_nut"]), rate * table["T_nut"], np.inf)
+        N = np.where(np.isfinite(table["T_nut"]), N, np.inf)
     worst = int(np.argmax(N))
     results = [Assumption(
         "Lagrange averaged", "nutation period short against the slow time: N = rate·T_nut ≪ 1", float(N[worst]), SMALL,

@@ -168,7 +168,7 @@ class AveragedModel(ModelBase):
     def check(self, solution) -> list:
         from gyrostat import validity
 
-        return validity.check(self, solution.y, solution.t, warn=False)
+        return validity.check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
 
     def __repr__(self) -> str:
         return f"AveragedModel({self.body!r}, torques={list(self.torques)!r})"

@@ -56,7 +56,7 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     for run in scene.runs:
         solution = solutions[run.name]
         if len(solution):
-            checks += validity.check(run.model, solution.y, solution.t, warn=False) \
+            checks += validity.check(run.model, solution.y, solution.t, warn=False, outputs=solution.outputs) \
                 if scene.kind.name in ("rigid_body", "averaged", "moving_mass") else run.model.check(solution)
     unique = {}
     for assumption in checks:  # torques checked under several models appear once
@@ -65,7 +65,9 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     report["broken_assumptions"] = [str(a) for a in unique.values() if not a.holds]
     derived: dict = {}
     ANALYSES.get(scene.kind.name, lambda *_: None)(scene, solutions, report, derived)
-    report["status"] = "success" if all(s.success for s in solutions.values()) else "failed"
+    statuses = {s.status for s in solutions.values()}
+    report["status"] = ("success" if statuses == {"success"} else
+                        "interrupted" if "interrupted" in statuses else "failed")
     return solutions, report, derived
 
 

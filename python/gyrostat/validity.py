@@ -65,10 +65,11 @@ def _exact_reduction(model) -> bool:
     return True
 
 
-def check(model, states, times=None, warn: bool = True) -> list[Assumption]:
+def check(model, states, times=None, warn: bool = True, outputs: dict | None = None) -> list[Assumption]:
     """Checks a model's assumptions over the given states (one state or an (n, dim) array, e.g.
-    a solution's ``y``; ``times`` for time-dependent coefficients). Returns every check; warns
-    for the broken ones when ``warn``."""
+    a solution's ``y``; ``times`` for time-dependent coefficients). ``outputs``: what a solve
+    recorded at those states (the averaged model's ``slow_to_fast``), used as it is. Returns every
+    check; warns for the broken ones when ``warn``."""
     states = np.atleast_2d(np.asarray(states, float))
     times = np.zeros(len(states)) if times is None else np.asarray(times, float)
     omegas = _omegas(model, states)
@@ -121,10 +122,13 @@ def check(model, states, times=None, warn: bool = True) -> list[Assumption]:
             results.append(Assumption("averaged model", "fast frequency ≫ slow rates", 0.0, SMALL, True,
                                       "not needed: the (a, r) reduction is exact for this symmetric scene"))
         else:
-            ratios = []
-            for t, y in zip(times, states):
-                fast = model.fast_frequency(y[1])
-                ratios.append(math.inf if fast == 0 else model.slow_rate(t, y) / fast)
+            if outputs is not None and "slow_to_fast" in outputs:
+                ratios = list(outputs["slow_to_fast"])
+            else:
+                ratios = []
+                for t, y in zip(times, states):
+                    fast = model.fast_frequency(y[1])
+                    ratios.append(math.inf if fast == 0 else model.slow_rate(t, y) / fast)
             worst = int(np.argmax(ratios))
             results.append(Assumption("averaged model", "slow rate / fast frequency |(C−A)r/A| ≪ 1", ratios[worst],
                                       SMALL, ratios[worst] <= SMALL,
