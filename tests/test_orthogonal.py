@@ -47,7 +47,7 @@ def solve(m, omega0, t_span, quaternion0=None, **options):
     """gyrostat.solve with the tolerances these tests were written for (rtol 1e-10, atol 1e-12)
     unless given; the state starts as (ω0[, q0], τ = 0)."""
     y0 = np.asarray(omega0, float) if quaternion0 is None else np.concatenate([omega0, quaternion0])
-    return g.solve(m, y0, t_span, **{"rtol": 1e-10, "atol": 1e-12, **options})
+    return g.solve(m, y0, t_span, **{"rtol": 1e-10, "atol": 1e-12, "events": o.g_zero(), **options})
 
 
 # ---------------------------------------------------------------------------------- invariants

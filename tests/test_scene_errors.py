@@ -147,3 +147,26 @@ def test_docs_scene_reference_is_current():
 
     doc = Path(__file__).resolve().parent.parent / "docs" / "scenes.md"
     assert doc.read_text() == scene_format() + "\n", "docs/scenes.md is stale: run `gyrostat scene-format > docs/scenes.md`"
+
+
+def test_scene_events_are_located_and_reported(tmp_path):
+    from gyrostat.runner import run_scene
+    from gyrostat.validity import ValidityWarning
+
+    doc = _example("p000_A8_C4_M3-0p1")
+    doc["events"] = [{"quantity": "r", "name": "r = 0"}, {"quantity": "slow_to_fast", "value": 0.5, "direction": 1}]
+    scene_file = tmp_path / "events.toml"
+    _write(doc, scene_file)
+    with pytest.warns(ValidityWarning):  # the paper's own scene breaks the cavity's "small" assumption
+        report = run_scene(scene_file, tmp_path / "out", progress=False)
+    full, slow = report["runs"]["full"]["events"], report["runs"]["averaged"]["events"]
+    # r = 0 in both models (the reduction is exact here: the same time to the tolerance);
+    # slow_to_fast is an output of the averaged model only
+    assert len(full["r = 0"]) == 1 and abs(full["r = 0"][0] - slow["r = 0"][0]) < 1e-6
+    assert "slow_to_fast = 0.5" not in full and len(slow["slow_to_fast = 0.5"]) == 1
+    doc["events"] = [{"quantity": "theta"}]
+    with pytest.raises(SceneError, match=r"\[events\[0\]\] quantity = 'theta' is neither"):
+        Scene.from_dict(doc)
+    doc["events"] = [{"quantity": "r", "direction": 2}]
+    with pytest.raises(SceneError, match=r"\[events\[0\]\] direction = 2: must be -1, 0 or 1"):
+        Scene.from_dict(doc)

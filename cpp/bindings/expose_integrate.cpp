@@ -8,6 +8,7 @@
 #include "convert.hpp"
 #include "expose.hpp"
 #include "gyrostat/engine.hpp"
+#include "gyrostat/integrate/dense.hpp"
 
 namespace gyrostat::bindings {
 
@@ -64,6 +65,34 @@ std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
 }  // namespace
 
 void expose_integrate(py::module_& m) {
+    using integrate::Event;
+    py::class_<Event>(m, "Event", "A zero crossing g(t, y) = quantity - value, located by the engine.")
+        .def(py::init([](const std::string& quantity, int index, double value, int direction, int terminal,
+                         std::string name, py::object function) {
+                 Event e;
+                 if (quantity == "state") e.quantity = Event::Quantity::State;
+                 else if (quantity == "output") e.quantity = Event::Quantity::Output;
+                 else if (quantity == "function") e.quantity = Event::Quantity::Function;
+                 else throw py::value_error("event quantity '" + quantity + "': choose state, output or function");
+                 e.index = index, e.value = value, e.direction = direction, e.terminal = terminal, e.name = std::move(name);
+                 if (!function.is_none()) {
+                     // the slow path: one call into Python (GIL held) per evaluation
+                     e.function = [function](double t, const double* y, int dim) {
+                         py::gil_scoped_acquire gil;
+                         py::array_t<double> state(dim, y);
+                         return function(t, state).cast<double>();
+                     };
+                 }
+                 return e;
+             }),
+             py::arg("quantity"), py::arg("index"), py::arg("value"), py::arg("direction"), py::arg("terminal"),
+             py::arg("name"), py::arg("function") = py::none())
+        .def_readonly("index", &Event::index)
+        .def_readonly("value", &Event::value)
+        .def_readonly("direction", &Event::direction)
+        .def_readonly("terminal", &Event::terminal)
+        .def_readonly("name", &Event::name);
+
     using integrate::Options;
     py::class_<Options>(m, "Options", "Every integrator option with its default (the one place where defaults live).")
         .def(py::init<>())
@@ -84,12 +113,15 @@ void expose_integrate(py::module_& m) {
         .def_readwrite("max_steps", &Options::max_steps)
         .def_readwrite("first_step", &Options::first_step)
         .def_readwrite("max_step", &Options::max_step)
+        .def_readwrite("events", &Options::events)
+        .def_readwrite("dense_output", &Options::dense_output)
         .def("__repr__", [](const Options& o) {
             return "Options(method='" + std::string(integrate::method_name(o.method)) + "', rtol=" + format_value(o.rtol) +
                    ", atol=" + format_value(o.atol) + ", n_out=" + std::to_string(o.n_out) + ", t_eval=<" +
                    std::to_string(o.t_eval.size()) + " times>, every_step=" + (o.every_step ? "True" : "False") +
                    ", max_steps=" + std::to_string(o.max_steps) + ", first_step=" + format_value(o.first_step) +
-                   ", max_step=" + format_value(o.max_step) + ")";
+                   ", max_step=" + format_value(o.max_step) + ", events=<" + std::to_string(o.events.size()) +
+                   ">, dense_output=" + (o.dense_output ? "True" : "False") + ")";
         });
 
     py::class_<integrate::Stats>(m, "Stats")
@@ -123,6 +155,42 @@ void expose_integrate(py::module_& m) {
                                    return view(r.outputs, static_cast<py::ssize_t>(r.t.size()),
                                                static_cast<py::ssize_t>(r.output_names.size()), self);
                                })
+        .def_readonly("event_names", &Result::event_names)
+        .def_property_readonly("t_events",
+                               [](const Result& r) {
+                                   py::list out;
+                                   for (const auto& t : r.t_events) out.append(py::array_t<double>(static_cast<py::ssize_t>(t.size()), t.data()));
+                                   return out;
+                               })
+        .def_property_readonly("y_events",
+                               [](const Result& r) {
+                                   py::list out;
+                                   for (const auto& y : r.y_events) {
+                                       const py::ssize_t n = r.dim ? static_cast<py::ssize_t>(y.size()) / r.dim : 0;
+                                       py::array_t<double> a({n, static_cast<py::ssize_t>(r.dim)});
+                                       std::copy(y.begin(), y.end(), a.mutable_data());
+                                       out.append(a);
+                                   }
+                                   return out;
+                               })
+        .def_readonly("terminal_event", &Result::terminal_event)
+        .def_property_readonly("has_dense", [](const Result& r) { return static_cast<bool>(r.dense); })
+        .def("dense",
+             [](const Result& r, py::array_t<double, py::array::c_style | py::array::forcecast> t) {
+                 if (!r.dense) throw py::value_error("this solution keeps no dense output: solve with dense_output=True");
+                 py::array_t<double> out({static_cast<py::ssize_t>(t.size()), static_cast<py::ssize_t>(r.dim)});
+                 double* data = out.mutable_data();
+                 const double* times = t.data();
+                 {
+                     py::gil_scoped_release release;
+                     for (py::ssize_t i = 0; i < t.size(); ++i) {
+                         const Eigen::VectorXd y = (*r.dense)(times[i]);
+                         std::copy(y.data(), y.data() + r.dim, data + i * r.dim);
+                     }
+                 }
+                 return out;
+             },
+             py::arg("t"), "The solution at the times t (1-D), from each step's continuous extension.")
         .def_readonly("stats", &Result::stats)
         .def_property_readonly("status", [](const Result& r) { return integrate::status_name(r.status); })
         .def_readonly("message", &Result::message)

@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'solve', 'solve_ensemble', 'torque_free_model']
+__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'solve', 'solve_ensemble', 'torque_free_model']
 class Body:
     def __init__(self, moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], rotor: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
         ...
@@ -187,10 +187,32 @@ class Model:
     @property
     def state_names(self) -> list[str]:
         ...
+class Event:
+    """
+    A zero crossing g(t, y) = quantity - value, located by the engine.
+    """
+    def __init__(self, quantity: str, index: typing.SupportsInt | typing.SupportsIndex, value: typing.SupportsFloat | typing.SupportsIndex, direction: typing.SupportsInt | typing.SupportsIndex, terminal: typing.SupportsInt | typing.SupportsIndex, name: str, function: typing.Any = None) -> None:
+        ...
+    @property
+    def direction(self) -> int:
+        ...
+    @property
+    def index(self) -> int:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def terminal(self) -> int:
+        ...
+    @property
+    def value(self) -> float:
+        ...
 class Options:
     """
     Every integrator option with its default (the one place where defaults live).
     """
+    dense_output: bool
     every_step: bool
     method: str
     def __init__(self) -> None:
@@ -202,6 +224,12 @@ class Options:
         ...
     @atol.setter
     def atol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def events(self) -> list[Event]:
+        ...
+    @events.setter
+    def events(self, arg0: collections.abc.Sequence[Event]) -> None:
         ...
     @property
     def first_step(self) -> float:
@@ -262,8 +290,18 @@ class Result:
     """
     A trajectory as the engine returns it; the arrays are views of its memory.
     """
+    def dense(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The solution at the times t (1-D), from each step's continuous extension.
+        """
     @property
     def dim(self) -> int:
+        ...
+    @property
+    def event_names(self) -> list[str]:
+        ...
+    @property
+    def has_dense(self) -> bool:
         ...
     @property
     def message(self) -> str:
@@ -296,7 +334,16 @@ class Result:
     def t(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def t_events(self) -> list:
+        ...
+    @property
+    def terminal_event(self) -> int:
+        ...
+    @property
     def y(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def y_events(self) -> list:
         ...
 class TorqueFreeSolution:
     def __init__(self, body: Body, omega0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:

@@ -8,7 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from gyrostat import _core
+from gyrostat.events import Event
 from gyrostat.solution import Solution
+from gyrostat.validity import SMALL
 
 
 def slow_variables(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
@@ -16,6 +18,18 @@ def slow_variables(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
     if solution.state_names[:2] == ("a", "r"):
         return solution["a"], solution["r"]
     return np.hypot(solution["p"], solution["q"]), solution["r"]
+
+
+def r_zero(direction: int = 0, terminal: bool | int = False) -> Event:
+    """The event r = 0 (the axial rate changes sign) of the full or the averaged model: there the
+    averaging over the symmetric motion stops being valid (the fast frequency vanishes)."""
+    return Event("r", 0.0, direction, terminal, "r = 0")
+
+
+def averaging_fails(limit: float = SMALL, terminal: bool | int = False) -> Event:
+    """The event where the averaged model's slow rate reaches ``limit`` times its fast frequency
+    (the output ``slow_to_fast`` rising through ``limit``): past it the averaging is not valid."""
+    return Event("slow_to_fast", float(limit), 1, terminal, f"slow/fast reaches {limit:g}")
 
 
 def xy(solution: Solution) -> tuple[np.ndarray, np.ndarray]:

@@ -29,6 +29,9 @@ def _print_report(report: dict) -> None:
                           if v.get("relative_change", v.get("max_abs_change")) is not None)
         print(f"  {name}: {run['method']}, {run['status']}; steps {stats['steps']}, rhs evaluations "
               f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}" + (f"; change of {drift}" if drift else ""))
+        for event, times in run.get("events", {}).items():
+            shown = ", ".join(f"{t:.6g}" for t in times[:5]) + (", ..." if len(times) > 5 else "")
+            print(f"    event {event}: {len(times)} crossing(s)" + (f" at t = {shown}" if times else ""))
         if run["message"]:
             print(f"    message: {run['message']}")
     for key, diff in report.items():  # averaged_vs_full and its variants: name → max difference

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from gyrostat import _core, attitude
+from gyrostat.events import Event
 from gyrostat.model import ModelBase, check_torques
 from gyrostat.validity import SMALL, Assumption, ValidityWarning
 
@@ -160,6 +161,23 @@ def check(model: LagrangeAveraged, slow, times, warn: bool = True, outputs: dict
             if not a.holds:
                 warnings.warn(str(a), ValidityWarning, stacklevel=2)
     return results
+
+
+def turning_points(direction: int = 0, terminal: bool | int = False) -> Event:
+    """The turning points of the nutation of the full top: d(cos θ)/dt = γ1 q − γ2 p = 0 (the
+    output ``cos_theta_rate``); direction −1: θ at a minimum (cos θ at a maximum), +1: θ at a maximum."""
+    return Event("cos_theta_rate", 0.0, direction, terminal, "nutation turning point")
+
+
+def near_separatrix(limit: float = SEPARATRIX_LIMIT, terminal: bool | int = False) -> Event:
+    """k² rising through 1 − limit: the motion approaches the separatrix, where the nutation
+    period diverges and the averaging degrades (full or averaged top: the output ``m``)."""
+    return Event("m", 1.0 - float(limit), 1, terminal, f"1 - k^2 falls to {limit:g}")
+
+
+def averaging_fails(limit: float = SMALL, terminal: bool | int = False) -> Event:
+    """The averaged top's adiabaticity N = rate·T_nut rising through ``limit``."""
+    return Event("adiabaticity", float(limit), 1, terminal, f"N = rate T_nut reaches {limit:g}")
 
 
 def r_exact(r0: float, C: float, epsilon: float, b: Sequence[float], t) -> np.ndarray:

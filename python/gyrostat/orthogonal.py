@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gyrostat import _core, attitude
+from gyrostat.events import Event
 from gyrostat.model import Model, ModelBase, check_torques
 from gyrostat.solve import solve
 
@@ -144,13 +145,27 @@ class OrthogonalModel(ModelBase):
                 f"regularisation={self.regularisation!r})")
 
 
+G_FALLS, G_RISES = "g falls through 0", "g rises through 0"
+
+
+def g_zero(terminal: bool | int = False) -> list[Event]:
+    """The events where g = dτ/dt = 1 − L/|Q| crosses zero: falling (τ stops and then runs
+    backwards) and rising (τ turns forward again), located by the engine on the integrator's
+    continuous extension. :func:`tau_report` reads them."""
+    return [Event("g", 0.0, -1, terminal, G_FALLS), Event("g", 0.0, 1, terminal, G_RISES)]
+
+
 def tau_report(model: OrthogonalModel, sol, freeze_tol: float = 1e-6) -> dict:
-    """Where g = dτ/dt ≤ 0: zero crossings (time, τ, |Q|, L), intervals with g < 0, the minimum of
-    g, a frozen end state (|g| and |ω̇| below freeze_tol), and times where |Q| < δ.
+    """Where g = dτ/dt ≤ 0: its zero crossings (time, τ, L; from the events of :func:`g_zero`,
+    which the solve must have watched), intervals with g < 0 and the minimum of g on the output
+    grid, a frozen end state (|g| and |ω̇| below freeze_tol), and times where |Q| < δ.
 
     What the motion does: ω moves along the torque-free orbit with speed g. Where g = 0 the servo
     torque cancels ω × G and ω stands still (a uniform rotation about a fixed inertial axis);
     where g < 0 the body retraces the ZV orbit backwards (τ decreases)."""
+    names = sol.event_names
+    if G_FALLS not in names or G_RISES not in names:
+        raise ValueError("tau_report needs the crossings of g = 0: solve with events=orthogonal.g_zero()")
     t, g, tau = sol.t, sol["g"], sol["tau"]
     q_norm, law = sol["Q_norm"], sol["L"]
     regularised = sol["regularised"] > 0
@@ -160,16 +175,15 @@ def tau_report(model: OrthogonalModel, sol, freeze_tol: float = 1e-6) -> dict:
         return report
     i = int(np.argmin(g))
     report["min_g"], report["t_min_g"] = float(g[i]), float(t[i])
-    sign = np.sign(g)
-    for j in np.nonzero(sign[:-1] != sign[1:])[0]:
-        if g[j] == 0 and j > 0:
-            continue
-        w = g[j] / (g[j] - g[j + 1]) if g[j] != g[j + 1] else 0.0
-        tc = float(t[j] + w * (t[j + 1] - t[j]))
-        entry = {"t": tc, "tau": float(tau[j] + w * (tau[j + 1] - tau[j])),
-                 "q_norm": float(q_norm[j] + w * (q_norm[j + 1] - q_norm[j])),
-                 "L": float(model.law(tc)), "direction": "down" if g[j] > g[j + 1] else "up"}
-        report["crossings"].append(entry)
+    tau_index = sol.state_names.index("tau")
+    for name, direction in ((G_FALLS, "down"), (G_RISES, "up")):
+        k = names.index(name)
+        for tc, yc in zip(sol.t_events[k], sol.y_events[k]):
+            L = float(model.law(float(tc)))
+            # at g = 0 the regularised denominator equals L: |Q| = L wherever |Q| ≥ δ
+            report["crossings"].append({"t": float(tc), "tau": float(yc[tau_index]), "q_norm": L, "L": L,
+                                        "direction": direction})
+    report["crossings"].sort(key=lambda c: c["t"])
     negative = g < 0
     if np.any(negative):
         edges = np.diff(np.concatenate([[0], negative.astype(int), [0]]))
@@ -191,7 +205,7 @@ def tau_report(model: OrthogonalModel, sol, freeze_tol: float = 1e-6) -> dict:
         what = ("g falls through 0: tau stops and then runs backwards (the body retraces the torque-free orbit; "
                 "not L-reducible forward in time)" if c["direction"] == "down" else
                 "g rises through 0: tau turns forward again")
-        msgs.append(f"t = {c['t']:.6g} (tau = {c['tau']:.6g}, |Q| = {c['q_norm']:.6g}, L = {c['L']:.6g}): {what}")
+        msgs.append(f"t = {c['t']:.6g} (tau = {c['tau']:.6g}, |Q| = L = {c['L']:.6g}): {what}")
     if report["frozen"]:
         f = report["frozen"]
         msgs.append(f"frozen at the end: |g| = {abs(f['g']):.2e}, |domega/dt| = {f['omega_rate']:.2e}, |Q| = "

@@ -88,6 +88,10 @@ def run_report(solution) -> dict:
         outputs = solution.outputs
         for name in solution.conserved:
             report["conserved"][name] = change(outputs[name], True)
+    if solution.event_names:
+        report["events"] = {name: [float(t) for t in times] for name, times in zip(solution.event_names, solution.t_events)}
+        if solution.terminal_event is not None:
+            report["terminal_event"] = solution.event_names[solution.terminal_event]
     return report
 
 

@@ -109,7 +109,7 @@ def _orthogonal(scene: Scene, solutions: dict, report: dict, derived: dict) -> N
         if not len(sol):
             continue
         omega0, q0 = run.y0[:3], run.y0[3:7]
-        g_report = orthogonal.tau_report(model, sol)
+        g_report = orthogonal.tau_report(model, sol)  # from the g = 0 events the run watched
         sol.notes.extend(g_report["messages"])
         regime = orthogonal.constant_law_regime(model, omega0)
         if regime:

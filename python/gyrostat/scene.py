@@ -81,6 +81,20 @@ TITLE = {
     "description": Field(str, default="", doc="what the scene shows"),
 }
 
+def _direction(value):
+    if value not in (-1, 0, 1):
+        raise ValueError("must be -1, 0 or 1")
+
+
+EVENT = Table({
+    "quantity": Field(str, required=True, doc="a state component or a named output of the run's model"),
+    "value": Field(float, default=0.0, doc="the value it crosses", check=_finite),
+    "direction": Field(int, default=0, doc="+1 upward crossings only, -1 downward, 0 both", check=_direction),
+    "terminal": Field(int, default=0, doc="0: record; n: stop the run at the n-th crossing", check=non_negative),
+    "name": Field(str, default="", doc="a name for the report"),
+}, doc="an event: where a quantity crosses a value, located by the engine")
+TITLE["events"] = Field(ArrayOf(EVENT), default=[], doc="events to locate in every run that has the quantity")
+
 METHOD = Field(Choice(*_core.methods()), default="dop853", doc="integrator (gyrostat.METHODS)")
 RTOL = Field(float, default=1e-8, doc="relative tolerance", check=positive)
 ATOL = Field(float, default=1e-10, doc="absolute tolerance", check=non_negative)
@@ -484,7 +498,7 @@ class OrthogonalTorqueKind(Kind):
             law = _build(f"runs[{i}].law", orthogonal.law_from_spec, spec["law"])
             model = _build(f"runs[{i}]", orthogonal.OrthogonalModel, body, law, (), True, integ["eta"])
             runs.append(Run(spec["name"], model, np.concatenate([omega0, q0, [0.0]]), tuple(integ["t_span"]),
-                            _integration(doc)))
+                            _integration(doc, events=orthogonal.g_zero())))
         names = [r.name for r in runs]
         if len(set(names)) != len(names):
             raise SceneError(f"[runs] names must differ; got {names}")
@@ -496,6 +510,22 @@ class OrthogonalTorqueKind(Kind):
 KINDS: dict[str, Kind] = {kind.name: kind for kind in (RigidBody(), Averaged(), MovingMass(), LagrangeTopKind(),
                                                        OrthogonalTorqueKind())}
 """The registry of scene kinds, by the name a scene gives as ``kind``."""
+
+
+def _add_events(doc: dict, runs: list[Run]) -> None:
+    """The scene's [[events]] to every run whose model has the quantity (one that none has is an error)."""
+    from gyrostat.events import Event
+
+    for i, spec in enumerate(doc["events"]):
+        event = _build(f"events[{i}]", Event, spec["quantity"], spec["value"], spec["direction"], spec["terminal"],
+                       spec["name"] or None)
+        users = [r for r in runs if spec["quantity"] in r.model.state_names + r.model.output_names]
+        if not users:
+            names = sorted({n for r in runs for n in r.model.state_names + r.model.output_names})
+            raise SceneError(f"[events[{i}]] quantity = {spec['quantity']!r} is neither a state component nor an output "
+                             f"of the scene's models ({', '.join(names)})")
+        for run in users:
+            run.options = {**run.options, "events": list(run.options.get("events", [])) + [event]}
 
 
 # ------------------------------------------------------------------------------------ scenes
@@ -536,6 +566,7 @@ class Scene:
         kind = KINDS[kind_name]
         doc = validate(kind.schema, data)
         runs, choice, reason = kind.runs(doc)
+        _add_events(doc, runs)
         return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason)
 
     @classmethod

@@ -127,6 +127,35 @@ class Solution:
 
         return attitude.euler_angles(self.quaternion, convention)
 
+    # ---- events and dense output
+    @property
+    def t_events(self) -> list[np.ndarray]:
+        """One array per event: the times of its crossings (SciPy's name)."""
+        return self._result.t_events
+
+    @property
+    def y_events(self) -> list[np.ndarray]:
+        """One (k, dim) array per event: the states at its crossings (SciPy's name)."""
+        return self._result.y_events
+
+    @property
+    def event_names(self) -> tuple[str, ...]:
+        return tuple(self._result.event_names)
+
+    @property
+    def terminal_event(self) -> int | None:
+        """The index of the event that ended the run, or None."""
+        index = self._result.terminal_event
+        return None if index < 0 else index
+
+    def __call__(self, t) -> np.ndarray:
+        """The solution at t (a number or an array of times anywhere in the span), from the
+        stored continuous extension of each step (solve with ``dense_output=True``; memory grows
+        with the steps taken). The attitude part stays a unit quaternion."""
+        times = np.asarray(t, dtype=float)
+        values = self._result.dense(times.ravel())
+        return values[0] if times.ndim == 0 else values.reshape(times.shape + (values.shape[1],))
+
     # ---- run information
     @property
     def stats(self) -> dict[str, float]:

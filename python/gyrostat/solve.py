@@ -35,9 +35,11 @@ def make_options(options: Options | None = None, **given) -> Options:
     when given. Bad values raise ValueError naming the option and the value."""
     if options is None and all(v is None for v in given.values()):
         return _DEFAULT
+    if options is not None and not isinstance(options, Options):
+        raise TypeError(f"options must be a gyrostat.Options, not {type(options).__name__}")
     result = Options()
     if options is not None:
-        for name in _OPTION_NAMES:
+        for name in _OPTION_NAMES + ("events", "dense_output"):
             setattr(result, name, getattr(options, name))
     for name, value in given.items():
         if value is None:
@@ -108,6 +110,16 @@ def _bad_call(core, y0, t0, t1) -> ValueError:
 _BASE_CHECK = ModelBase.check
 
 
+def _with_events(opts: Options, events, dense_output: bool, core) -> Options:
+    """A copy of `opts` (the cached ones are never modified) with the model's events and dense output."""
+    from gyrostat.events import to_core
+
+    made = make_options(opts)
+    made.events = to_core(events, list(core.state_names), list(core.output_names))
+    made.dense_output = bool(dense_output)
+    return made
+
+
 def _core_model(model):
     try:
         return model._core
@@ -156,7 +168,8 @@ def _checked(solution: Solution, model, check_validity: bool) -> Solution:
 def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = None, atol: float | None = None,
           t_eval=None, n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
           first_step: float | None = None, max_step: float | None = None, options: Options | None = None,
-          progress: bool | Callable[[float], object] | None = None, check_validity: bool = True) -> Solution:
+          events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
+          check_validity: bool = True) -> Solution:
     """Solves any model from the initial state ``y0`` over ``t_span = (t0, t1)``.
 
     Parameters
@@ -175,6 +188,14 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         output times). Outputs come from each method's dense output between steps, so memory
         grows with the outputs asked for, not with the steps; ``every_step=True`` records every
         accepted step as well. ``options`` gives them all at once.
+    events:
+        :class:`gyrostat.events.Event` (a state component or named output crossing a value,
+        evaluated in C++) or callables ``f(t, y)`` as in SciPy (the slow path), or a list of
+        them; located on each step's continuous extension. Results: ``t_events``, ``y_events``,
+        ``terminal_event``. Terminal events end the run (status success).
+    dense_output:
+        Keep every step's continuous extension so that the solution can be called anywhere in
+        the span, ``solution(t)`` (memory then grows with the steps taken, not with the outputs).
     progress:
         A callable of the fraction done, called from the run at most every 0.1 s (``True``:
         a percentage on stderr). Progress never changes the trajectory.
@@ -196,6 +217,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     except AttributeError:
         core = _core_model(model)
     opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step)
+    if events is not None or dense_output:
+        opts = _with_events(opts, events, dense_output, core)
     try:
         t0, t1 = t_span
     except (TypeError, ValueError):
@@ -217,7 +240,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
                    method: str | None = None, rtol: float | None = None, atol: float | None = None, t_eval=None,
                    n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
                    first_step: float | None = None, max_step: float | None = None, options: Options | None = None,
-                   progress: bool | Callable[[float], object] | None = None,
+                   events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
                    check_validity: bool = True) -> list[Solution]:
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
 
@@ -228,7 +251,9 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     ``status == "invalid_input"`` and its message; the others are unaffected. ``threads`` ≤ 0
     uses every hardware thread. ``progress`` is called with the fraction of members finished;
     Ctrl-C stops the members running (status ``"interrupted"``, partial trajectories kept) and
-    those not started (empty, ``"interrupted"``). Options as in :func:`solve`.
+    those not started (empty, ``"interrupted"``). Options, ``events`` and ``dense_output`` as in
+    :func:`solve`: every member watches the same events and stops on its own terminal event (the
+    events are resolved against the first model's names: give members of one family).
     """
     if isinstance(models, ModelBase):
         models = [models]
@@ -247,6 +272,10 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     if len(models) not in (1, count):
         raise ValueError(f"{len(models)} models for {count} initial states: give 1 or {count}")
     opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step)
+    if events is not None or dense_output:
+        if len({tuple(c.state_names) + tuple(c.output_names) for c in cores}) > 1:
+            raise ValueError("events in an ensemble need members of one family (the same state and output names)")
+        opts = _with_events(opts, events, dense_output, cores[0])
     t0, t1 = _span(t_span)
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")

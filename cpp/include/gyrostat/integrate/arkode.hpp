@@ -43,6 +43,8 @@ public:
     bool suggest_stiff() const { return true; }
     void set_stop_time(double t) { sundials::check(ERKStepSetStopTime(mem_.get(), t), "ERKStepSetStopTime"); }
     void interpolate(double t, N_Vector y) { sundials::check(ERKStepGetDky(mem_.get(), t, 0, y), "ERKStepGetDky"); }
+    int derivative(double t, int k, N_Vector d) { return ERKStepGetDky(mem_.get(), t, k, d); }
+    int degree() const { return 5; }  // ARKODE's Hermite interpolant has degree ≤ 5; past it GetDky fails
 
     Stats stats() const {
         void* mem = mem_.get();

@@ -51,6 +51,12 @@ public:
     int evolve(double tout, N_Vector y, double* t) { return CVode(mem_.get(), tout, y, t, CV_ONE_STEP); }
     void set_stop_time(double t) { sundials::check(CVodeSetStopTime(mem_.get(), t), "CVodeSetStopTime"); }
     void interpolate(double t, N_Vector y) { sundials::check(CVodeGetDky(mem_.get(), t, 0, y), "CVodeGetDky"); }
+    int derivative(double t, int k, N_Vector d) { return CVodeGetDky(mem_.get(), t, k, d); }
+    int degree() const {
+        int q = 0;
+        CVodeGetLastOrder(mem_.get(), &q);
+        return q;
+    }
 
     Stats stats() const {
         void* mem = mem_.get();

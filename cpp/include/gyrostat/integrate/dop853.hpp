@@ -11,6 +11,7 @@
 
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/diagnose.hpp"
+#include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/dop853_tableau.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
@@ -27,6 +28,32 @@ constexpr int kMaxNonFiniteTrials = 25;          // 0.2^25 ≈ 3e-18: the step c
 template <class State>
 double rms(const State& v) {
     return std::sqrt(v.squaredNorm() / static_cast<double>(v.size()));
+}
+
+/// The dense output y + x(F0 + (1−x)(F1 + x(F2 + (1−x)(F3 + x(F4 + (1−x)(F5 + x F6)))))),
+/// x = (t − t_n)/h, as the monomials c_0 … c_7 in x (for DenseOutput).
+template <class State>
+void monomials(const std::array<State, 7>& F, const State& y, State* c) {
+    int degree = 0;
+    c[0] = F[6];
+    auto x_times_plus = [&](const State& a) {  // c ← a + x c
+        for (int k = degree; k >= 0; --k) c[k + 1] = c[k];
+        c[0] = a;
+        ++degree;
+    };
+    auto one_minus_x_times_plus = [&](const State& a) {  // c ← a + (1 − x) c
+        c[degree + 1] = -c[degree];
+        for (int k = degree; k >= 1; --k) c[k] = c[k] - c[k - 1];
+        c[0] += a;
+        ++degree;
+    };
+    x_times_plus(F[5]);
+    one_minus_x_times_plus(F[4]);
+    x_times_plus(F[3]);
+    one_minus_x_times_plus(F[2]);
+    x_times_plus(F[1]);
+    one_minus_x_times_plus(F[0]);
+    x_times_plus(y);
 }
 }  // namespace dop853_detail
 
@@ -47,6 +74,8 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     result.method = method_name(Method::Dop853);
     const std::vector<double> outputs = output_times(options, t0, t1);
     Recorder<System> record(system, result, outputs.size());
+    EventLocator<System> events(system, options.events, result);
+    result.dense = make_dense<System>(options);
     std::size_t next_output = 0;
 
     const double direction = t1 >= t0 ? 1.0 : -1.0;
@@ -61,6 +90,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     ++stats.rhs_evals;
 
     while (next_output < outputs.size() && outputs[next_output] == t0) record.push(t0, y), ++next_output;
+    events.start(t0, y);
     if (t0 == t1) return result;
     if (!all_finite(f)) {
         result.status = Status::NonFiniteState;
@@ -180,38 +210,57 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
         ++stats.steps;
         stats.last_step = std::abs(h);
 
-        // Outputs inside (t, t_new): the 7th-order dense output, whose three extra stages are
-        // computed only for steps that contain an output time.
-        const bool has_interior_output = next_output < outputs.size() && direction * (outputs[next_output] - t_new) < 0.0;
-        if (has_interior_output) {
-            for (int s = tab::n_stages + 1; s < tab::n_stages_extended; ++s) {
-                State dy = tab::a[s][0] * k[0];
-                for (int j = 1; j < s; ++j)
-                    if (tab::a[s][j] != 0.0) dy += tab::a[s][j] * k[j];
-                system.rhs(t + tab::c[s] * h, State(y + h * dy), k[s]);
-            }
-            stats.rhs_evals += tab::n_stages_extended - tab::n_stages - 1;
-            std::array<State, 7> F;
-            const State delta = y_new - y;
-            F[0] = delta;
-            F[1] = h * k[0] - delta;
-            F[2] = 2.0 * delta - h * (f_new + k[0]);
-            for (int i = 0; i < 4; ++i) {
-                State acc = tab::d[i][0] * k[0];
-                for (int j = 1; j < tab::n_stages_extended; ++j)
-                    if (tab::d[i][j] != 0.0) acc += tab::d[i][j] * k[j];
-                F[3 + i] = h * acc;
-            }
-            while (next_output < outputs.size() && direction * (outputs[next_output] - t_new) < 0.0) {
-                const double x = (outputs[next_output] - t) / h;
-                State value = State::Zero();
-                for (int i = 0; i < 7; ++i) {
-                    value += F[6 - i];
-                    value *= (i % 2 == 0) ? x : (1.0 - x);
+        // The 7th-order dense output of the step, its three extra stages computed only for steps
+        // that contain an output time or an event.
+        bool dense_ready = false;
+        std::array<State, 7> F;
+        auto dense = [&](double time) {
+            if (!dense_ready) {
+                for (int s = tab::n_stages + 1; s < tab::n_stages_extended; ++s) {
+                    State dy = tab::a[s][0] * k[0];
+                    for (int j = 1; j < s; ++j)
+                        if (tab::a[s][j] != 0.0) dy += tab::a[s][j] * k[j];
+                    system.rhs(t + tab::c[s] * h, State(y + h * dy), k[s]);
                 }
-                record.push(outputs[next_output], State(value + y));
-                ++next_output;
+                stats.rhs_evals += tab::n_stages_extended - tab::n_stages - 1;
+                const State delta = y_new - y;
+                F[0] = delta;
+                F[1] = h * k[0] - delta;
+                F[2] = 2.0 * delta - h * (f_new + k[0]);
+                for (int i = 0; i < 4; ++i) {
+                    State acc = tab::d[i][0] * k[0];
+                    for (int j = 1; j < tab::n_stages_extended; ++j)
+                        if (tab::d[i][j] != 0.0) acc += tab::d[i][j] * k[j];
+                    F[3 + i] = h * acc;
+                }
+                dense_ready = true;
             }
+            const double x = (time - t) / h;
+            State value = State::Zero();
+            for (int i = 0; i < 7; ++i) {
+                value += F[6 - i];
+                value *= (i % 2 == 0) ? x : (1.0 - x);
+            }
+            return State(value + y);
+        };
+        const double t_stop = events.step(t, t_new, y_new, dense);
+        const bool terminated = !std::isnan(t_stop);
+        if (result.dense) {
+            dense(t);  // the dense coefficients F of this step
+            std::array<State, 8> c;
+            monomials(F, y, c.data());
+            result.dense->add(t, terminated ? t_stop : t_new, t, h, 7, c[0].data());
+        }
+        while (next_output < outputs.size() && direction * (outputs[next_output] - t_new) < 0.0 &&
+               (!terminated || direction * (outputs[next_output] - t_stop) <= 0.0)) {
+            record.push(outputs[next_output], dense(outputs[next_output]));
+            ++next_output;
+        }
+        if (terminated) {
+            while (next_output < outputs.size() && outputs[next_output] == t_stop)
+                record.push(t_stop, dense(t_stop)), ++next_output;
+            mark_terminated(result, t_stop);
+            return result;
         }
 
         if constexpr (model::system::has_projection<System>::value) {

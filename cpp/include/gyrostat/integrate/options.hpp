@@ -1,11 +1,15 @@
 // One interface for every integrator: its options, its result, its statuses.
 #pragma once
 
+#include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace gyrostat::integrate {
+
+class DenseOutput;  // dense.hpp
 
 enum class Method {
     Dop853,          ///< fixed-size, allocation-free Dormand–Prince 8(5,3) with 7th-order dense output
@@ -19,6 +23,20 @@ enum class Method {
 Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names
 const char* method_name(Method m);
 std::vector<std::string> method_names();
+
+/// An event: g(t, y) = quantity(t, y) − value crossing zero, where the quantity is a state
+/// component, a named output of the model (evaluated in C++), or a function of (t, y) (a Python
+/// callable: the slow path, one call into Python per evaluation).
+struct Event {
+    enum class Quantity { State, Output, Function };
+    Quantity quantity = Quantity::State;
+    int index = 0;        ///< the state component or output
+    double value = 0.0;
+    int direction = 0;    ///< +1: upward crossings only (g from < 0 to ≥ 0), −1: downward, 0: both (SciPy's sign)
+    int terminal = 0;     ///< 0: record and go on; n ≥ 1: stop the run at the n-th crossing
+    std::string name;
+    std::function<double(double t, const double* y, int dim)> function;  ///< Quantity::Function
+};
 
 /// Every option of every integrator, with its default: the one place where defaults live
 /// (the Python layer reads them from here).
@@ -35,6 +53,10 @@ struct Options {
     long max_steps = 1'000'000;                                   ///< over the whole run
     double first_step = 0.0;                                      ///< 0: chosen by the method
     double max_step = std::numeric_limits<double>::infinity();   ///< largest |h|
+    /// Zero crossings to locate on each step's continuous extension (events.hpp).
+    std::vector<Event> events;
+    /// Keep every step's continuous extension (Result::dense): memory grows with the steps.
+    bool dense_output = false;
 };
 
 enum class Status {
@@ -68,6 +90,12 @@ struct Result {
     std::vector<double> t;
     std::vector<double> y;
     std::vector<double> outputs;
+    /// Per event: the times of its crossings and the states there (row-major, dim per crossing).
+    std::vector<std::string> event_names;
+    std::vector<std::vector<double>> t_events;
+    std::vector<std::vector<double>> y_events;
+    int terminal_event = -1;  ///< the event that ended the run (status Success), −1: none
+    std::shared_ptr<DenseOutput> dense;  ///< with Options::dense_output: the solution between outputs
     Stats stats;
     Status status = Status::Success;
     std::string message;

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/model/system.hpp"
 
@@ -28,6 +29,17 @@ void describe(Result& result) {
             result.output_conserved.push_back(info.conserved);
         }
     }
+}
+
+/// An empty dense output for `System` when the options ask for one (the quaternion, where the
+/// state has one, normalised on evaluation).
+template <class System>
+std::shared_ptr<DenseOutput> make_dense(const Options& options) {
+    if (!options.dense_output) return nullptr;
+    int quaternion = -1;
+    for (int i = 0; i < System::dim; ++i)
+        if (std::string(System::state_names[i]) == "q_w") quaternion = i;
+    return std::make_shared<DenseOutput>(System::dim, quaternion);
 }
 
 template <class System>

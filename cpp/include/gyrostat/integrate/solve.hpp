@@ -9,7 +9,9 @@
 namespace gyrostat::integrate {
 
 /// A system that needs no integration (model/system.hpp, `flow`): its closed form evaluated at
-/// the output times. The method asked for is not used; the Result says "closed_form".
+/// the output times. The method asked for is not used; the Result says "closed_form". Events are
+/// located on the flow itself, scanned in pieces of at most the flow's `event_step()` (a fraction
+/// of its period) and 1/64 of the span.
 template <class System>
 Result closed_form(const System& system, double t0, const typename System::State& y0, double t1, const Options& options) {
     validate(options, t0, t1);
@@ -18,8 +20,31 @@ Result closed_form(const System& system, double t0, const typename System::State
     result.method = "closed_form";
     const std::vector<double> outputs = output_times(options, t0, t1);
     Recorder<System> record(system, result, outputs.size());
+    EventLocator<System> events(system, options.events, result);
     const auto exact = system.flow(t0, y0);
-    for (double t : outputs) record.push(t, exact.at(t));
+    if (options.dense_output) {
+        result.dense = make_dense<System>(options);
+        result.dense->set_exact(t0, t1, [exact](double t) { return Eigen::VectorXd(exact.at(t)); });
+    }
+    double end = t1;
+    const double direction = t1 >= t0 ? 1.0 : -1.0;
+    if (events.active() && t1 != t0) {
+        events.start(t0, exact.at(t0));
+        const double piece = std::min(std::abs(t1 - t0) / 64.0, exact.event_step());
+        auto at = [&](double time) { return exact.at(time); };
+        for (double t = t0; direction * (t - t1) < 0.0;) {
+            const double t_next = direction * (t1 - t) <= piece ? t1 : t + direction * piece;
+            const double t_stop = events.step(t, t_next, exact.at(t_next), at);
+            if (!std::isnan(t_stop)) {
+                end = t_stop;
+                mark_terminated(result, t_stop);
+                break;
+            }
+            t = t_next;
+        }
+    }
+    for (double t : outputs)
+        if (direction * (t - end) <= 0.0) record.push(t, exact.at(t));
     return result;
 }
 

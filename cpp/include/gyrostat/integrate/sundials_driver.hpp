@@ -6,6 +6,7 @@
 
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/diagnose.hpp"
+#include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/sundials.hpp"
 
 namespace gyrostat::integrate::sundials {
@@ -14,6 +15,8 @@ namespace gyrostat::integrate::sundials {
 ///   int evolve(double tout, N_Vector y, double* t);   // one step (ONE_STEP mode)
 ///   void set_stop_time(double);
 ///   void interpolate(double t, N_Vector y);           // dense output inside the last step
+///   int derivative(double t, int k, N_Vector d);      // its k-th derivative (a flag < 0 past its degree)
+///   int degree() const;                               // the degree of the last step's interpolant
 ///   Stats stats(); Status classify(int flag); std::string flag_name(int flag);
 ///   static constexpr bool exact_outputs;              // step to each output time instead of interpolating
 ///   bool suggest_stiff() const;                       // non-stiff method: diagnose stiffness on failure
@@ -27,11 +30,14 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
     using State = typename System::State;
     const std::vector<double> outputs = output_times(options, t0, t1);
     Recorder<System> record(system, result, outputs.size());
+    EventLocator<System> events(system, options.events, result);
+    result.dense = make_dense<System>(options);
     const double direction = t1 >= t0 ? 1.0 : -1.0;
     auto state = [&]() { return State(StateMap<System>(N_VGetArrayPointer(y))); };
 
     std::size_t next = 0;
     while (next < outputs.size() && outputs[next] == t0) record.push(t0, state()), ++next;
+    events.start(t0, state());
 
     double t = t0;
     long steps = 0;
@@ -77,13 +83,39 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
             return;
         }
         if (steps >= options.max_steps) return finish(-1000);
+        const double t_before = t;
         // tout matters on the first call only (the initial step is sized against it): the first output
         const int flag = stepper.evolve(next < outputs.size() ? outputs[next] : t1, y, &t);
         if (flag < 0) return finish(flag);
         ++steps;
+        auto dense = [&](double time) {
+            stepper.interpolate(time, interpolated.get());
+            return State(StateMap<System>(N_VGetArrayPointer(interpolated.get())));
+        };
+        const double t_stop = events.active() ? events.step(t_before, t, state(), dense)
+                                              : std::numeric_limits<double>::quiet_NaN();
+        if (result.dense && t != t_before) {  // y(t') = Σ y⁽ᵏ⁾(t) (t' − t)ᵏ/k!, in s = (t' − t)/h
+            const double h = t - t_before;
+            std::vector<double> coefficients;
+            double factor = 1.0;
+            for (int k = 0; k <= stepper.degree(); ++k) {
+                if (stepper.derivative(t, k, interpolated.get()) < 0) break;
+                const double* d = N_VGetArrayPointer(interpolated.get());
+                for (int i = 0; i < System::dim; ++i) coefficients.push_back(d[i] * factor);
+                factor *= h / (k + 1);
+            }
+            result.dense->add(t_before, std::isnan(t_stop) ? t : t_stop, t, h,
+                              static_cast<int>(coefficients.size()) / System::dim - 1, coefficients.data());
+        }
+        if (!std::isnan(t_stop)) {  // a terminal event inside the step: outputs up to it, then stop
+            while (next < outputs.size() && direction * (outputs[next] - t_stop) <= 0.0)
+                record.push(outputs[next], dense(outputs[next])), ++next;
+            result.stats = stepper.stats();
+            mark_terminated(result, t_stop);
+            return;
+        }
         while (next < outputs.size() && direction * (outputs[next] - t) < 0.0) {
-            stepper.interpolate(outputs[next], interpolated.get());
-            record.push(outputs[next], State(StateMap<System>(N_VGetArrayPointer(interpolated.get()))));
+            record.push(outputs[next], dense(outputs[next]));
             ++next;
         }
         bool recorded = false;

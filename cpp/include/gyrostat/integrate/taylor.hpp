@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
 
@@ -41,14 +42,15 @@ inline double step_size(double scale, double c_low, double c_high, int order, do
     return safety * std::exp2(std::min(low, high));
 }
 
-/// One step of fixed order: coefficients, step size, outputs inside the step, the new state.
-/// Returns false when the coefficients are not finite (h then holds NaN).
+/// One step of fixed order: coefficients, step size, events and outputs inside the step, the new
+/// state. Returns false when the coefficients are not finite (h then holds NaN); `t_stop` is the
+/// time of a terminal event inside the step (NaN when none: the step goes to its end).
 template <int Order, class System>
 struct Step {
     using State = typename System::State;
     static bool run(const System& system, double t, State& y, double t1, double direction, double scale,
                     double safety, double max_step, double& h, const std::vector<double>& outputs, std::size_t& next,
-                    Recorder<System>& record) {
+                    Recorder<System>& record, EventLocator<System>& events, double& t_stop, DenseOutput* dense) {
         State c[Order + 1];
         system.template taylor_coefficients<Order>(t, y, c);
         h = step_size(scale, c[Order - 1].cwiseAbs().maxCoeff(), c[Order].cwiseAbs().maxCoeff(), Order, safety);
@@ -63,12 +65,25 @@ struct Step {
             for (int n = Order - 1; n >= 0; --n) value = value * dt + c[n];
             return value;
         };
-        const double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
-        while (next < outputs.size() && direction * (outputs[next] - t_new) < 0.0) {
+        double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
+        State y_new = evaluate(t_new - t);
+        t_stop = events.active() ? events.step(t, t_new, y_new, [&](double time) { return evaluate(time - t); })
+                                 : std::numeric_limits<double>::quiet_NaN();
+        const bool terminated = !std::isnan(t_stop);
+        if (terminated) t_new = t_stop, y_new = evaluate(t_new - t);
+        if (dense && t_new != t) {  // the Taylor polynomial in s = (t' − t)/h: coefficients c_n hⁿ
+            const double step = t_new - t;
+            State scaled[Order + 1];
+            double power = 1.0;
+            for (int n = 0; n <= Order; ++n, power *= step) scaled[n] = c[n] * power;
+            dense->add(t, t_new, t, step, Order, scaled[0].data());
+        }
+        while (next < outputs.size() &&
+               (direction * (outputs[next] - t_new) < 0.0 || (terminated && outputs[next] == t_new))) {
             record.push(outputs[next], evaluate(outputs[next] - t));
             ++next;
         }
-        y = evaluate(t_new - t);
+        y = y_new;
         h = t_new - t;
         return true;
     }
@@ -103,6 +118,8 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
             taylor_detail::step_table<System>(std::make_integer_sequence<int, max_order + 1>{});
         const std::vector<double> outputs = output_times(options, t0, t1);
         Recorder<System> record(system, result, outputs.size());
+        EventLocator<System> events(system, options.events, result);
+        result.dense = make_dense<System>(options);
         std::size_t next = 0;
         const double direction = t1 >= t0 ? 1.0 : -1.0;
         Stats& stats = result.stats;
@@ -110,6 +127,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         State y = y0;
         model::system::project(system, y);
         while (next < outputs.size() && outputs[next] == t0) record.push(t0, y), ++next;
+        events.start(t0, y);
         int order = 0;
         double eps_of_order = -1.0, safety = 0.0;
         Ticker ticker(control, t0, t1);
@@ -135,15 +153,22 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
             }
             const double t_before = t;
             const State y_before = y;
-            double h = 0.0;
+            double h = 0.0, t_stop = 0.0;
             if (!steps[order](system, t, y, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
-                              next, record)) {
+                              next, record, events, t_stop, result.dense.get())) {
                 result.status = Status::NonFiniteState;
                 result.message = "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(t, 17) +
                                  ": the solution overflows or leaves the model's domain there";
                 return result;
             }
             ++stats.rhs_evals;  // one evaluation of the coefficient recursion per step
+            if (!std::isnan(t_stop)) {
+                model::system::project(system, y);
+                ++stats.steps;
+                stats.last_step = std::abs(h);
+                mark_terminated(result, t_stop);
+                return result;
+            }
             const double min_step = 10.0 * std::abs(std::nextafter(t, direction * std::numeric_limits<double>::infinity()) - t);
             if (std::abs(h) < min_step && t + h != t1) {
                 y = y_before;

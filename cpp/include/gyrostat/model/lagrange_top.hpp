@@ -82,7 +82,8 @@ inline Vec3 vertical_in_body(double w, double x, double y, double z) {
 ///   H   = ½ (A (p² + q²) + C r²) + μ γ3    (energy; dH/dt = M·ω),
 ///   kinetic_energy = ½ (A (p² + q²) + C r²),
 ///   u1 ≤ u2 ≤ u3, k² = m, v = ⟨cos θ⟩, T_nut = 2K(m)/α at (G_z, H, r) (Nutation),
-///   cos_theta = γ3, and the z-x-z Euler angles ψ, θ, φ of Q.
+///   cos_theta = γ3 and its rate d(cos θ)/dt = γ̇3 = γ1 q − γ2 p (γ̇ = γ × ω; zero at the turning
+///   points of the nutation), and the z-x-z Euler angles ψ, θ, φ of Q.
 /// (r, the axial spin, C dr/dt = M3, is a state.)
 class LagrangeTop {
 public:
@@ -135,7 +136,7 @@ public:
                 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2], y[2]};
     }
 
-    static constexpr std::array<OutputInfo, 10> own_outputs{{{"G_z", true},
+    static constexpr std::array<OutputInfo, 11> own_outputs{{{"G_z", true},
                                                              {"H", true},
                                                              {"kinetic_energy", false},
                                                              {"u1", false},
@@ -144,7 +145,8 @@ public:
                                                              {"m", false},
                                                              {"v", false},
                                                              {"T_nut", false},
-                                                             {"cos_theta", false}}};
+                                                             {"cos_theta", false},
+                                                             {"cos_theta_rate", false}}};
     static constexpr auto outputs_info = with_euler_outputs<true>(own_outputs);
     void outputs(double /*t*/, const State& y, double* out) const;
 
@@ -163,8 +165,10 @@ inline void LagrangeTop::outputs(double /*t*/, const State& y, double* out) cons
     const Nutation n = nutation(A_, C_, mu_, integrals[0], integrals[1], integrals[2]);
     const double roots[] = {n.u1, n.u2, n.u3, n.m, n.v, n.period};
     std::copy(std::begin(roots), std::end(roots), out + 3);
-    out[9] = vertical_in_body(y[3], y[4], y[5], y[6])[2];
-    euler_outputs(y.template segment<4>(3), out + 10);
+    const Vec3 gamma = vertical_in_body(y[3], y[4], y[5], y[6]);
+    out[9] = gamma[2];
+    out[10] = gamma[0] * y[1] - gamma[1] * y[0];
+    euler_outputs(y.template segment<4>(3), out + 11);
 }
 
 }  // namespace gyrostat::model

@@ -37,6 +37,9 @@ public:
     double modulus_squared() const { return m_; }            ///< m = k² (0 for permanent rotation)
     double frequency() const { return nu_; }                  ///< ν (rad/s of the argument u)
     double period() const;                                     ///< of ω(t): 4K(m)/|ν| (∞ when constant)
+    /// The longest piece over which an event search may assume at most one crossing of a smooth
+    /// function of ω: 1/32 of the period (∞ when ω is constant).
+    double event_step() const { return period() / 32.0; }
     bool is_constant() const { return constant_; }
 
 private:

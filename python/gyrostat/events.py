@@ -1,0 +1,94 @@
+"""Events: where a quantity crosses a value, located by the engine on each step's continuous
+extension (DOP853's 7th-order dense output, the Taylor polynomial, CVODE's and ARKODE's
+interpolants, the closed form itself), to a few ulps of t, not interpolated between outputs.
+
+An event is
+
+* :class:`Event` on a state component or a named output of the model (``Event("r")``,
+  ``Event("g")``, ``Event("m", value=0.999, direction=1)``): evaluated in C++, the fast path;
+* or a Python callable ``f(t, y)``, as in SciPy's ``solve_ivp``, with optional attributes
+  ``terminal`` (bool or a count) and ``direction``: one call into Python per evaluation, the
+  slow path (fine for a few thousand steps, not for ensembles of millions).
+
+``direction``: +1 only upward crossings (g from negative to non-negative), −1 only downward,
+0 both (SciPy's convention). ``terminal``: False, True (stop at the first crossing) or n (stop
+at the n-th). A solution gives ``t_events`` and ``y_events`` (SciPy's names: one array per
+event) and ``terminal_event`` (the index of the event that stopped the run, or None).
+
+Events the papers need ship with their families: :func:`gyrostat.orthogonal.g_zero`,
+:func:`gyrostat.averaged.r_zero`, :func:`gyrostat.lagrange.turning_points`,
+:func:`gyrostat.lagrange.near_separatrix`, and the validity of the averaging failing
+(:func:`gyrostat.averaged.averaging_fails`, :func:`gyrostat.lagrange.averaging_fails`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from gyrostat import _core
+
+
+@dataclass(frozen=True)
+class Event:
+    """``quantity`` (a state component or a named output of the model) crossing ``value``."""
+
+    quantity: str
+    value: float = 0.0
+    direction: int = 0
+    terminal: bool | int = False
+    name: str | None = None
+
+    def __post_init__(self):
+        if self.direction not in (-1, 0, 1):
+            raise ValueError(f"event direction = {self.direction!r}: choose -1, 0 or 1")
+        if not isinstance(self.value, (int, float)) or not math.isfinite(self.value):
+            raise ValueError(f"event value = {self.value!r} must be a finite number")
+        _terminal_count(self.terminal, self.quantity)
+
+    @property
+    def label(self) -> str:
+        return self.name or f"{self.quantity} = {self.value:g}"
+
+
+def _terminal_count(terminal, what) -> int:
+    if terminal is True:
+        return 1
+    if terminal is False or terminal is None:
+        return 0
+    if isinstance(terminal, int) and terminal >= 0:
+        return terminal
+    raise ValueError(f"event {what!r}: terminal = {terminal!r} must be a bool or a count >= 0")
+
+
+def to_core(events, state_names, output_names) -> list:
+    """The engine's events for a model with these state and output names."""
+    if events is None:
+        return []
+    if callable(events) or isinstance(events, Event):
+        events = [events]
+    core = []
+    for i, event in enumerate(events):
+        if isinstance(event, Event):
+            if event.quantity in state_names:
+                kind, index = "state", state_names.index(event.quantity)
+            elif event.quantity in output_names:
+                kind, index = "output", output_names.index(event.quantity)
+            else:
+                raise ValueError(f"event {i}: {event.quantity!r} is neither a state component "
+                                 f"({', '.join(state_names)}) nor an output ({', '.join(output_names)}) of this model")
+            core.append(_core.Event(kind, index, float(event.value), event.direction,
+                                    _terminal_count(event.terminal, event.quantity), event.label))
+        elif callable(event):
+            direction = int(getattr(event, "direction", 0))
+            if direction not in (-1, 0, 1):
+                raise ValueError(f"event {i}: direction = {direction!r}: choose -1, 0 or 1")
+            name = getattr(event, "__name__", f"event {i}")
+            function: Callable = event
+            core.append(_core.Event("function", 0, 0.0, direction,
+                                    _terminal_count(getattr(event, "terminal", False), name), name, function))
+        else:
+            raise TypeError(f"event {i} must be a gyrostat.events.Event or a callable f(t, y), "
+                            f"not {type(event).__name__}")
+    return core
