@@ -95,10 +95,11 @@ EVENT = Table({
 }, doc="an event: where a quantity crosses a value, located by the engine")
 TITLE["events"] = Field(ArrayOf(EVENT), default=[], doc="events to locate in every run that has the quantity")
 
-METHOD = Field(Choice(*_core.methods()), default="dop853", doc="integrator (gyrostat.METHODS)")
-RTOL = Field(float, default=1e-8, doc="relative tolerance", check=positive)
-ATOL = Field(float, default=1e-10, doc="absolute tolerance", check=non_negative)
-N_OUT = Field(int, default=1001, doc="number of evenly spaced output times", check=at_least(2))
+_DEFAULT = _core.Options()  # the engine's defaults: the one place where they live
+METHOD = Field(Choice(*_core.methods()), default=_DEFAULT.method, doc="integrator (gyrostat.METHODS)")
+RTOL = Field(float, default=_DEFAULT.rtol, doc="relative tolerance", check=positive)
+ATOL = Field(float, default=_DEFAULT.atol, doc="absolute tolerance", check=non_negative)
+N_OUT = Field(int, default=_DEFAULT.n_out, doc="number of evenly spaced output times", check=at_least(2))
 T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=_span_order)
 
 BODY = Table({
