@@ -242,3 +242,30 @@ def test_reprs_read():
     assert repr(orthogonal.harmonic(0.1, [0.2], [1.3])) == \
         "MagnitudeLaw.harmonic(mean=0.1, amplitudes=[0.2], frequencies=[1.3], phases=[0])"
     assert "Model(" in repr(g.Model(BODY)) and "Options(method='dop853'" in repr(g.Options())
+
+
+def test_wrong_shapes_are_value_errors_naming_the_value():
+    # not pybind11's list of signatures: one line naming what was expected and what was given
+    cases = [(lambda: g.Body([1, 2]), r"Body: moments must be 3 numbers, got \[1, 2\]"),
+             (lambda: g.Body([1, 2, 3], rotor="k"), r"Body: rotor must be 3 numbers, got 'k'"),
+             (lambda: g.ConstantTorque([0, 1]), r"ConstantTorque: moment must be 3 numbers"),
+             (lambda: g.LinearDamping(np.eye(2)), r"LinearDamping: matrix must be 3x3 numbers"),
+             (lambda: g.ResistiveMedium([np.eye(3), np.eye(2)]), r"ResistiveMedium: coefficient 1 must be 3x3")]
+    for make, message in cases:
+        with pytest.raises(ValueError, match=message) as error:
+            make()
+        assert "\n" not in str(error.value)
+    with pytest.raises(ValueError, match=r"max_steps = 1180591620717411303424 is too large"):
+        g.solve(g.Model(BODY), W0, (0, 1), max_steps=2**70)
+    with pytest.raises(ValueError, match=r"threads = 1099511627776 must be a whole number of at most 4096"):
+        g.solve_ensemble(g.Model(BODY), [W0], (0, 1), threads=2**40)
+
+
+def test_edge_values_give_right_answers():
+    # a table spanning the whole double range: the width overflows, its halves do not
+    assert orthogonal.tabulated([-1e308, 1e308], [0.0, 1.0])(0.0) == 0.5
+    assert orthogonal.tabulated([-1e308, 1e308], [-1e308, 1e308])(0.0) == 0.0
+    # atol = 0 with a component that is exactly zero (and stays so: rotation about a principal
+    # axis): 0/0 in the error scale is no error, not "the solution overflows"
+    sol = g.solve(g.Model(BODY), [1.0, 0.0, 0.0], (0, 10), atol=0.0, n_out=3)
+    assert sol.success and np.array_equal(sol.omega[-1], [1.0, 0.0, 0.0])

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cctype>
 #include <string>
 #include <variant>
 #include <vector>
@@ -42,6 +43,28 @@ inline std::vector<AnyTorque> torques_from(const py::iterable& objects) {
     }
     return torques;
 }
+
+/// `obj` as numbers of the given shape (cols = 0: a vector of `rows`), or a ValueError that names
+/// what was expected and what was given (instead of pybind11's list of signatures).
+inline Eigen::MatrixXd numbers(const py::handle& obj, long rows, long cols, const std::string& what) {
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    const bool vector = cols == 0;
+    if (!a || a.ndim() != (vector ? 1 : 2) || a.shape(0) != rows || (!vector && a.shape(1) != cols)) {
+        std::string shown;  // the value on one line: runs of white space folded to one space
+        for (char c : std::string(py::repr(obj)))
+            if (!std::isspace(static_cast<unsigned char>(c)) || (!shown.empty() && shown.back() != ' ')) shown += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;
+        if (shown.size() > 60) shown = shown.substr(0, 57) + "...";
+        throw py::value_error(what + " must be " +
+                              (vector ? std::to_string(rows) + " numbers" : std::to_string(rows) + "x" + std::to_string(cols) + " numbers") +
+                              ", got " + shown);
+    }
+    Eigen::MatrixXd m(rows, vector ? 1 : cols);
+    for (long i = 0; i < rows; ++i)
+        for (long j = 0; j < (vector ? 1 : cols); ++j) m(i, j) = a.data()[vector ? i : i * cols + j];
+    return m;
+}
+inline Vec3 vec3(const py::handle& obj, const std::string& what) { return numbers(obj, 3, 0, what); }
+inline Mat3 mat3(const py::handle& obj, const std::string& what) { return numbers(obj, 3, 3, what); }
 
 /// A (rows × cols) NumPy view of `data`, kept alive by `owner` (no copy).
 inline py::array_t<double> view(const std::vector<double>& data, py::ssize_t rows, py::ssize_t cols, py::handle owner) {

@@ -1,6 +1,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include "convert.hpp"
 #include "expose.hpp"
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/set.hpp"
@@ -36,23 +37,34 @@ py::class_<Torque> expose_torque(py::module_& m, const char* python_name) {
 
 void expose_body(py::module_& m) {
     py::class_<Body>(m, "Body")
-        .def(py::init<const Vec3&, const Vec3&>(), py::arg("moments"), py::arg("rotor") = Vec3::Zero())
+        .def(py::init([](const py::object& moments, const py::object& rotor) {
+                 return Body(vec3(moments, "Body: moments"), rotor.is_none() ? Vec3::Zero() : vec3(rotor, "Body: rotor"));
+             }),
+             py::arg("moments"), py::arg("rotor") = py::none())
         .def_property_readonly("moments", &Body::moments)
         .def_property_readonly("rotor", &Body::rotor)
         .def("__repr__", &Body::describe);
 
     expose_torque<torque::Constant>(m, "ConstantTorque")
-        .def(py::init<const Vec3&>(), py::arg("moment"))
+        .def(py::init([](const py::object& moment) { return torque::Constant(vec3(moment, "ConstantTorque: moment")); }),
+             py::arg("moment"))
         .def_readonly("moment", &torque::Constant::moment)
         .def("__repr__", [](const torque::Constant& x) { return "ConstantTorque(moment=" + vector_text(x.moment) + ")"; });
 
     expose_torque<torque::LinearDamping>(m, "LinearDamping")
-        .def(py::init<const Mat3&>(), py::arg("matrix"))
+        .def(py::init([](const py::object& matrix) { return torque::LinearDamping(mat3(matrix, "LinearDamping: matrix")); }),
+             py::arg("matrix"))
         .def_readonly("matrix", &torque::LinearDamping::matrix)
         .def("__repr__", [](const torque::LinearDamping& x) { return "LinearDamping(matrix=" + matrix_text(x.matrix) + ")"; });
 
     expose_torque<torque::ResistiveMedium>(m, "ResistiveMedium")
-        .def(py::init<std::vector<Mat3>>(), py::arg("coefficients"))
+        .def(py::init([](const py::iterable& coefficients) {
+                 std::vector<Mat3> matrices;
+                 for (const py::handle& c : coefficients)
+                     matrices.push_back(mat3(c, "ResistiveMedium: coefficient " + std::to_string(matrices.size())));
+                 return torque::ResistiveMedium(std::move(matrices));
+             }),
+             py::arg("coefficients"))
         .def_readonly("coefficients", &torque::ResistiveMedium::coefficients)
         .def("at", &torque::ResistiveMedium::at, py::arg("t"))
         .def("__repr__", [](const torque::ResistiveMedium& x) {

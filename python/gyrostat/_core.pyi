@@ -9,7 +9,7 @@ import numpy.typing
 import typing
 __all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'solve', 'solve_ensemble', 'torque_free_model']
 class Body:
-    def __init__(self, moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], rotor: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
+    def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -25,7 +25,7 @@ class ConstantTorque:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, moment: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+    def __init__(self, moment: typing.Any) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -42,7 +42,7 @@ class LinearDamping:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, matrix: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 3]"]) -> None:
+    def __init__(self, matrix: typing.Any) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -59,7 +59,7 @@ class ResistiveMedium:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, coefficients: collections.abc.Sequence[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 3]"]]) -> None:
+    def __init__(self, coefficients: collections.abc.Iterable) -> None:
         ...
     def __repr__(self) -> str:
         ...

@@ -30,6 +30,15 @@ double rms(const State& v) {
     return std::sqrt(v.squaredNorm() / static_cast<double>(v.size()));
 }
 
+/// v / scale componentwise, with 0/0 = 0: a component that is exactly zero with atol = 0 has no
+/// error scale, and an exactly zero error there is no error (not NaN).
+template <class State>
+State weighted(const State& v, const State& scale) {
+    State w;
+    for (Eigen::Index i = 0; i < v.size(); ++i) w[i] = v[i] == 0.0 ? 0.0 : v[i] / scale[i];
+    return w;
+}
+
 /// The dense output y + x(F0 + (1−x)(F1 + x(F2 + (1−x)(F3 + x(F4 + (1−x)(F5 + x F6)))))),
 /// x = (t − t_n)/h, as the monomials c_0 … c_7 in x (for DenseOutput).
 template <class State>
@@ -103,14 +112,14 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     const double span = std::abs(t1 - t0);
     if (h_abs == 0.0) {
         const State scale = (atol + (y.cwiseAbs() * rtol).array()).matrix();
-        const double d0 = rms(State(y.cwiseQuotient(scale)));
-        const double d1 = rms(State(f.cwiseQuotient(scale)));
+        const double d0 = rms(weighted(y, scale));
+        const double d1 = rms(weighted(f, scale));
         double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
         h0 = std::min(h0, span);
         State y1 = y + h0 * direction * f, f1;
         system.rhs(t + h0 * direction, y1, f1);
         ++stats.rhs_evals;
-        const double d2 = rms(State((f1 - f).cwiseQuotient(scale))) / h0;
+        const double d2 = rms(weighted(State(f1 - f), scale)) / h0;
         const double h1 = (d1 <= 1e-15 && d2 <= 1e-15) ? std::max(1e-6, h0 * 1e-3)
                                                        : std::pow(0.01 / std::max(d1, d2), 1.0 / 8.0);
         h_abs = std::min({100 * h0, h1, span});
@@ -184,8 +193,8 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
                 if (tab::e5[j] != 0.0) err5 += tab::e5[j] * k[j];
                 if (tab::e3[j] != 0.0) err3 += tab::e3[j] * k[j];
             }
-            const double e5 = err5.cwiseQuotient(scale).squaredNorm();
-            const double e3 = err3.cwiseQuotient(scale).squaredNorm();
+            const double e5 = weighted(err5, scale).squaredNorm();
+            const double e3 = weighted(err3, scale).squaredNorm();
             error_norm = (e5 == 0.0 && e3 == 0.0) ? 0.0 : h_abs * e5 / std::sqrt((e5 + 0.01 * e3) * n);
 
             if (!std::isfinite(error_norm)) {

@@ -87,7 +87,8 @@ public:
         law.c_.assign(n, 0.0);  // slopes for the cubic Hermite form
         for (std::size_t i = 0; i < n; ++i) {
             const std::size_t lo = i == 0 ? 0 : i - 1, hi = i + 1 == n ? n - 1 : i + 1;
-            law.c_[i] = (values[hi] - values[lo]) / (times[hi] - times[lo]);
+            // halves first: the differences of finite numbers may overflow, their halves do not
+            law.c_[i] = (0.5 * values[hi] - 0.5 * values[lo]) / (0.5 * times[hi] - 0.5 * times[lo]);
         }
         law.a_ = std::move(times);
         law.b_ = std::move(values);
@@ -119,11 +120,12 @@ public:
                 if (t >= ts.back()) return b_.back();
                 const std::size_t j = static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) - ts.begin());
                 const std::size_t i = j - 1;
-                const double h = ts[j] - ts[i], s = (t - ts[i]) / h;
-                if (!cubic_) return b_[i] + s * (b_[j] - b_[i]);
+                const double half_h = 0.5 * ts[j] - 0.5 * ts[i];  // halves: no overflow for finite times
+                const double s = (0.5 * t - 0.5 * ts[i]) / half_h;
+                if (!cubic_) return (1.0 - s) * b_[i] + s * b_[j];
                 const double s2 = s * s, s3 = s2 * s;
-                return (2 * s3 - 3 * s2 + 1) * b_[i] + (s3 - 2 * s2 + s) * h * c_[i] + (-2 * s3 + 3 * s2) * b_[j] +
-                       (s3 - s2) * h * c_[j];
+                return (2 * s3 - 3 * s2 + 1) * b_[i] + (s3 - 2 * s2 + s) * 2.0 * (half_h * c_[i]) +
+                       (-2 * s3 + 3 * s2) * b_[j] + (s3 - s2) * 2.0 * (half_h * c_[j]);
             }
         }
         return 0.0;
