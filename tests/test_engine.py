@@ -4,6 +4,7 @@ gyrostat.solve_ensemble, the Solution's names and guards, progress and Ctrl-C.
 References written here: SciPy solve_ivp (DOP853, rtol 1e-12) on right-hand sides written in this
 file, and the quantities each model records recomputed here from the recorded states."""
 
+import math
 import os
 import signal
 import threading
@@ -269,3 +270,18 @@ def test_edge_values_give_right_answers():
     # axis): 0/0 in the error scale is no error, not "the solution overflows"
     sol = g.solve(g.Model(BODY), [1.0, 0.0, 0.0], (0, 10), atol=0.0, n_out=3)
     assert sol.success and np.array_equal(sol.omega[-1], [1.0, 0.0, 0.0])
+
+
+def test_unreachable_and_oversized_requests_are_refused():
+    # (G_z, H, r) with H < C r²/2 − μ: p² + q² would be negative for every θ
+    avg = lagrange.LagrangeAveraged(1.5, 1.0, 0.5)
+    with pytest.raises(ValueError, match=r"\(G_z, H, r\) = \(0\.5, -10, 1\) is not a state of the top"):
+        g.solve(avg, [0.5, -10.0, 1.0], (0, 1))
+    # a reachable state on the separatrix-free side still solves (the paper's case 1 start)
+    y0 = lagrange.initial_state([0.0, 0.0, math.sqrt(3.0)], math.radians(5))
+    assert g.solve(avg, y0, (0, 1), n_out=3, check_validity=False).success
+    # the memory the outputs would take is named before anything is allocated
+    with pytest.raises(ValueError, match=r"n_out = 1000000000 output times would take at least 22\.35.* GiB"):
+        g.solve(g.Model(BODY), W0, (0, 1), n_out=10**9)
+    with pytest.raises(ValueError, match=r"would take .* GiB for this model's 8 state components and 12 outputs"):
+        g.solve(orthogonal.OrthogonalModel(g.Body([2.0, 3.0, 4.0]), 0.1, attitude=True), W0, (0, 1), n_out=20_000_000)

@@ -10,6 +10,36 @@
 
 namespace gyrostat::model {
 
+void check_reachable(double A, double C, double mu, double Gz, double H, double r) {
+    if (!(std::isfinite(Gz) && std::isfinite(H) && std::isfinite(r)))
+        throw std::invalid_argument("LagrangeAveraged: (G_z, H, r) = (" + format_value(Gz) + ", " + format_value(H) +
+                                    ", " + format_value(r) + ") is not finite");
+    // The top reaches (G_z, H, r) only if f(u) = A(a − 2μu)(1 − u²) − (G_z − C r u)² ≥ 0 for some
+    // u = cos θ in [−1, 1], a = 2H − C r² (f ≥ 0 is p² + q² ≥ 0 written in u). Its maximum on [−1, 1]
+    // is at an end or where f'(u) = 6μA u² − 2(A a + C² r²) u + 2(C r G_z − μA) = 0.
+    const double a = 2.0 * H - C * r * r;
+    const auto f = [&](double u) {
+        const double w = Gz - C * r * u;
+        return A * (a - 2.0 * mu * u) * (1.0 - u * u) - w * w;
+    };
+    double best = std::max(f(-1.0), f(1.0));
+    const double qa = 6.0 * mu * A, qb = -2.0 * (A * a + C * C * r * r), qc = 2.0 * (C * r * Gz - mu * A);
+    const double disc = qb * qb - 4.0 * qa * qc;
+    if (disc >= 0.0) {
+        for (double sign : {-1.0, 1.0}) {
+            const double u = (-qb + sign * std::sqrt(disc)) / (2.0 * qa);
+            if (u > -1.0 && u < 1.0) best = std::max(best, f(u));
+        }
+    }
+    const double scale = A * (std::abs(a) + 2.0 * mu) + (std::abs(Gz) + C * std::abs(r)) * (std::abs(Gz) + C * std::abs(r));
+    if (best < -1e-12 * scale)
+        throw std::invalid_argument("LagrangeAveraged: (G_z, H, r) = (" + format_value(Gz) + ", " + format_value(H) +
+                                    ", " + format_value(r) + ") is not a state of the top: p^2 + q^2 would be negative "
+                                    "for every cos(theta) in [-1, 1] (max of f(u) = " + format_value(best) +
+                                    "); the energy H must be at least C r^2/2 - mu = " +
+                                    format_value(0.5 * C * r * r - mu) + " and large enough for G_z");
+}
+
 Nutation nutation(double A, double C, double mu, double Gz, double H, double r) {
     if (!(std::isfinite(Gz) && std::isfinite(H) && std::isfinite(r)))
         throw std::invalid_argument("nutation: (G_z, H, r) = (" + format_value(Gz) + ", " + format_value(H) + ", " +

@@ -71,6 +71,12 @@ void validate(const Options& o, double t0, double t1) {
         throw std::invalid_argument("atol = " + format_value(o.atol) + " must be finite and non-negative");
     if (!std::isfinite(t0)) throw std::invalid_argument("t0 = " + format_value(t0) + " is not finite");
     if (!std::isfinite(t1)) throw std::invalid_argument("t1 = " + format_value(t1) + " is not finite");
+    // Each output row holds t and at least two state components: n_out·24 bytes at the least.
+    constexpr double kMaxOutputBytes = 2.0 * 1024 * 1024 * 1024;
+    if (static_cast<double>(o.n_out) * 24.0 > kMaxOutputBytes)
+        throw std::invalid_argument("n_out = " + std::to_string(o.n_out) + " output times would take at least " +
+                                    format_value(static_cast<double>(o.n_out) * 24.0 / (1024.0 * 1024 * 1024)) +
+                                    " GiB (limit 2 GiB for one run): ask for fewer outputs");
     if (o.n_out < 0 || o.n_out == 1)
         throw std::invalid_argument("n_out = " + std::to_string(o.n_out) + " must be at least 2 (or 0: t0 and t1 only)");
     if (o.max_steps <= 0) throw std::invalid_argument("max_steps = " + std::to_string(o.max_steps) + " must be positive");

@@ -94,6 +94,9 @@ public:
         dx[2] = m3 / C;
     }
 
+    /// (G_z, H, r) must be reachable by the top (lagrange_top.hpp: check_reachable).
+    void check_state(const State& x) const { check_reachable(top_.A(), top_.C(), top_.mu(), x[0], x[1], x[2]); }
+
     /// (G_z, H, r) of a full top state (ω, Q); a state of size 3 is taken as it is.
     State initial_state(const Eigen::VectorXd& given) const {
         if (given.size() != LagrangeTop::dim)

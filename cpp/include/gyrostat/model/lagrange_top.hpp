@@ -37,6 +37,10 @@ struct Nutation {
 /// u1 u2 = s3/u3 (u3 ≥ 1). Throws std::invalid_argument for non-finite input or no root.
 Nutation nutation(double A, double C, double mu, double Gz, double H, double r);
 
+/// Throws std::invalid_argument naming (G_z, H, r) when no motion of the top has them: when
+/// f(u) < 0 for every u = cos θ in [−1, 1] (then p² + q² < 0).
+void check_reachable(double A, double C, double mu, double Gz, double H, double r);
+
 /// The unperturbed top from an initial state (ω, γ) at t0 (γ: upward vertical in body axes):
 /// u(t) = cos θ(t) in closed form, β = ±F(arcsin √((u0 − u1)/(u2 − u1)) | m), sign of u̇0 = γ1 q − γ2 p.
 class LagrangeUnperturbed {
