@@ -79,6 +79,7 @@ case $command in
         cmake --build "$ROOT/build/bench" --target gyrostat_bench
         "$VENV/bin/python" "$ROOT/bench/work_precision.py" --bench-exe "$ROOT/build/bench/gyrostat_bench" "${@:2}"
         "$VENV/bin/python" "$ROOT/bench/python_overhead.py"
+        "$VENV/bin/python" "$ROOT/bench/sweep_throughput.py"
         ;;
     *)
         echo "usage: bash run.sh main [OUT] | test | bench" >&2

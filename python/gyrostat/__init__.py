@@ -6,7 +6,8 @@ make a model of any family (:class:`Model`, :class:`AveragedModel`, :class:`Movi
 :class:`gyrostat.lagrange.LagrangeAveraged`, :class:`gyrostat.orthogonal.OrthogonalModel`),
 :func:`solve` it (or :func:`solve_ensemble` many at once) and get a :class:`Solution` with the
 state and the named outputs the engine recorded. Scenes (TOML files) bundle all of that with
-outputs and plots; ``gyrostat run`` runs one from the command line.
+outputs and plots; ``gyrostat run`` runs one from the command line. :func:`sweep` solves a scene
+over a grid or a seeded dispersion of its entries (locally or on Dask) into an xarray Dataset.
 """
 
 from gyrostat import _core
@@ -16,7 +17,8 @@ from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, Tor
 from gyrostat.solution import Solution
 from gyrostat.solve import METHODS, Options, solve, solve_ensemble, torque_free
 from gyrostat.validity import ValidityWarning
-from gyrostat import attitude, averaged, lagrange, orthogonal, validity  # noqa: E402  (papers 002-004 helpers)
+from gyrostat.sweeps import LogUniform, Normal, Parameter, Uniform, sweep
+from gyrostat import attitude, averaged, lagrange, orthogonal, scene, sweeps, validity  # noqa: E402
 
 __all__ = [
     "Body",
@@ -38,10 +40,17 @@ __all__ = [
     "solve_ensemble",
     "torque_free",
     "ValidityWarning",
+    "sweep",
+    "Parameter",
+    "Uniform",
+    "Normal",
+    "LogUniform",
     "attitude",
     "averaged",
     "lagrange",
     "orthogonal",
+    "scene",
+    "sweeps",
     "validity",
 ]
 __version__ = _core.__version__

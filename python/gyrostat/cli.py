@@ -1,5 +1,6 @@
-"""The command line: ``gyrostat run SCENE.toml``, ``gyrostat examples``, ``gyrostat methods``,
-``gyrostat scene-format``; ``gyrostat --version``. Also ``python -m gyrostat``.
+"""The command line: ``gyrostat run SCENE.toml``, ``gyrostat sweep SCENE.toml --vary ...``,
+``gyrostat examples``, ``gyrostat methods``, ``gyrostat scene-format``; ``gyrostat --version``.
+Also ``python -m gyrostat``. A scene with a ``[sweep]`` table runs its sweep too.
 
 Exit codes: 0 every scene ran and succeeded; 1 a run failed (its partial results are written);
 2 a scene file is wrong (a one-line message names the key and the table, no traceback)."""
@@ -46,6 +47,61 @@ def _print_report(report: dict) -> None:
         print(f"  wrote {f}")
 
 
+def _print_sweep(report: dict) -> None:
+    statuses = ", ".join(f"{count} {status}" for status, count in report["statuses"].items())
+    print(f"{report['scene']}: sweep of {report['members']} members ({report['mode']}"
+          + (f", seed {report['seed']}" if report["seed"] is not None else "") + f"), run {report['run']}")
+    print(f"  {statuses}; {report['seconds']:.3g} s ({report['members_per_second']:.3g} members/s)")
+    if report["summary_range"]:
+        print(f"  {report['summary']}: from {report['summary_range'][0]:.6g} to {report['summary_range'][1]:.6g}")
+    if report["interrupted"]:
+        print("  interrupted: the members not finished have status 'interrupted'")
+    for f in report["files"]:
+        print(f"  wrote {f}")
+
+
+def _sweep(args) -> int:
+    """``gyrostat sweep``: exit 0 when every member ran (failed members are recorded in
+    sweep.nc and counted on the summary line), 2 for a wrong scene or --vary, 130 on Ctrl-C."""
+    import warnings
+
+    from gyrostat.runner import run_sweep
+    from gyrostat.schema import SceneError
+    from gyrostat.sweeps import parameter_from_text
+
+    client = None
+    try:
+        vary = [parameter_from_text(text) for text in args.vary] if args.vary else None
+        if args.dask:
+            from distributed import Client
+
+            try:
+                client = Client(args.dask, timeout="10s")
+            except (OSError, TimeoutError) as error:
+                print(f"--dask {args.dask}: cannot reach the scheduler: {error}", file=sys.stderr)
+                return 2
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # an interrupted sweep: in its report
+            report = run_sweep(args.scene, args.out, vary, samples=args.samples, seed=args.seed, run=args.run,
+                               trajectories=True if args.trajectories else None, summary=args.summary, client=client,
+                               threads=args.threads, chunk_size=args.chunk_size,
+                               progress=False if args.quiet else None)
+    except KeyboardInterrupt:
+        print(f"{args.scene}: interrupted", file=sys.stderr)
+        return 130
+    except SceneError as error:
+        print(f"{args.scene}: error: {error}", file=sys.stderr)
+        return 2
+    except (ValueError, TypeError, OSError) as error:
+        print(f"{args.scene}: error: {' '.join(str(error).split())}", file=sys.stderr)
+        return 2
+    finally:
+        if client is not None:
+            client.close()
+    _print_sweep(report)
+    return 130 if report["interrupted"] else 0
+
+
 def main(argv: list[str] | None = None) -> int:
     from gyrostat import __version__
 
@@ -59,6 +115,26 @@ def main(argv: list[str] | None = None) -> int:
     examples = sub.add_parser("examples", help="run every example scene shipped with the package")
     examples.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
     examples.add_argument("--quiet", action="store_true", help="no progress lines")
+    sweep = sub.add_parser("sweep", help="solve a scene over a grid or a seeded dispersion of its entries",
+                           description="Writes OUT/SCENE/sweep.nc (every member's summaries, and trajectories with "
+                                       "--trajectories), sweep.png (the summary against the parameters) and "
+                                       "sweep.json. Without --vary, the scene's [sweep] table says what to vary.")
+    sweep.add_argument("scene", type=Path, help="a scene file (TOML)")
+    sweep.add_argument("--vary", action="append", default=None, metavar="SPEC",
+                       help="PATH=START:STOP:NUM[:log], PATH=V1,V2,..., or PATH~uniform(LOW,HIGH), "
+                            "PATH~normal(MEAN,STD), PATH~loguniform(LOW,HIGH); e.g. 'body.moments[0]=1.0:2.0:11' "
+                            "(repeat for a grid over several parameters)")
+    sweep.add_argument("--samples", type=int, help="members of a dispersion")
+    sweep.add_argument("--seed", type=int, help="seed of a dispersion (default: a fresh one, recorded)")
+    sweep.add_argument("--run", help="the scene's run to sweep (default: its only run, or full)")
+    sweep.add_argument("--summary", help="what the plot shows: a variable of sweep.nc or an expression such as "
+                                         "'final_x / final_y'")
+    sweep.add_argument("--trajectories", action="store_true", help="keep every member's trajectory in sweep.nc")
+    sweep.add_argument("--threads", type=int, default=0, help="C++ threads per chunk (default: every core)")
+    sweep.add_argument("--chunk-size", type=int, help="members per ensemble call (default: about 64 MB of results)")
+    sweep.add_argument("--dask", metavar="ADDRESS", help="run the chunks on this Dask scheduler (tcp://host:8786)")
+    sweep.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
+    sweep.add_argument("--quiet", action="store_true", help="no progress bar")
     sub.add_parser("methods", help="list the integrators")
     sub.add_parser("scene-format", help="print the reference of every scene kind (Markdown)")
     args = parser.parse_args(argv)
@@ -80,6 +156,8 @@ def main(argv: list[str] | None = None) -> int:
     from gyrostat.schema import SceneError
     from gyrostat.validity import ValidityWarning
 
+    if args.command == "sweep":
+        return _sweep(args)
     paths = args.scenes if args.command == "run" else example_scenes()
     bad_scenes = failures = 0
     for path in paths:
@@ -101,6 +179,17 @@ def main(argv: list[str] | None = None) -> int:
             continue
         _print_report(report)
         failures += report["status"] != "success"
+        if "sweep" in report["inputs"] and report["status"] != "interrupted":  # the scene's [sweep] as well
+            from gyrostat.runner import run_sweep
+
+            try:
+                _print_sweep(run_sweep(path, args.out, progress=False if args.quiet else None))
+            except KeyboardInterrupt:
+                print(f"{path}: sweep interrupted", file=sys.stderr)
+                return 130
+            except (ValueError, OSError) as error:
+                print(f"{path}: sweep error: {' '.join(str(error).split())}", file=sys.stderr)
+                failures += 1
         if report["status"] == "interrupted":
             print(f"{path}: interrupted; the outputs computed so far are written", file=sys.stderr)
             return 130

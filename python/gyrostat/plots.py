@@ -370,3 +370,91 @@ def draw_scene(scene, solutions: dict[str, Solution], derived: dict, folder: Pat
     """The plots the scene asks for (``scene.plots``), by its kind; ``derived`` holds what the
     kind's analysis computed beside the runs (gyrostat.runner)."""
     return DRAW[scene.kind.name](scene, solutions, derived, folder)
+
+
+# ------------------------------------------------------------------------------------ sweeps
+def _axis_label(ds, name: str) -> str:
+    attrs = ds[name].attrs
+    unit = attrs.get("units", "")
+    return f"{attrs.get('long_name', name)}" + (f" [{unit}]" if unit and unit != "1" else "")
+
+
+def sweep(ds, expression: str, title: str, path: Path, contour: float | None = None,
+          lines: list[dict] | None = None) -> Path:
+    """A sweep's summary against its parameters: a line for one grid parameter, a heat map for
+    two (with the level line ``summary = contour`` and reference lines), a scatter for a
+    dispersion; members that failed are marked x."""
+    from gyrostat.sweeps import summary
+
+    values = summary(ds, expression)
+    failed = ds["status"] != "success"
+    plan = __import__("json").loads(ds.attrs["plan"])
+    names = [p["name"] for p in plan["parameters"]]
+    along = plan["mode"] == "grid" and len(names) == 2 and bool(lines)
+    if along:  # the summary along each reference line, below the map: where the eye cannot tell
+        fig, (ax, below) = plt.subplots(2, 1, figsize=(7.5, 7.5), gridspec_kw={"height_ratios": [3, 1.3]})
+    else:
+        fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    if plan["mode"] == "grid" and len(names) == 1:
+        x = ds[names[0]].values
+        ax.plot(x, values.values, "o-", ms=3, label=expression)
+        if bool(failed.any()):
+            ax.plot(x[failed.values], np.zeros(int(failed.sum())), "rx", label="failed members")
+        ax.set_xlabel(_axis_label(ds, names[0]))
+        ax.set_ylabel(expression)
+        for line in lines or ():
+            ax.plot(line["x"], line["y"], "k--", lw=1.2, label=line["label"])
+        ax.legend(fontsize=9)
+    elif plan["mode"] == "grid":
+        x, y = ds[names[0]].values, ds[names[1]].values
+        z = values.transpose(names[0], names[1], ...).values.T  # rows: the second parameter
+        finite = z[np.isfinite(z)]
+        log = finite.size and np.all(finite > 0) and finite.max() / finite.min() > 100
+        norm = matplotlib.colors.LogNorm(finite.min(), finite.max()) if log else None
+        mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z), shading="nearest", cmap="viridis", norm=norm)
+        fig.colorbar(mesh, ax=ax, label=expression)
+        handles = []
+        if contour is not None and finite.size and finite.min() < contour < finite.max():
+            ax.contour(x, y, z, levels=[contour], colors="w", linewidths=2)
+            handles.append(matplotlib.lines.Line2D([], [], color="w", lw=2,
+                                                   label=f"gyrostat: {expression} = {contour:g}"))
+        for line in lines or ():
+            handles += ax.plot(line["x"], line["y"], "r--", lw=2, label=line["label"])
+        bad = failed.transpose(names[0], names[1]).values.T
+        if bad.any():
+            gx, gy = np.meshgrid(x, y)
+            handles += ax.plot(gx[bad], gy[bad], "kx", ms=6, label="failed members")
+        ax.set_xlabel(_axis_label(ds, names[0]))
+        ax.set_ylabel(_axis_label(ds, names[1]))
+        if handles:
+            ax.legend(handles=handles, fontsize=9, loc="best", facecolor="0.6")
+        for line in lines if along else ():
+            inside = x[(x >= min(line["x"])) & (x <= max(line["x"]))]
+            on_line = np.interp(inside, line["x"], line["y"])
+            column = np.log(z) if log else z  # a map on a log scale is interpolated in log
+            sampled = [np.interp(v, y, column[:, i]) for v, i in zip(on_line, np.searchsorted(x, inside))]
+            sampled = np.exp(sampled) if log else np.asarray(sampled)
+            below.plot(inside, sampled, "r.-", label=f"{expression} along: {line['label']}")
+            if contour is not None:
+                below.axhline(contour, color="k", lw=0.8, ls=":")
+            below.set_xlabel(_axis_label(ds, names[0]))
+            below.set_ylabel(expression)
+            below.legend(fontsize=9)
+            below.grid(alpha=0.3)
+    else:
+        ok = ~failed.values
+        x = ds[names[0]].values
+        if len(names) == 1:
+            ax.plot(x[ok], values.values[ok], ".", ms=4)
+            ax.set_ylabel(expression)
+        else:
+            points = ax.scatter(x[ok], ds[names[1]].values[ok], c=values.values[ok], s=8, cmap="viridis")
+            fig.colorbar(points, ax=ax, label=expression)
+            ax.set_ylabel(_axis_label(ds, names[1]))
+        ax.set_xlabel(_axis_label(ds, names[0]))
+        extra = f"; plotted: {names[0]}, {names[1]}" if len(names) > 2 else ""
+        ax.set_title(f"{int(ok.sum())} of {ok.size} members succeeded (seed {ds.attrs.get('seed')}){extra}",
+                     fontsize=9)
+    fig.suptitle(title, fontsize=11)
+    ax.grid(alpha=0.3)
+    return _finish(fig, path)

@@ -5,30 +5,18 @@ paper 004) is done here from the recorded outputs; no physics is recomputed."""
 
 from __future__ import annotations
 
-import sys
+import json
 import time
 from pathlib import Path
 
 import numpy as np
 
 from gyrostat import _core, lagrange, orthogonal, output, plots, validity
+from gyrostat import progress as _bars
 from gyrostat.averaged import slow_variables
-from gyrostat.scene import Scene
+from gyrostat.scene import Scene, SceneError
 from gyrostat.solution import Solution
 from gyrostat.solve import solve, torque_free
-
-
-class _Progress:
-    """Progress lines on stderr: at most one per 10 % of a run, fed by the engine's callback."""
-
-    def __init__(self, label: str):
-        self.label, self.shown = label, -1
-
-    def __call__(self, fraction: float) -> None:
-        step = int(10 * fraction)
-        if step > self.shown:
-            self.shown = step
-            print(f"[{self.label}] {10 * step:3d}%", file=sys.stderr, flush=True)
 
 
 def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution], dict, dict]:
@@ -37,8 +25,12 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     started = time.perf_counter()
     solutions: dict[str, Solution] = {}
     for run in scene.runs:
-        solutions[run.name] = solve(run.model, run.y0, run.t_span, **run.options, check_validity=False,
-                                    progress=_Progress(f"{scene.name}: {run.name}") if progress else None)
+        report = _bars.resolve(None if progress else False, description=f"{scene.name}: {run.name}")
+        try:  # a bar in a terminal for a run longer than the engine's first poll (0.1 s)
+            solutions[run.name] = solve(run.model, run.y0, run.t_span, **run.options, check_validity=False,
+                                        progress=report if report is not None else False)
+        finally:
+            _bars.close(report)
     elapsed = time.perf_counter() - started
     report = {
         "scene": scene.name,
@@ -174,4 +166,49 @@ def run_scene(path: str | Path, out_dir: str | Path, progress: bool = True) -> d
     files += plots.draw_scene(scene, solutions, derived, folder)
     report["files"] = [str(f) for f in files] + [str(folder / "report.json")]
     output.write_report(report, folder)
+    return report
+
+
+# ------------------------------------------------------------------------------------ a sweep on disk
+def run_sweep(path: str | Path, out_dir: str | Path, vary=None, *, samples: int | None = None,
+              seed: int | None = None, run: str | None = None, trajectories: bool | None = None,
+              summary: str | None = None, client=None, threads: int = 0, chunk_size: int | None = None,
+              progress: bool | None = None) -> dict:
+    """Runs a scene's sweep (its ``[sweep]`` table, or ``vary``: a list of
+    :class:`gyrostat.sweeps.Parameter` that replaces the table's parameters): every member's
+    results streamed to ``OUT/SCENE/sweep.nc``, the summary plotted against the parameters in
+    ``sweep.png``, a report in ``sweep.json``; returns the report."""
+    from gyrostat import sweeps
+
+    scene = Scene.from_toml(path)
+    spec = scene.doc.get("sweep", {})
+    if vary is None:
+        if not spec:
+            raise SceneError(f"{scene.name} has no [sweep] table: give the parameters to vary (--vary)")
+        vary = [sweeps.parameter_from_table(p, f"[sweep.vary[{i}]]") for i, p in enumerate(spec["vary"])]
+    folder = Path(out_dir) / scene.name
+    folder.mkdir(parents=True, exist_ok=True)
+    target = folder / "sweep.nc"
+    ds = sweeps.sweep(scene, vary, samples=samples if samples is not None else spec.get("samples"),
+                      seed=seed if seed is not None else spec.get("seed"), run=run or spec.get("run"),
+                      trajectories=trajectories if trajectories is not None else spec.get("trajectories", False),
+                      client=client, threads=threads, chunk_size=chunk_size, path=target, progress=progress)
+    ds.close()
+    ds = sweeps.open_sweep(target)
+    expression = summary or spec.get("summary") or next(str(name) for name in ds.data_vars
+                                                        if str(name).startswith("final_"))
+    values = sweeps.summary(ds, expression)  # a bad expression fails here, before the plot
+    statuses = {str(k): int(v) for k, v in zip(*np.unique(ds["status"].values.astype(str), return_counts=True))}
+    report = {"scene": scene.name, "title": scene.title, "members": int(ds.attrs["members"]),
+              "mode": ds.attrs["mode"], "seed": ds.attrs.get("seed"), "run": ds.attrs["run"],
+              "model": ds.attrs["model"], "seconds": float(ds.attrs["seconds"]),
+              "members_per_second": float(ds.attrs["members"]) / max(float(ds.attrs["seconds"]), 1e-12),
+              "statuses": statuses, "interrupted": bool(ds.attrs["interrupted"]), "summary": expression,
+              "summary_range": [float(np.nanmin(values.values)), float(np.nanmax(values.values))]
+              if np.isfinite(values.values).any() else None,
+              "parameters": json.loads(ds.attrs["plan"])["parameters"]}
+    files = [target, plots.sweep(ds, expression, f"{scene.title}: sweep", folder / "sweep.png",
+                                 contour=spec.get("contour"), lines=spec.get("lines"))]
+    report["files"] = [str(f) for f in files] + [str(folder / "sweep.json")]
+    (folder / "sweep.json").write_text(json.dumps(output.clean(report), indent=2) + "\n")
     return report

@@ -49,7 +49,7 @@ from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, Tor
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, OneOf, SceneError, Table, Variants, Vector,
                              at_least, describe, increasing, non_negative, positive, validate)
 
-__all__ = ["Scene", "Run", "SceneError", "KINDS", "load", "scene_format"]
+__all__ = ["Scene", "Run", "SceneError", "KINDS", "SCENES", "load", "scene_format"]
 
 
 # ------------------------------------------------------------------------------------ pieces
@@ -94,6 +94,43 @@ EVENT = Table({
     "name": Field(str, default="", doc="a name for the report"),
 }, doc="an event: where a quantity crosses a value, located by the engine")
 TITLE["events"] = Field(ArrayOf(EVENT), default=[], doc="events to locate in every run that has the quantity")
+
+SWEEP_PARAMETER = Table({
+    "path": Field(str, doc="the entry of this scene it sets: body.moments[0], torques[1].viscosity, initial.omega[2], "
+                           "integration.rtol; a slice body.moments[0:2] sets several entries"),
+    "paths": Field(ListOf(str, min_len=1), doc="several entries set to the same value"),
+    "name": Field(str, doc="the coordinate's name in sweep.nc (default: the path)"),
+    "label": Field(str, default="", doc="text for plots, e.g. A/C"),
+    "scale": Field(float, default=1.0, doc="each entry is set to scale * value", check=_finite),
+    "values": Field(ListOf(float, min_len=1), doc="a grid: these values"),
+    "start": Field(float, doc="a grid from start to stop (with num)", check=_finite),
+    "stop": Field(float, doc="the grid's last value", check=_finite),
+    "num": Field(int, doc="the grid's number of values", check=at_least(1)),
+    "spacing": Field(Choice("linear", "log"), default="linear", doc="the grid's spacing"),
+    "distribution": Field(Choice("uniform", "normal", "loguniform"), doc="a dispersion: uniform and loguniform take "
+                                                                         "low and high, normal takes mean and std"),
+    "low": Field(float, doc="lower bound", check=_finite),
+    "high": Field(float, doc="upper bound", check=_finite),
+    "mean": Field(float, doc="mean", check=_finite),
+    "std": Field(float, doc="standard deviation", check=_finite),
+}, one_of=[("path", "paths")], doc="a varied parameter: a grid (values, or start, stop, num) or a distribution")
+SWEEP_LINE = Table({"label": Field(str, required=True, doc="legend text"),
+                    "x": Field(ListOf(float, min_len=2), required=True, doc="first parameter's values"),
+                    "y": Field(ListOf(float, min_len=2), required=True, doc="the summary (one parameter) or the second "
+                                                                            "parameter's values")},
+                   doc="a reference line drawn over the sweep's plot")
+TITLE["sweep"] = Field(Table({
+    "vary": Field(ArrayOf(SWEEP_PARAMETER), required=True, doc="the varied parameters"),
+    "run": Field(str, doc="the run of the scene to sweep (default: its only run, or full)"),
+    "samples": Field(int, doc="members of a dispersion", check=at_least(1)),
+    "seed": Field(int, doc="seed of a dispersion (default: a fresh one, recorded in sweep.nc)", check=non_negative),
+    "trajectories": Field(bool, default=False, doc="keep every member's trajectory in sweep.nc"),
+    "summary": Field(str, default="", doc="what the plot shows: a variable of sweep.nc or an expression such as "
+                                          "final_x / final_y (default: the first final value)"),
+    "contour": Field(float, doc="draw where the summary equals this value", check=_finite),
+    "lines": Field(ArrayOf(SWEEP_LINE), default=[], doc="reference lines over the plot"),
+}), doc="a sweep of this scene, run by gyrostat sweep (and gyrostat run): a grid or a seeded dispersion of its "
+        "numeric entries")
 
 _DEFAULT = _core.Options()  # the engine's defaults: the one place where they live
 METHOD = Field(Choice(*_core.methods()), default=_DEFAULT.method, doc="integrator (gyrostat.METHODS)")
@@ -581,6 +618,10 @@ class Scene:
         except OSError as error:
             raise SceneError(f"cannot read the scene: {error.strerror}") from None
         return cls.from_dict(data, name=path.stem)
+
+
+SCENES = Path(__file__).resolve().parent / "scenes"
+"""The folder of the scenes shipped with the package (``gyrostat examples`` runs them)."""
 
 
 def load(path: str | Path) -> Scene:

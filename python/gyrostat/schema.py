@@ -59,6 +59,8 @@ __all__ = [
     "Matrix",
     "ListOf",
     "validate",
+    "locate",
+    "Located",
     "describe",
     "positive",
     "non_negative",
@@ -404,6 +406,16 @@ class Field:
                 raise TypeError(f"invalid default {default!r}: {error}") from None
         self.default = default
 
+    def validate(self, raw: Any, where: "_Path") -> Any:
+        """The value converted to the field's type and passed through its checks."""
+        value = self.type.convert(raw, where)
+        for check in self.checks:
+            try:
+                check(value)
+            except ValueError as error:
+                raise SceneError(f"{where.key()} = {_show(raw)}: {_one_line(error)}") from None
+        return value
+
     def about(self) -> str:
         """`` (doc [unit])`` for messages, or nothing."""
         text = " ".join(part for part in (self.doc, f"[{self.unit}]" if self.unit else "") if part)
@@ -460,13 +472,7 @@ class Table(_Type):
         for key, spec in self.fields.items():
             where = path / key
             if key in value:
-                raw = value[key]
-                out[key] = spec.type.convert(raw, where)
-                for check in spec.checks:
-                    try:
-                        check(out[key])
-                    except ValueError as error:
-                        raise SceneError(f"{where.key()} = {_show(raw)}: {_one_line(error)}") from None
+                out[key] = spec.validate(value[key], where)
             elif spec.required:
                 if isinstance(spec.type, ArrayOf):
                     raise SceneError(f"missing required array of tables [[{_dotted(where.parts)}]]")
@@ -565,6 +571,53 @@ def validate(schema: Table | Variants, document: Any, where: str = "scene") -> d
     if not isinstance(document, Mapping):
         raise SceneError(f"{where} must be a table, got {_got(document)}")
     return schema.convert(document, path)
+
+
+class Located:
+    """Where a path into a validated document leads: the :class:`Field` that holds the value,
+    the keys and indices up to that field (``field_parts``), and those inside its value
+    (``inner``: indices into a vector or a matrix)."""
+
+    __slots__ = ("field", "field_parts", "inner", "root")
+
+    def __init__(self, field: Field, field_parts: tuple, inner: tuple, root: str):
+        self.field, self.field_parts, self.inner, self.root = field, field_parts, inner, root
+
+    def revalidate(self, document: Mapping) -> Any:
+        """Validates the field's (changed) value in ``document`` as :func:`validate` would."""
+        value = document
+        for part in self.field_parts:
+            value = value[part]
+        return self.field.validate(value, _Path(self.root, self.field_parts))
+
+
+def locate(schema: Table, document: Mapping, parts: tuple, where: str = "scene") -> Located:
+    """The field a path (``("torques", 1, "viscosity")``, ``("body", "moments", 0)``) of a
+    document validated against ``schema`` leads to; SceneError naming the path when it leads
+    nowhere (an unknown key with the nearest valid one, an index out of range, a key the
+    document does not set, a table rather than a value)."""
+    spec: _Type = schema
+    value: Any = document
+    shown = _Path(where)
+    for i, part in enumerate(parts):
+        if isinstance(spec, Variants):
+            spec = spec.variants[value[spec.key]]
+        if isinstance(spec, ArrayOf):
+            if not isinstance(part, int) or not 0 <= part < len(value):
+                raise SceneError(f"{shown.table()} has {len(value)} entries; {_dotted(parts[:i + 1])} is not one of them")
+            spec, value, shown = spec.table, value[part], shown / part
+            continue
+        if not isinstance(spec, Table) or not isinstance(part, str):
+            raise SceneError(f"{_dotted(parts[:i + 1])}: {shown.table()} is not an array")
+        if part not in spec.fields:
+            raise SceneError(f"unknown key {_show(part)} {shown.inside()}{_suggest(part, list(spec.fields))}")
+        if part not in value:
+            raise SceneError(f"{(shown / part).key()} is not set in the scene: set it to vary it")
+        field = spec.fields[part]
+        if not isinstance(field.type, (Table, Variants, ArrayOf)):
+            return Located(field, parts[:i + 1], tuple(parts[i + 1:]), where)
+        spec, value, shown = field.type, value[part], shown / part
+    raise SceneError(f"{_dotted(parts) or where} is a table, not a value")
 
 
 # ---------------------------------------------------------------------------------------------

@@ -156,6 +156,30 @@ class Solution:
         values = self._result.dense(times.ravel())
         return values[0] if times.ndim == 0 else values.reshape(times.shape + (values.shape[1],))
 
+    # ---- labelled data
+    def to_xarray(self):
+        """The solution as an ``xarray.Dataset``: dimension ``time`` (its coordinate, in s), the
+        state components and outputs as variables with their units, each event's crossing
+        times (``t_event_<name>``), and the method, status, message and statistics as
+        attributes; ``to_netcdf`` writes it."""
+        import xarray as xr
+
+        from gyrostat.output import unit
+        from gyrostat.sweeps import _variable
+
+        variables = {name: ("time", values, {"units": unit(name)}) for name, values in self.columns().items()
+                     if name != "t"}
+        for label, times in zip(self.event_names, self.t_events):
+            key = _variable(label)
+            variables[f"t_event_{key}"] = (f"crossing_{key}", np.asarray(times),
+                                           {"units": "s", "long_name": f"crossings of {label}"})
+        attrs = {"method": self.method, "status": self.status, "message": self.message,
+                 **{name: value for name, value in self.stats.items()},
+                 "terminal_event": "" if self.terminal_event is None else self.event_names[self.terminal_event]}
+        if self.notes:
+            attrs["notes"] = "\n".join(self.notes)
+        return xr.Dataset(variables, {"time": ("time", np.asarray(self.t), {"units": "s"})}, attrs)
+
     # ---- run information
     @property
     def stats(self) -> dict[str, float]:

@@ -9,6 +9,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from gyrostat import _core
+from gyrostat import progress as _bars
 from gyrostat.model import ModelBase
 from gyrostat.solution import Solution
 
@@ -137,21 +138,6 @@ def _span(t_span) -> tuple[float, float]:
         raise ValueError(f"t_span must be (t0, t1), got {t_span!r}") from None
 
 
-def _progress(progress):
-    if progress is None or progress is False:
-        return None
-    if progress is True:
-        import sys
-
-        def report(fraction: float) -> None:
-            print(f"\r{100 * fraction:5.1f} %", end="", file=sys.stderr, flush=True)
-
-        return report
-    if not callable(progress):
-        raise TypeError(f"progress must be None, a bool or a callable of the fraction done, not {type(progress).__name__}")
-    return progress
-
-
 def _checked(solution: Solution, model, check_validity: bool) -> Solution:
     if solution.status == "interrupted":
         warnings.warn(f"interrupted: {solution.message}", RuntimeWarning, stacklevel=3)
@@ -197,8 +183,9 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         Keep every step's continuous extension so that the solution can be called anywhere in
         the span, ``solution(t)`` (memory then grows with the steps taken, not with the outputs).
     progress:
-        A callable of the fraction done, called from the run at most every 0.1 s (``True``:
-        a percentage on stderr). Progress never changes the trajectory.
+        None (default): a progress bar on stderr when it is a terminal; ``True``: a bar;
+        ``False``: none; or a callable of the fraction done, called from the run at most every
+        0.1 s (so a short run never shows a bar). Progress never changes the trajectory.
     check_validity:
         For an averaged model, check its assumptions along the solution; broken ones are warned
         about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.
@@ -226,10 +213,13 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     y0 = np.asarray(y0, dtype=float)
     if y0.ndim != 1:
         raise ValueError(f"y0 must be one state (a 1-D array), got shape {y0.shape}")
+    report = _bars.default() if progress is None else _bars.resolve(progress)
     try:
-        result = _core.solve(core, y0, t0, t1, opts, progress if progress is None else _progress(progress))
+        result = _core.solve(core, y0, t0, t1, opts, report)
     except TypeError:
         raise _bad_call(core, y0, t0, t1) from None
+    if report is not None:
+        _bars.close(report)
     solution = Solution(result, model)
     if result.success and (not check_validity or type(model).check is _BASE_CHECK):
         return solution
@@ -279,7 +269,11 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     t0, t1 = _span(t_span)
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
-    results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), _progress(progress))
+    report = _bars.resolve(progress, total=count, unit="member")
+    try:
+        results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report)
+    finally:
+        _bars.close(report)
     solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
     return [_checked(s, s.model, check_validity) if s.success else s for s in solutions]
 

@@ -1,0 +1,926 @@
+"""Sweeps and Monte Carlo runs of a scene: parameter grids and seeded dispersions, solved in
+chunks on the engine's thread pool or on a Dask cluster, returned as an ``xarray.Dataset``.
+
+A sweep varies numeric entries of a scene by their path in the scene document::
+
+    import gyrostat as g
+    ds = g.sweep("p001.toml", {"body.moments[0:2]": np.linspace(1, 3, 21),     # a grid: the product
+                               "torques[0].diagonal[0:2]": [0.1, 0.2]}, run="averaged")
+    ds = g.sweep(scene, {"initial.omega[2]": g.Normal(1.0, 0.05),             # a dispersion
+                         "torques[1].viscosity": g.LogUniform(1e-3, 1e-1)}, samples=10_000, seed=7)
+
+A path is keys and indices (``body.moments[0]``, ``torques[1].viscosity``, ``initial.omega[2]``,
+``integration.rtol``, ``runs[0].law.value``); a slice (``body.moments[0:2]``) sets several
+entries to one value (A1 = A2 of a symmetric body). :class:`Parameter` names a parameter that
+sets several paths, optionally scaled (``Parameter("I1_over_I3", ["torques[0].diagonal[0:2]"],
+values, scale=0.1)`` sets ε I1 with ε = 0.1). Every member's document is checked as the scene
+file would be (the key's type and checks), and its model built by the scene's kind; a member
+whose values the physics refuses (a negative moment of inertia after dispersion) is recorded
+with status ``invalid_input`` and the message, never lost and never stopping the others.
+
+``model = "auto"`` is resolved once, from the scene as written, so that every member is solved
+with the same model; one run of the scene is swept (``run=``; the only run, or ``"full"``).
+
+Dispersions draw member i's values from its own stream, ``SeedSequence(seed, spawn_key=(i,))``:
+a member is reproducible alone (:meth:`Plan.scene`), and the same seed gives the same members
+whatever the chunking, locally or on Dask. The seed is recorded in the Dataset (``attrs``).
+
+The Dataset has the grid's parameter axes (or ``member`` for a dispersion) and ``time``; the
+state and named outputs as variables with their units; the varied parameters as coordinates;
+per member: ``status``, ``message``, the solver statistics, ``t_final``, the final value of
+every quantity (``final_<name>``), extrema of chosen outputs (``min_<name>``, ``max_<name>``
+over the output times), and per event the time of its first crossing (``first_<event>``) and
+its count (``count_<event>``), and the event that ended the run (``terminal_event``). With
+``trajectories=False`` only these summaries are kept; with ``path=`` each chunk is written to a
+NetCDF file as it finishes, so that memory stays bounded for any number of members.
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import math
+import re
+import time
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from gyrostat import _core, output
+from gyrostat import progress as _bars
+from gyrostat.schema import SceneError, locate
+
+__all__ = ["Uniform", "Normal", "LogUniform", "Parameter", "Plan", "sweep", "open_sweep", "summary",
+           "solve_chunk", "parameter_from_table", "parameter_from_text", "MEMORY_LIMIT"]
+
+MEMORY_LIMIT = 4 * 2**30
+"""Bytes a sweep may keep in memory (trajectories and summaries); beyond it a sweep asks for
+``trajectories=False`` or ``path=`` (streaming to a file) before it starts."""
+
+STATS = ("steps", "rhs_evals", "rejected_steps", "jacobian_evals", "nonlinear_conv_failures")
+
+
+# ------------------------------------------------------------------------------------ distributions
+def _number(value, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+            or not math.isfinite(value):
+        raise ValueError(f"{what} = {value!r} must be a finite number")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class Uniform:
+    """Uniform on [low, high)."""
+
+    low: float
+    high: float
+
+    def __post_init__(self):
+        if not _number(self.low, "Uniform low") < _number(self.high, "Uniform high"):
+            raise ValueError(f"Uniform({self.low!r}, {self.high!r}): low must be below high")
+
+    def draw(self, rng: np.random.Generator) -> float:
+        return float(rng.uniform(self.low, self.high))
+
+
+@dataclass(frozen=True)
+class Normal:
+    """Normal with the given mean and standard deviation."""
+
+    mean: float
+    std: float
+
+    def __post_init__(self):
+        _number(self.mean, "Normal mean")
+        if not _number(self.std, "Normal std") > 0:
+            raise ValueError(f"Normal({self.mean!r}, {self.std!r}): std must be positive")
+
+    def draw(self, rng: np.random.Generator) -> float:
+        return float(rng.normal(self.mean, self.std))
+
+
+@dataclass(frozen=True)
+class LogUniform:
+    """log(value) uniform on [log low, log high): every decade equally likely."""
+
+    low: float
+    high: float
+
+    def __post_init__(self):
+        low, high = _number(self.low, "LogUniform low"), _number(self.high, "LogUniform high")
+        if not 0 < low < high:
+            raise ValueError(f"LogUniform({self.low!r}, {self.high!r}): needs 0 < low < high")
+
+    def draw(self, rng: np.random.Generator) -> float:
+        return float(math.exp(rng.uniform(math.log(self.low), math.log(self.high))))
+
+
+DISTRIBUTIONS = {"uniform": Uniform, "normal": Normal, "loguniform": LogUniform}
+Distribution = Uniform | Normal | LogUniform
+
+
+# ------------------------------------------------------------------------------------ paths
+_SEGMENT = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
+_INDEX = re.compile(r"\[\s*(-?\d+)\s*(?::\s*(-?\d+)\s*)?\]")
+
+
+def parse_path(text: str) -> tuple:
+    """``"torques[1].viscosity"`` → ``("torques", 1, "viscosity")``; a slice ``[0:2]`` only last."""
+    if not isinstance(text, str) or not text.strip():
+        raise SceneError(f"vary: {text!r} is not a path such as 'body.moments[0]' or 'torques[1].viscosity'")
+    parts: list = []
+    for segment in text.strip().split("."):
+        match = _SEGMENT.fullmatch(segment.strip())
+        if not match:
+            raise SceneError(f"vary: {text!r} is not a path such as 'body.moments[0]' or 'torques[1].viscosity'")
+        parts.append(match.group(1))
+        brackets = match.group(2)
+        indices = list(_INDEX.finditer(brackets))
+        if "".join(m.group(0) for m in indices) != brackets:
+            raise SceneError(f"vary: {text!r}: an index is a whole number or a slice such as [0:2]")
+        for m in indices:
+            parts.append(int(m.group(1)) if m.group(2) is None else slice(int(m.group(1)), int(m.group(2))))
+    if any(isinstance(p, slice) for p in parts[:-1]):
+        raise SceneError(f"vary: {text!r}: a slice may only end the path")
+    return tuple(parts)
+
+
+def _entry(value, inner: tuple, text: str) -> list:
+    """The numbers a path's inner indices select inside a field's value (checked)."""
+    for i, part in enumerate(inner):
+        if isinstance(part, str):  # a key of a table inside a value (a law given as a table)
+            if not isinstance(value, dict) or part not in value:
+                raise SceneError(f"vary: {text!r}: no key {part!r} there"
+                                 + (f" (keys: {', '.join(value)})" if isinstance(value, dict) else ""))
+            value = value[part]
+            continue
+        if not isinstance(value, list):
+            raise SceneError(f"vary: {text!r}: the value has no entries to index")
+        if isinstance(part, slice):
+            chosen = range(*part.indices(len(value)))
+            if part.start < 0 or part.stop > len(value) or not chosen:
+                raise SceneError(f"vary: {text!r}: the slice is outside the {len(value)} entries")
+            value = [value[k] for k in chosen]
+            break
+        if not -len(value) <= part < len(value):
+            raise SceneError(f"vary: {text!r}: index {part} is outside the {len(value)} entries")
+        value = value[part]
+    numbers = value if isinstance(value, list) else [value]
+    if not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in numbers):
+        raise SceneError(f"vary: {text!r} is {value!r}, not a number")
+    return numbers
+
+
+def _assign(container, parts: tuple, value):
+    """A copy of ``container`` with the entry at ``parts`` set (only the containers on the path
+    are copied)."""
+    head, rest = parts[0], parts[1:]
+    copied = dict(container) if isinstance(container, dict) else list(container)
+    if rest:
+        copied[head] = _assign(container[head], rest, value)
+    elif isinstance(head, slice):
+        for k in range(*head.indices(len(copied))):
+            copied[k] = value
+    else:
+        copied[head] = value
+    return copied
+
+
+# ------------------------------------------------------------------------------------ parameters
+_NAME = re.compile(r"[A-Za-z_][^\s/]*")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A varied parameter: its name (a coordinate of the Dataset), the scene paths it sets
+    (each to ``scale * value``), and either grid ``values`` or a ``distribution``."""
+
+    name: str
+    paths: tuple[str, ...]
+    values: tuple[float, ...] | None = None
+    distribution: Distribution | None = None
+    scale: float = 1.0
+    label: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not _NAME.fullmatch(self.name):
+            raise ValueError(f"parameter name {self.name!r} must start with a letter or '_' and hold no spaces or '/'"
+                             " (it names a NetCDF variable; use label= for text such as 'A/C')")
+        paths = (self.paths,) if isinstance(self.paths, str) else tuple(self.paths)
+        if not paths:
+            raise ValueError(f"parameter {self.name!r} sets no path")
+        object.__setattr__(self, "paths", paths)
+        _number(self.scale, f"parameter {self.name!r}: scale")
+        if (self.values is None) == (self.distribution is None):
+            raise ValueError(f"parameter {self.name!r}: give values (a grid) or a distribution, not "
+                             + ("both" if self.values is not None else "neither"))
+        if self.values is not None:
+            values = np.asarray(self.values, dtype=float).ravel() if not isinstance(self.values, (str, bytes)) \
+                else np.array([np.nan])
+            if values.size == 0 or not np.all(np.isfinite(values)):
+                raise ValueError(f"parameter {self.name!r}: values must be finite numbers, got {self.values!r}")
+            object.__setattr__(self, "values", tuple(float(v) for v in values))
+        elif not isinstance(self.distribution, (Uniform, Normal, LogUniform)):
+            raise ValueError(f"parameter {self.name!r}: distribution must be gyrostat.Uniform, Normal or LogUniform, "
+                             f"not {self.distribution!r}")
+
+    def describe(self) -> dict:
+        spec = {"values": list(self.values)} if self.values is not None else {
+            "distribution": type(self.distribution).__name__, **self.distribution.__dict__}
+        return {"name": self.name, "label": self.label or self.name, "paths": list(self.paths), "scale": self.scale,
+                **spec}
+
+
+def parameter_from_table(spec: Mapping, where: str = "[sweep.vary]") -> Parameter:
+    """A :class:`Parameter` from a scene's validated ``[[sweep.vary]]`` table."""
+    paths = [spec["path"]] if "path" in spec else list(spec["paths"])
+    grid_keys = [k for k in ("values", "start", "stop", "num") if k in spec]
+    spread_keys = [k for k in ("distribution", "low", "high", "mean", "std") if k in spec]
+    try:
+        if grid_keys and spread_keys:
+            raise ValueError(f"give a grid ({', '.join(grid_keys)}) or a distribution ({', '.join(spread_keys)}), "
+                             "not both")
+        if "values" in spec:
+            if any(k in spec for k in ("start", "stop", "num")):
+                raise ValueError("give values, or start, stop and num, not both")
+            given = {"values": spec["values"]}
+        elif grid_keys:
+            missing = [k for k in ("start", "stop", "num") if k not in spec]
+            if missing:
+                raise ValueError(f"a grid from start to stop needs {', '.join(missing)}")
+            if spec["spacing"] == "log" and not (spec["start"] > 0 and spec["stop"] > 0):
+                raise ValueError(f"a log grid needs start > 0 and stop > 0, got {spec['start']!r}, {spec['stop']!r}")
+            space = np.geomspace if spec["spacing"] == "log" else np.linspace
+            given = {"values": space(spec["start"], spec["stop"], spec["num"])}
+        elif "distribution" in spec:
+            kind = spec["distribution"]
+            needs = ("mean", "std") if kind == "normal" else ("low", "high")
+            missing = [k for k in needs if k not in spec]
+            extra = [k for k in ("low", "high", "mean", "std") if k in spec and k not in needs]
+            if missing or extra:
+                raise ValueError(f"distribution = '{kind}' takes {' and '.join(needs)}"
+                                 + (f"; missing {', '.join(missing)}" if missing else "")
+                                 + (f"; not {', '.join(extra)}" if extra else ""))
+            given = {"distribution": DISTRIBUTIONS[kind](*(spec[k] for k in needs))}
+        else:
+            raise ValueError("needs values, start/stop/num, or a distribution")
+        return Parameter(spec.get("name", paths[0]), tuple(paths), scale=spec["scale"], label=spec["label"], **given)
+    except ValueError as error:
+        raise SceneError(f"{where} {error}") from None
+
+
+_GRID_TEXT = re.compile(r"\s*([^:]+):([^:]+):(\d+)(?::(lin|log))?\s*")
+_DISTRIBUTION_TEXT = re.compile(r"\s*(uniform|normal|loguniform)\s*\(([^,]+),([^)]+)\)\s*", re.IGNORECASE)
+
+
+def parameter_from_text(text: str) -> Parameter:
+    """A parameter from the command line: ``PATH=START:STOP:NUM[:log]``, ``PATH=V1,V2,...``,
+    ``PATH~uniform(LOW,HIGH)``, ``PATH~normal(MEAN,STD)``, ``PATH~loguniform(LOW,HIGH)``."""
+    path, sign, spec = (text.partition("=") if "=" in text and ("~" not in text or text.index("=") < text.index("~"))
+                        else text.partition("~"))
+    path = path.strip()
+    try:
+        if sign == "=":
+            grid = _GRID_TEXT.fullmatch(spec)
+            if grid:
+                start, stop, num = float(grid.group(1)), float(grid.group(2)), int(grid.group(3))
+                if grid.group(4) == "log":
+                    if not (start > 0 and stop > 0):
+                        raise ValueError("a log grid needs START > 0 and STOP > 0")
+                    return Parameter(path, (path,), values=np.geomspace(start, stop, num))
+                return Parameter(path, (path,), values=np.linspace(start, stop, num))
+            try:
+                values = [float(v) for v in spec.split(",")]
+            except ValueError:
+                values = None
+            if values is not None:
+                return Parameter(path, (path,), values=values)
+        if sign == "~":
+            match = _DISTRIBUTION_TEXT.fullmatch(spec)
+            if match:
+                distribution = DISTRIBUTIONS[match.group(1).lower()](float(match.group(2)), float(match.group(3)))
+                return Parameter(path, (path,), distribution=distribution)
+    except ValueError as error:
+        raise SceneError(f"--vary {text!r}: {error}") from None
+    raise SceneError(f"--vary {text!r}: write PATH=START:STOP:NUM[:log], PATH=V1,V2,... or "
+                     "PATH~uniform(LOW,HIGH) / normal(MEAN,STD) / loguniform(LOW,HIGH)")
+
+
+def _parameters(vary) -> list[Parameter]:
+    if isinstance(vary, Parameter):
+        vary = [vary]
+    if isinstance(vary, Mapping):
+        made = []
+        for path, spec in vary.items():
+            if isinstance(spec, Parameter):
+                raise ValueError("give Parameters as a list, not as the values of a dict")
+            given = {"distribution": spec} if isinstance(spec, (Uniform, Normal, LogUniform)) else {"values": spec}
+            made.append(Parameter(path, (path,), **given))
+        vary = made
+    if not isinstance(vary, Sequence) or not vary or not all(isinstance(p, Parameter) for p in vary):
+        raise ValueError("vary must be a non-empty dict {path: values or distribution} or a list of gyrostat.Parameter")
+    names = [p.name for p in vary]
+    if len(set(names)) != len(names):
+        raise ValueError(f"parameter names must differ; got {names}")
+    return list(vary)
+
+
+# ------------------------------------------------------------------------------------ the plan
+def _scene(scene):
+    from gyrostat.scene import Scene
+
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, (str, Path)):
+        return Scene.from_toml(scene)
+    if isinstance(scene, Mapping):
+        return Scene.from_dict(dict(scene))
+    raise TypeError(f"scene must be a gyrostat Scene, a scene file or a dict, not {type(scene).__name__}")
+
+
+def _variable(label: str) -> str:
+    """A variable name for an event's label (``"g = 0"`` → ``g_0``)."""
+    return re.sub(r"[^0-9A-Za-z_.]+", "_", label).strip("_") or "event"
+
+
+class Plan:
+    """What a sweep solves: the scene (validated, with ``model = "auto"`` resolved), the run it
+    sweeps, the parameters and how member i gets its values. Pure data, so that a chunk solves
+    the same members in this process or on a Dask worker."""
+
+    def __init__(self, scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None):
+        scene = _scene(scene)
+        self.scene_name, self.kind_name = scene.name, scene.kind.name
+        doc = copy.deepcopy(scene.doc)
+        integration = doc.get("integration", {})
+        if integration.get("model") == "auto":
+            integration["model"] = scene.model_choice
+        self.model_choice, self.model_reason = scene.model_choice, scene.model_reason
+        self.base = doc
+        names = [r.name for r in scene.runs]
+        if run is None:
+            run = names[0] if len(names) == 1 else "full" if "full" in names else None
+            if run is None:
+                raise ValueError(f"the scene has runs {names}: choose one with run=")
+        elif run not in names:
+            raise ValueError(f"run = {run!r} is not a run of the scene ({', '.join(names)})")
+        self.run = run
+        base = next(r for r in scene.runs if r.name == run)
+        self.state_names = tuple(base.model.state_names)
+        self.output_names = tuple(base.model.output_names)
+        self.event_labels = tuple(e.label for e in base.options.get("events", ()))
+        self.n_out = int(base.options.get("n_out", _core.Options().n_out))
+        self.parameters = _parameters(vary)
+        self._targets()  # every path checked now, before any member runs
+        grid = [p.values is not None for p in self.parameters]
+        if all(grid):
+            if samples is not None:
+                raise ValueError("samples= is for dispersions; a grid's size is the product of its value lists")
+            self.mode, self.shape = "grid", tuple(len(p.values) for p in self.parameters)
+            self.seed = None
+        elif not any(grid):
+            if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
+                raise ValueError(f"a dispersion needs samples = the number of members (a positive integer), "
+                                 f"got {samples!r}")
+            if seed is None:
+                seed = int(np.random.SeedSequence().entropy % 2**63)
+            if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+                raise ValueError(f"seed = {seed!r} must be a non-negative integer")
+            self.mode, self.shape, self.seed = "dispersion", (int(samples),), int(seed)
+        else:
+            raise ValueError("vary mixes grid values and distributions: give all as value lists (a grid) or all as "
+                             "distributions (a dispersion)")
+        self.size = int(np.prod(self.shape))
+
+    # -- paths
+    def _targets(self):
+        from gyrostat.scene import KINDS
+
+        schema, targets = KINDS[self.kind_name].schema, []
+        for parameter in self.parameters:
+            for text in parameter.paths:
+                parts = parse_path(text)
+                located = locate(schema, self.base, parts, self.scene_name)
+                value = self.base
+                for part in located.field_parts:
+                    value = value[part]
+                _entry(value, located.inner, text)
+                if located.field_parts[-1] == "n_out" and located.field_parts[0] == "integration":
+                    self.varies_n_out = True
+                targets.append((parameter, parts, located))
+        return targets
+
+    def __getstate__(self):
+        return {k: v for k, v in self.__dict__.items() if k != "_located"}
+
+    @property
+    def located(self):
+        try:
+            return self._located
+        except AttributeError:
+            self._located = self._targets()
+            return self._located
+
+    # -- members
+    def values(self, i: int) -> tuple[float, ...]:
+        """Member i's parameter values (grid: row-major over the parameters; dispersion: drawn
+        from the member's own stream)."""
+        if not 0 <= i < self.size:
+            raise IndexError(f"member {i} of a sweep of {self.size}")
+        if self.mode == "grid":
+            index = np.unravel_index(i, self.shape)
+            return tuple(p.values[k] for p, k in zip(self.parameters, index))
+        rng = np.random.default_rng(np.random.SeedSequence(self.seed, spawn_key=(i,)))
+        return tuple(p.distribution.draw(rng) for p in self.parameters)
+
+    def document(self, values: Sequence[float]) -> dict:
+        """The scene document with ``values`` set, each changed key checked as in a scene file."""
+        doc = self.base
+        changed = {}
+        for parameter, parts, located in self.located:
+            doc = _assign(doc, parts, parameter.scale * values[self.parameters.index(parameter)])
+            changed[located.field_parts] = located
+        for field_parts, located in changed.items():
+            doc = _assign(doc, field_parts, located.revalidate(doc))
+        return doc
+
+    def member(self, values: Sequence[float]):
+        """The run (model, initial state, span, options) of the member with these values; raises
+        SceneError or ValueError naming the value when the physics refuses it."""
+        from gyrostat.scene import KINDS, _add_events
+
+        doc = self.document(values)
+        runs, _, _ = KINDS[self.kind_name].runs(doc)
+        _add_events(doc, runs)
+        return next(r for r in runs if r.name == self.run)
+
+    def scene(self, i: int):
+        """Member i as a whole validated :class:`gyrostat.scene.Scene` (to rerun it alone)."""
+        from gyrostat.scene import Scene
+
+        return Scene.from_dict(self.document(self.values(i)), name=f"{self.scene_name}_member{i}")
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return self.state_names + self.output_names
+
+    def describe(self) -> dict:
+        return {"scene": self.scene_name, "kind": self.kind_name, "run": self.run, "mode": self.mode,
+                "shape": list(self.shape), "seed": self.seed, "parameters": [p.describe() for p in self.parameters]}
+
+
+# ------------------------------------------------------------------------------------ a chunk
+def _blank(plan: Plan, count: int, trajectories: bool, extrema: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """A chunk's arrays before any member is solved: NaN, zero counts, status ``interrupted``."""
+    arrays: dict[str, np.ndarray] = {
+        "status": np.full(count, "interrupted", dtype=object),
+        "message": np.full(count, "not run: the sweep was stopped first", dtype=object),
+        "terminal_event": np.full(count, "", dtype=object),
+    }
+    for name in STATS:
+        arrays[name] = np.zeros(count, dtype=np.int64)
+    arrays["last_step"] = np.full(count, np.nan)
+    arrays["t_final"] = np.full(count, np.nan)
+    for name in plan.names:
+        arrays[f"final_{name}"] = np.full(count, np.nan)
+    for name in extrema:
+        arrays[f"min_{name}"] = np.full(count, np.nan)
+        arrays[f"max_{name}"] = np.full(count, np.nan)
+    for label in plan.event_labels:
+        arrays[f"first_{_variable(label)}"] = np.full(count, np.nan)
+        arrays[f"count_{_variable(label)}"] = np.zeros(count, dtype=np.int64)
+    if trajectories:
+        arrays["t"] = np.full((count, plan.n_out), np.nan)
+        for name in plan.names:
+            arrays[name] = np.full((count, plan.n_out), np.nan)
+    for parameter in plan.parameters:
+        arrays[parameter.name] = np.full(count, np.nan)
+    return arrays
+
+
+def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extrema: tuple[str, ...]) -> None:
+    arrays["status"][j], arrays["message"][j] = solution.status, solution.message
+    stats = solution.stats
+    for name in STATS:
+        arrays[name][j] = stats[name]
+    arrays["last_step"][j] = stats["last_step"]
+    n = len(solution)
+    if n:
+        arrays["t_final"][j] = solution.t[-1]
+        if solution.state_names + solution.output_names == plan.names:  # one matrix: no per-name look-ups
+            table = np.hstack([solution.y, solution._result.outputs]) if plan.output_names else solution.y
+            present = plan.names
+        else:  # a member whose model names differ: by name, NaN where it has no such quantity
+            present = tuple(name for name in plan.names if name in solution)
+            table = np.column_stack([solution[name] for name in present]) if present else np.empty((n, 0))
+        for k, name in enumerate(present):
+            arrays[f"final_{name}"][j] = table[-1, k]
+        if extrema:
+            low, high = table.min(axis=0), table.max(axis=0)
+            for k, name in enumerate(present):
+                if name in extrema:
+                    arrays[f"min_{name}"][j], arrays[f"max_{name}"][j] = low[k], high[k]
+        if trajectories:
+            m = min(n, plan.n_out)
+            arrays["t"][j, :m] = solution.t[:m]
+            for k, name in enumerate(present):
+                arrays[name][j, :m] = table[:m, k]
+    for label, times in zip(solution.event_names, solution.t_events):
+        if label in plan.event_labels:
+            key = _variable(label)
+            arrays[f"count_{key}"][j] = len(times)
+            if len(times):
+                arrays[f"first_{key}"][j] = times[0]
+    if solution.terminal_event is not None:
+        arrays["terminal_event"][j] = solution.event_names[solution.terminal_event]
+
+
+def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajectories: bool = True,
+                extrema: Sequence[str] = (), progress=None) -> dict[str, np.ndarray]:
+    """Solves members ``start`` to ``stop - 1`` of a plan and returns their arrays (what a sweep
+    keeps of each). Members that share options are one :func:`gyrostat.solve_ensemble` call on
+    ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``. The
+    same on every machine: a Dask task runs exactly this."""
+    from gyrostat.solve import solve_ensemble
+
+    count = stop - start
+    extrema = tuple(extrema)
+    arrays = _blank(plan, count, trajectories, extrema)
+    arrays["interrupted"] = np.zeros(1, dtype=bool)
+    groups: dict[tuple, list] = {}
+    for j in range(count):
+        values = plan.values(start + j)
+        for parameter, value in zip(plan.parameters, values):
+            arrays[parameter.name][j] = value
+        try:
+            run = plan.member(values)
+        except (SceneError, ValueError) as error:
+            arrays["status"][j], arrays["message"][j] = "invalid_input", " ".join(str(error).split())
+            continue
+        options = tuple(sorted((k, v) for k, v in run.options.items() if k != "events"))
+        key = (run.t_span, options, tuple(run.options.get("events", ())))
+        groups.setdefault(key, []).append((j, run))
+    done = count - sum(len(members) for members in groups.values())
+    for (span, options, events), members in groups.items():
+        share = len(members) / count
+
+        def report(fraction, before=done / count, share=share):
+            progress(before + share * fraction)
+
+        solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
+                                   threads=threads, events=list(events) or None, check_validity=False,
+                                   progress=report if progress is not None else False, **dict(options))
+        for (j, _), solution in zip(members, solutions):
+            _record(arrays, j, solution, plan, trajectories, extrema)
+        done += len(members)
+        if any(s.status == "interrupted" for s in solutions):
+            arrays["interrupted"][0] = True
+            break
+    return arrays
+
+
+# ------------------------------------------------------------------------------------ where results go
+class _Memory:
+    """Every member's arrays in memory (at most MEMORY_LIMIT bytes)."""
+
+    def __init__(self, plan: Plan, trajectories: bool, extrema: tuple[str, ...]):
+        sample = _blank(plan, 1, trajectories, extrema)
+        need = plan.size * sum(a.nbytes if a.dtype != object else 64 for a in sample.values())
+        if need > MEMORY_LIMIT:
+            raise ValueError(f"a sweep of {plan.size} members keeping {'trajectories' if trajectories else 'summaries'} "
+                             f"needs about {need / 2**30:.1f} GiB (limit {MEMORY_LIMIT / 2**30:.0f} GiB): keep summaries "
+                             "only (trajectories=False), ask for fewer outputs (n_out), or stream to a file (path=)")
+        self.arrays = _blank(plan, plan.size, trajectories, extrema)
+
+    def put(self, start: int, chunk: dict) -> None:
+        for name, array in self.arrays.items():
+            array[start:start + len(chunk[name])] = chunk[name]
+
+    def close(self, plan: Plan, attrs: dict):
+        return _dataset(plan, self.arrays, attrs)
+
+
+class _NetCDF:
+    """Each chunk appended to a NetCDF file as it arrives (memory bounded by one chunk)."""
+
+    def __init__(self, plan: Plan, path: Path, trajectories: bool, extrema: tuple[str, ...]):
+        import netCDF4
+
+        self.path = Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.file = netCDF4.Dataset(self.path, "w")
+        self.file.createDimension("member", plan.size)
+        if trajectories:
+            self.file.createDimension("time", plan.n_out)
+        self.file.createVariable("member", "i8", ("member",))[:] = np.arange(plan.size)
+        coordinates = " ".join(p.name for p in plan.parameters)
+        for name, array in _blank(plan, 1, trajectories, extrema).items():
+            dims = ("member",) if array.ndim == 1 else ("member", "time")
+            kind = str if array.dtype == object else array.dtype
+            fill = np.nan if array.dtype.kind == "f" else None
+            variable = self.file.createVariable(name, kind, dims, fill_value=fill)
+            variable.setncatts(_attributes(plan, name))
+            if name not in (p.name for p in plan.parameters):
+                variable.coordinates = coordinates
+
+    def put(self, start: int, chunk: dict) -> None:
+        count = len(chunk["status"])
+        for name, variable in self.file.variables.items():
+            if name == "member":
+                continue
+            values = chunk[name]
+            variable[start:start + count] = values if values.dtype != object else values.astype(str)
+
+    def close(self, plan: Plan, attrs: dict):
+        import xarray as xr
+
+        self.file.setncatts(attrs)
+        self.file.close()
+        return xr.open_dataset(self.path)
+
+
+def _attributes(plan: Plan, name: str) -> dict:
+    """Units and a description of a variable of the sweep's Dataset."""
+    for parameter in plan.parameters:
+        if name == parameter.name:
+            from gyrostat.scene import KINDS
+
+            located = locate(KINDS[plan.kind_name].schema, plan.base, parse_path(parameter.paths[0]), plan.scene_name)
+            unit = located.field.unit
+            scaled = "" if parameter.scale == 1 else f" / {parameter.scale:g}"
+            return {"long_name": parameter.label or parameter.name,
+                    "description": f"{', '.join(parameter.paths)}{scaled}",
+                    **({"units": unit} if unit and parameter.scale == 1 and not parameter.label else {})}
+    for prefix, meaning in (("final_", "at the end of the run"), ("min_", "minimum over the output times"),
+                            ("max_", "maximum over the output times")):
+        if name.startswith(prefix) and name[len(prefix):] in plan.names:
+            return {"units": output.unit(name[len(prefix):]), "description": f"{name[len(prefix):]} {meaning}"}
+    if name.startswith("first_"):
+        return {"units": "s", "description": "time of the event's first crossing (NaN: none)"}
+    if name.startswith("count_"):
+        return {"description": "number of crossings of the event"}
+    fixed = {"t": {"units": "s", "description": "output times"},
+             "t_final": {"units": "s", "description": "time where the run ended"},
+             "last_step": {"units": "s", "description": "the last step size"},
+             "status": {"description": "success, or why the run stopped (invalid_input: the values were refused)"},
+             "message": {"description": "the reason in words"},
+             "terminal_event": {"description": "the event that ended the run, or empty"}}
+    if name in fixed:
+        return fixed[name]
+    if name in STATS:
+        return {"description": f"solver statistics: {name}"}
+    return {"units": output.unit(name)}
+
+
+def _dataset(plan: Plan, arrays: dict, attrs: dict):
+    import xarray as xr
+
+    variables, coords = {}, {"member": ("member", np.arange(plan.size))}
+    for name, array in arrays.items():
+        dims = ("member",) if array.ndim == 1 else ("member", "time")
+        target = coords if name in (p.name for p in plan.parameters) else variables
+        target[name] = xr.Variable(dims, array, _attributes(plan, name))
+    return xr.Dataset(variables, coords, attrs)
+
+
+def _finish(ds, plan_description: dict):
+    """The Dataset a user sees: a common time axis as the coordinate ``time``; a grid on its
+    parameters' axes."""
+    if "t" in ds.variables and ds["t"].ndim == 2:
+        t = ds["t"].values
+        rows = t[np.all(np.isfinite(t), axis=1)]
+        if len(rows) and np.all(rows == rows[0]) and np.all(np.isnan(t) | (t == rows[0])):
+            ds = ds.drop_vars("t").assign_coords(time=("time", rows[0], {"units": "s", "description": "output times"}))
+    if plan_description["mode"] != "grid":
+        return ds
+    names = [p["name"] for p in plan_description["parameters"]]
+    shape = plan_description["shape"]
+    out = {}
+    for name, variable in ds.data_vars.items():
+        values = variable.values.reshape(tuple(shape) + variable.shape[1:])
+        out[name] = (tuple(names) + variable.dims[1:], values, variable.attrs)
+    coords = {p["name"]: (p["name"], np.asarray(p["values"], float), ds[p["name"]].attrs)
+              for p in plan_description["parameters"]}
+    if "time" in ds.coords:
+        coords["time"] = ds["time"]
+    import xarray as xr
+
+    return xr.Dataset(out, coords, ds.attrs)
+
+
+def open_sweep(path: str | Path):
+    """A sweep written with ``path=`` (or by ``gyrostat sweep``), as :func:`sweep` returns it:
+    a grid on its parameter axes (loaded into memory), a dispersion along ``member``."""
+    import xarray as xr
+
+    ds = xr.open_dataset(path)
+    return _finish(ds, json.loads(ds.attrs["plan"]))
+
+
+# ------------------------------------------------------------------------------------ the sweep
+def _chunk_size(plan: Plan, trajectories: bool, extrema: tuple[str, ...], workers: int) -> int:
+    per_member = sum(a.nbytes if a.dtype != object else 64 for a in _blank(plan, 1, trajectories, extrema).values())
+    by_memory = max(1, (64 * 2**20) // (2 * per_member))  # the chunk's arrays and the engine's results
+    by_balance = max(1, math.ceil(plan.size / (4 * workers)))  # a few chunks per worker at least
+    return int(min(by_memory, by_balance, 8192))
+
+
+def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None,
+          trajectories: bool = True, extrema: Sequence[str] | None = None, chunk_size: int | None = None,
+          threads: int = 0, client=None, path: str | Path | None = None, progress=None):
+    """Solves a scene for every member of a grid or a dispersion of its numeric entries.
+
+    Parameters
+    ----------
+    scene:
+        A scene file, a scene document (dict) or a :class:`gyrostat.scene.Scene`.
+    vary:
+        ``{path: values}`` (a grid: the product of the value lists), ``{path: distribution}``
+        (a dispersion: :class:`Uniform`, :class:`Normal`, :class:`LogUniform`), or a list of
+        :class:`Parameter` (a name, several paths, a scale).
+    samples, seed:
+        The number of members of a dispersion and its seed (None: a fresh seed, recorded in
+        ``attrs["seed"]``); member i draws from ``SeedSequence(seed, spawn_key=(i,))``.
+    run:
+        The scene's run to sweep (default: its only run, or ``"full"``).
+    trajectories:
+        Keep every member's trajectory (dimension ``time``); False keeps only the summaries.
+    extrema:
+        Quantities whose minimum and maximum over the output times are kept (default: every
+        named output of the run's model).
+    chunk_size, threads:
+        Members per ensemble call (default: about 64 MB of results, at least 4 chunks per
+        worker) and C++ threads per chunk (≤ 0: every core here; 1 per task on Dask).
+    client:
+        A ``dask.distributed.Client``: chunks become tasks on its cluster; the results are
+        identical to the local ones.
+    path:
+        Stream each chunk to this NetCDF file as it finishes (memory bounded by a chunk) and
+        return the file opened lazily (along ``member``; :func:`open_sweep` reshapes a grid).
+    progress:
+        None: a bar over the members in a terminal; True, False, or a callable of the fraction.
+
+    Returns
+    -------
+    xarray.Dataset
+        See the module's documentation. Ctrl-C stops the sweep: the members finished are kept,
+        the others have status ``"interrupted"`` (``attrs["interrupted"] = 1``) and a warning
+        says how many. Results equal the members solved one by one with :func:`gyrostat.solve`
+        bit for bit.
+    """
+    plan = Plan(scene, vary, samples=samples, seed=seed, run=run)
+    if trajectories and getattr(plan, "varies_n_out", False):
+        raise ValueError("integration.n_out varies across members: their trajectories differ in length; keep "
+                         "summaries only (trajectories=False)")
+    if extrema is None:
+        extrema = plan.output_names
+    extrema = tuple(extrema)
+    unknown = [name for name in extrema if name not in plan.names]
+    if unknown:
+        raise ValueError(f"extrema: {unknown} are not quantities of the run ({', '.join(plan.names)})")
+    workers = len(client.scheduler_info()["workers"]) if client is not None else 1
+    if chunk_size is None:
+        chunk_size = _chunk_size(plan, trajectories, extrema, workers)
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
+        raise ValueError(f"chunk_size = {chunk_size!r} must be a positive integer")
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
+        raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
+    sink = _NetCDF(plan, path, trajectories, extrema) if path is not None else _Memory(plan, trajectories, extrema)
+    ranges = [(s, min(s + chunk_size, plan.size)) for s in range(0, plan.size, chunk_size)]
+    bar = _bars.resolve(progress, total=plan.size, unit="member", description=f"sweep {plan.scene_name}")
+    started = time.perf_counter()
+    options = {"trajectories": trajectories, "extrema": extrema}
+    try:
+        if client is None:
+            finished = _run_local(plan, ranges, sink, bar, threads, options)
+        else:
+            finished = _run_dask(plan, ranges, sink, bar, client, threads, options)
+    finally:
+        _bars.close(bar)
+    missing = [r for r in ranges if r not in finished]
+    for start, stop in missing:  # never run: written as such, so that no member is lost
+        blank = _blank(plan, stop - start, trajectories, extrema)
+        for parameter_index, parameter in enumerate(plan.parameters):
+            blank[parameter.name][:] = [plan.values(i)[parameter_index] for i in range(start, stop)]
+        sink.put(start, blank)
+    attrs = {"gyrostat_version": _core.__version__, "scene": plan.scene_name, "kind": plan.kind_name,
+             "run": plan.run, "model": plan.model_choice, "model_reason": plan.model_reason, "mode": plan.mode,
+             "members": plan.size, "seconds": time.perf_counter() - started,
+             "interrupted": int(bool(missing) or finished.get("interrupted", False)),
+             "plan": json.dumps(plan.describe()), "extrema": json.dumps(list(extrema))}
+    if plan.seed is not None:
+        attrs["seed"] = plan.seed
+    ds = sink.close(plan, attrs)
+    if attrs["interrupted"]:
+        unfinished = int((ds["status"] == "interrupted").sum())
+        warnings.warn(f"sweep interrupted: {plan.size - unfinished} of {plan.size} members finished; the others have "
+                      "status 'interrupted'", RuntimeWarning, stacklevel=2)
+    return ds if path is not None else _finish(ds, plan.describe())
+
+
+def _run_local(plan, ranges, sink, bar, threads, options) -> dict:
+    finished: dict = {}
+    done = 0
+    try:
+        for start, stop in ranges:
+            report = None if bar is None else (lambda f, d=done, n=stop - start: bar((d + f * n) / plan.size))
+            chunk = solve_chunk(plan, start, stop, threads=threads, progress=report, **options)
+            sink.put(start, chunk)
+            finished[(start, stop)] = True
+            done += stop - start
+            if bar is not None:
+                bar(done / plan.size)
+            if chunk["interrupted"][0]:
+                finished["interrupted"] = True
+                break
+    except KeyboardInterrupt:
+        finished["interrupted"] = True
+    return finished
+
+
+def _run_dask(plan, ranges, sink, bar, client, threads, options) -> dict:
+    from distributed import as_completed
+
+    finished: dict = {}
+    window = 2 * max(1, len(client.scheduler_info()["workers"]))
+    per_task = threads if threads > 0 else 1
+    queue = iter(ranges)
+    futures = {}
+
+    def submit():
+        for start, stop in itertools.islice(queue, 1):
+            future = client.submit(solve_chunk, plan, start, stop, threads=per_task, pure=False, **options)
+            futures[future] = (start, stop)
+            return future
+        return None
+
+    running = as_completed([f for f in (submit() for _ in range(window)) if f is not None])
+    done = 0
+    try:
+        for future in running:
+            start, stop = futures.pop(future)
+            try:
+                chunk = future.result()
+            except Exception as error:  # a worker lost or a task failing: its members say why
+                chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
+                chunk["status"][:] = "failed"
+                chunk["message"][:] = f"the Dask task failed: {type(error).__name__}: {' '.join(str(error).split())}"
+                for k, parameter in enumerate(plan.parameters):
+                    chunk[parameter.name][:] = [plan.values(i)[k] for i in range(start, stop)]
+            sink.put(start, chunk)
+            finished[(start, stop)] = True
+            done += stop - start
+            if bar is not None:
+                bar(done / plan.size)
+            following = submit()
+            if following is not None:
+                running.add(following)
+    except KeyboardInterrupt:
+        finished["interrupted"] = True
+        for future in list(futures):
+            future.cancel()
+    return finished
+
+
+# ------------------------------------------------------------------------------------ summaries
+_ALLOWED = re.compile(r"[\sA-Za-z0-9_.+\-*/()]*")
+
+
+def summary(ds, expression: str):
+    """A summary of a sweep by name or by an arithmetic expression of its variables
+    (``"final_x / final_y"``, ``"max_kinetic_energy - min_kinetic_energy"``): + - * / ** and
+    parentheses over the Dataset's variables, nothing else."""
+    import ast
+
+    if not isinstance(expression, str) or not _ALLOWED.fullmatch(expression):
+        raise ValueError(f"summary {expression!r}: use variable names, numbers, + - * / ** and parentheses")
+    tree = ast.parse(expression, mode="eval")
+
+    def evaluate(node):
+        if isinstance(node, ast.Expression):
+            return evaluate(node.body)
+        if isinstance(node, ast.Name):
+            if node.id not in ds.variables:
+                raise ValueError(f"summary {expression!r}: {node.id!r} is not a variable of the sweep "
+                                 f"({', '.join(sorted(map(str, ds.data_vars)))})")
+            return ds[node.id]
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+            return node.value
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+            value = evaluate(node.operand)
+            return -value if isinstance(node.op, ast.USub) else value
+        operators = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply, ast.Div: np.divide,
+                     ast.Pow: np.power}
+        if isinstance(node, ast.BinOp) and type(node.op) in operators:
+            return operators[type(node.op)](evaluate(node.left), evaluate(node.right))
+        raise ValueError(f"summary {expression!r}: use variable names, numbers, + - * / ** and parentheses")
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        result = evaluate(tree)
+    if not hasattr(result, "dims"):
+        raise ValueError(f"summary {expression!r} names no variable of the sweep")
+    return result.rename(expression)
