@@ -62,7 +62,7 @@ case $command in
         setup_python test
         out=${2:-$ROOT/results}
         say "running the example scenes; results and plots go to $out"
-        "$VENV/bin/gyrostat" examples --out "$out"
+        "$VENV/bin/gyrostat" examples --out "$out" --overwrite
         ;;
     test)
         install_debian_packages

@@ -268,11 +268,15 @@ def test_cli_sweep_writes_the_dataset_and_the_plot(tmp_path, capsys):
                  "--out", str(tmp_path / "mc"), "--quiet"])
     assert code == 0 and "(dispersion, seed 2)" in capsys.readouterr().out
     assert sweeps.open_sweep(tmp_path / "mc" / "torque_free_integrated" / "sweep.nc").attrs["seed"] == 2
+    # one sweep per folder: a second one is refused, --overwrite replaces it
+    again = ["sweep", str(path), "--vary", "body.moments[0]=1.0:2.0:2", "--out", str(tmp_path), "--quiet"]
+    assert main(again) == 2 and "holds an earlier sweep" in capsys.readouterr().err
+    assert main(again + ["--overwrite"]) == 0 and "sweep of 2 members" in capsys.readouterr().out
 
     for bad, message in ((["--vary", "body.moments[0]=1:2"], "write PATH=START:STOP:NUM"),
                          (["--vary", "body.mass[0]=1:2:3"], "unknown key 'mass' in [body]"),
                          ([], "has no [sweep] table")):
-        assert main(["sweep", str(path), "--out", str(tmp_path), "--quiet", *bad]) == 2
+        assert main(["sweep", str(path), "--out", str(tmp_path / "bad"), "--quiet", *bad]) == 2
         err = capsys.readouterr().err
         assert message in err and "Traceback" not in err and err.count("\n") == 1
 

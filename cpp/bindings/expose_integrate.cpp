@@ -194,6 +194,11 @@ void expose_integrate(py::module_& m) {
         .def_readonly("stats", &Result::stats)
         .def_property_readonly("status", [](const Result& r) { return integrate::status_name(r.status); })
         .def_readonly("message", &Result::message)
+        .def_readonly("t_last", &Result::t_last, "Where the run stopped: the last accepted time.")
+        .def_property_readonly(
+            "y_last", [](const Result& r) { return py::array_t<double>(static_cast<py::ssize_t>(r.y_last.size()), r.y_last.data()); },
+            "The state at t_last.")
+        .def_readonly("h_next", &Result::h_next, "The step size the integrator would try next (0: its own choice).")
         .def_property_readonly("success", &Result::success);
 
     m.def(

@@ -301,6 +301,11 @@ class Result:
     def event_names(self) -> list[str]:
         ...
     @property
+    def h_next(self) -> float:
+        """
+        The step size the integrator would try next (0: its own choice).
+        """
+    @property
     def has_dense(self) -> bool:
         ...
     @property
@@ -337,6 +342,11 @@ class Result:
     def t_events(self) -> list:
         ...
     @property
+    def t_last(self) -> float:
+        """
+        Where the run stopped: the last accepted time.
+        """
+    @property
     def terminal_event(self) -> int:
         ...
     @property
@@ -345,6 +355,11 @@ class Result:
     @property
     def y_events(self) -> list:
         ...
+    @property
+    def y_last(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The state at t_last.
+        """
 class TorqueFreeSolution:
     def __init__(self, body: Body, omega0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...

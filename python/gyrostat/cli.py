@@ -65,6 +65,7 @@ def _sweep(args) -> int:
     sweep.nc and counted on the summary line), 2 for a wrong scene or --vary, 130 on Ctrl-C."""
     import warnings
 
+    from gyrostat import output
     from gyrostat.runner import run_sweep
     from gyrostat.schema import SceneError
     from gyrostat.sweeps import parameter_from_text
@@ -72,6 +73,7 @@ def _sweep(args) -> int:
     client = None
     try:
         vary = [parameter_from_text(text) for text in args.vary] if args.vary else None
+        output.claim_folder(args.out / args.scene.stem, args.overwrite, what="sweep")
         if args.dask:
             from distributed import Client
 
@@ -111,10 +113,12 @@ def main(argv: list[str] | None = None) -> int:
     run = sub.add_parser("run", help="solve one or more scene files, save results and plots")
     run.add_argument("scenes", nargs="+", type=Path, help="scene files (TOML)")
     run.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
-    run.add_argument("--quiet", action="store_true", help="no progress lines")
+    run.add_argument("--quiet", action="store_true", help="no progress bars")
+    run.add_argument("--overwrite", action="store_true", help="replace the results of an earlier run in OUT")
     examples = sub.add_parser("examples", help="run every example scene shipped with the package")
     examples.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
-    examples.add_argument("--quiet", action="store_true", help="no progress lines")
+    examples.add_argument("--quiet", action="store_true", help="no progress bars")
+    examples.add_argument("--overwrite", action="store_true", help="replace the results of an earlier run in OUT")
     sweep = sub.add_parser("sweep", help="solve a scene over a grid or a seeded dispersion of its entries",
                            description="Writes OUT/SCENE/sweep.nc (every member's summaries, and trajectories with "
                                        "--trajectories), sweep.png (the summary against the parameters) and "
@@ -135,6 +139,7 @@ def main(argv: list[str] | None = None) -> int:
     sweep.add_argument("--dask", metavar="ADDRESS", help="run the chunks on this Dask scheduler (tcp://host:8786)")
     sweep.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
+    sweep.add_argument("--overwrite", action="store_true", help="replace an earlier sweep of the scene in OUT")
     sub.add_parser("methods", help="list the integrators")
     sub.add_parser("scene-format", help="print the reference of every scene kind (Markdown)")
     args = parser.parse_args(argv)
@@ -152,6 +157,7 @@ def main(argv: list[str] | None = None) -> int:
 
     import warnings
 
+    from gyrostat import output
     from gyrostat.runner import run_scene
     from gyrostat.schema import SceneError
     from gyrostat.validity import ValidityWarning
@@ -162,6 +168,7 @@ def main(argv: list[str] | None = None) -> int:
     bad_scenes = failures = 0
     for path in paths:
         try:
+            output.claim_folder(args.out / Path(path).stem, args.overwrite)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # printed in the report below
                 warnings.simplefilter("ignore", RuntimeWarning)   # an interrupted run: in its report
@@ -172,6 +179,10 @@ def main(argv: list[str] | None = None) -> int:
         except SceneError as error:
             print(f"{path}: error: {error}", file=sys.stderr)
             bad_scenes += 1
+            continue
+        except output.FolderInUse as error:
+            print(f"{path}: error: {error}", file=sys.stderr)
+            failures += 1
             continue
         except (ValueError, OSError) as error:
             print(f"{path}: error: {' '.join(str(error).split())}", file=sys.stderr)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -79,10 +80,12 @@ def change(values: np.ndarray, conserved: bool) -> dict:
 
 
 def run_report(solution) -> dict:
-    """The part of the report for one run: method, status, statistics, and for each conserved
-    output its change (relative where it means something), plus the notes."""
+    """The part of the report for one run: method, status, statistics, where it stopped (t_last,
+    y_last, h_next: what a continuation starts from), and for each conserved output its change
+    (relative where it means something), plus the notes."""
     report = {"method": solution.method, "status": solution.status, "success": bool(solution.success),
               "message": solution.message, "stats": solution.stats, "notes": list(solution.notes),
+              "t_last": solution.t_last, "y_last": solution.y_last, "h_next": solution.h_next,  # to continue
               "conserved": {}}
     if len(solution):
         outputs = solution.outputs
@@ -122,3 +125,38 @@ def write_report(report: dict, folder: Path) -> Path:
     path = folder / "report.json"
     path.write_text(json.dumps(clean(report), indent=2) + "\n")
     return path
+
+
+class FolderInUse(ValueError):
+    """An output folder holds an earlier run (and --overwrite was not given)."""
+
+
+SWEEP_FILES = ("sweep.nc", "sweep.json", "sweep.png")
+
+
+def claim_folder(folder: Path, overwrite: bool, what: str = "run") -> None:
+    """Makes ``folder`` ready for one scene's results: one run per folder, never the files of an
+    earlier run left beside new ones. ``what = "run"``: the folder must be empty or absent, or,
+    with ``overwrite``, hold only what gyrostat writes (it is then cleared). ``what = "sweep"``:
+    the folder must hold no earlier sweep (with ``overwrite`` its sweep files are removed; a
+    scene run's files beside it are kept)."""
+    folder = Path(folder)
+    if not folder.exists():
+        return
+    if not folder.is_dir():
+        raise FolderInUse(f"{folder} is a file, not a folder")
+    names = {p.name for p in folder.iterdir()}
+    earlier = names & set(SWEEP_FILES) if what == "sweep" else names
+    if not earlier:
+        return
+    if not overwrite:
+        raise FolderInUse(f"{folder} holds an earlier {what} ({', '.join(sorted(earlier)[:4])}"
+                          f"{', ...' if len(earlier) > 4 else ''}): give --overwrite to replace it, or another --out")
+    if what == "sweep":
+        for name in earlier:
+            (folder / name).unlink()
+        return
+    if not names & {"report.json", "sweep.json"}:
+        raise FolderInUse(f"{folder} holds files gyrostat did not write ({', '.join(sorted(names)[:4])}): "
+                          "not clearing it; choose another --out")
+    shutil.rmtree(folder)

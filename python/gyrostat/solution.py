@@ -28,6 +28,8 @@ class Solution:
        ``non_finite_state``, ``solver_failure``, ``invalid_input``, ``interrupted``); a failed
        or interrupted run keeps its partial trajectory.
     message: the reason in words (empty on success).
+    t_last, y_last, h_next: where the run stopped and the step it would have tried next; pass
+       the solution as ``y0`` to :func:`gyrostat.solve` to continue the run from there.
     method: the integrator (or ``"closed_form"``).
     notes: remarks added after the run (assumptions checked, paper-specific analysis).
 
@@ -187,6 +189,23 @@ class Solution:
         return {"steps": s.steps, "rhs_evals": s.rhs_evals, "rejected_steps": s.rejected_steps,
                 "jacobian_evals": s.jacobian_evals, "nonlinear_conv_failures": s.nonlinear_conv_failures,
                 "last_step": s.last_step}
+
+    @property
+    def t_last(self) -> float:
+        """Where the run stopped, however it ended (t1, a terminal event, max_steps, a failure,
+        Ctrl-C): the last accepted time. ``solve(model, solution, (solution.t_last, t1))``
+        continues from there."""
+        return self._result.t_last
+
+    @property
+    def y_last(self) -> np.ndarray:
+        """The state at :attr:`t_last` (the last accepted step, not an interpolated output)."""
+        return self._result.y_last
+
+    @property
+    def h_next(self) -> float:
+        """The step size the integrator would have tried next (0: the method picks its own)."""
+        return self._result.h_next
 
     @property
     def status(self) -> str:

@@ -121,6 +121,27 @@ def _with_events(opts: Options, events, dense_output: bool, core) -> Options:
     return made
 
 
+def _continuation(previous: Solution, t0, opts: Options, first_step) -> tuple[np.ndarray, Options]:
+    """The state to continue a run from, and its options (the step it would have tried next)."""
+    if not np.isfinite(previous.t_last) or len(previous.y_last) == 0:
+        raise ValueError("this solution does not say where its run stopped: it cannot be continued")
+    if t0 != previous.t_last:
+        raise ValueError(f"to continue a run, start at its t_last = {previous.t_last!r}, not at t0 = {t0!r}")
+    if first_step is None and previous.h_next > 0:
+        opts = make_options(opts)
+        opts.first_step = float(previous.h_next)
+    return previous.y_last, opts
+
+
+def _warn_loose_atol(atol: float, y0: np.ndarray) -> None:
+    """An absolute tolerance above every component of the state accepts any step: say so."""
+    largest = float(np.max(np.abs(y0))) if y0.size else 0.0
+    if atol > largest:
+        warnings.warn(f"atol = {atol:g} exceeds every component of the initial state (the largest is {largest:g}): "
+                      "the error control then accepts any step and the result has no correct digits; give atol "
+                      "well below the size of the state", UserWarning, stacklevel=3)
+
+
 def _core_model(model):
     try:
         return model._core
@@ -167,7 +188,11 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     y0:
         The initial state (``model.state_names``), or a shorter one where the model completes it
         (ω alone for a model with attitude: identity quaternion; τ(0) = 0 for the orthogonal
-        torque; a full top state for the averaged top: its (G_z, H, r)).
+        torque; a full top state for the averaged top: its (G_z, H, r)). Or a :class:`Solution`
+        to continue its run: ``solve(model, sol, (sol.t_last, t1))`` starts from its last
+        accepted state with the step it would have tried next (a run stopped by ``max_steps``
+        or Ctrl-C, continued, follows the uninterrupted one: DOP853 and Taylor step for step,
+        CVODE/ARKODE to the tolerance, since their multistep history restarts).
     method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step:
         Integrator options; None keeps the default of :class:`gyrostat.Options` (the one place
         where defaults live: ``dop853``, rtol 1e-8, atol 1e-10, ``n_out`` = 1001 evenly spaced
@@ -210,9 +235,13 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         t0, t1 = t_span
     except (TypeError, ValueError):
         t0, t1 = _span(t_span)
+    if isinstance(y0, Solution):
+        y0, opts = _continuation(y0, t0, opts, first_step)
     y0 = np.asarray(y0, dtype=float)
     if y0.ndim != 1:
         raise ValueError(f"y0 must be one state (a 1-D array), got shape {y0.shape}")
+    if atol is not None and atol > 1e-3:
+        _warn_loose_atol(atol, y0)
     report = _bars.default() if progress is None else _bars.resolve(progress)
     try:
         result = _core.solve(core, y0, t0, t1, opts, report)
@@ -267,6 +296,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
             raise ValueError("events in an ensemble need members of one family (the same state and output names)")
         opts = _with_events(opts, events, dense_output, cores[0])
     t0, t1 = _span(t_span)
+    if atol is not None and atol > 1e-3:
+        _warn_loose_atol(atol, np.abs(np.asarray(y0s[0] if isinstance(y0s, list) else y0s, float)).max(axis=0))
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
     report = _bars.resolve(progress, total=count, unit="member")

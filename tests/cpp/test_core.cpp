@@ -122,6 +122,25 @@ int main() {
         CHECK(rb.success(), "stiff: BDF succeeds");
     }
 
+    // A run stopped by max_steps says where (the last accepted state and the next step), and
+    // continuing from there with that step retraces the uninterrupted run step for step.
+    {
+        integrate::Options o;
+        o.t_eval = {10.0};
+        const auto whole = integrate::solve(free_body, 0.0, w0, 10.0, o);
+        o.max_steps = whole.stats.steps / 2;
+        const auto part = integrate::solve(free_body, 0.0, w0, 10.0, o);
+        CHECK(part.status == integrate::Status::MaxStepsReached && part.t_last > 0.0 && part.t_last < 10.0 &&
+                  part.h_next > 0.0 && part.y_last.size() == 3,
+              "max_steps: where the run stopped");
+        o.max_steps = integrate::Options{}.max_steps;
+        o.first_step = part.h_next;
+        const auto rest = integrate::solve(free_body, part.t_last, Vec3(part.y_last.data()), 10.0, o);
+        CHECK(rest.success() && rest.y == whole.y && rest.stats.steps + part.stats.steps == whole.stats.steps,
+              "continued run = uninterrupted run, bit for bit");
+        CHECK(whole.t_last == 10.0 && whole.y_last == whole.y, "a finished run ends at t1");
+    }
+
     // Validation.
     CHECK(throws_invalid([] { Body(Vec3(-1.0, 2.0, 2.0)); }), "negative moment");
     CHECK(throws_invalid([] { Body(Vec3(1.0, 1.0, 3.0)); }), "triangle inequality");

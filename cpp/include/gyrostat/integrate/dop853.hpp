@@ -100,6 +100,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
 
     while (next_output < outputs.size() && outputs[next_output] == t0) record.push(t0, y), ++next_output;
     events.start(t0, y);
+    keep_last(result, t, y, 0.0);  // until the first step is accepted
     if (t0 == t1) return result;
     if (!all_finite(f)) {
         result.status = Status::NonFiniteState;
@@ -133,12 +134,14 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     while (direction * (t - t1) < 0.0) {
         if (!ticker.keep_going(t)) {
             mark_interrupted(result, t);
+            keep_last(result, t, y, h_abs);
             return result;
         }
         if (stats.steps >= options.max_steps) {
             result.status = Status::MaxStepsReached;
             result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
                              " before t1 = " + format_number(t1) + "." + stiffness_hint(system, t, y, stats.last_step, span);
+            keep_last(result, t, y, h_abs);
             return result;
         }
         const double min_step = 10.0 * std::abs(std::nextafter(t, direction * std::numeric_limits<double>::infinity()) - t);
@@ -161,6 +164,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
                                      format_number(min_step) + ") is below the resolution of t." +
                                      stiffness_hint(system, t, y, stats.last_step, span);
                 }
+                keep_last(result, t, y, stats.last_step);
                 return result;
             }
             h = h_abs * direction;
@@ -288,6 +292,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
         }
         if (options.every_step && !recorded) record.push(t, y);
     }
+    keep_last(result, t, y, h_abs);
     return result;
 }
 

@@ -99,6 +99,12 @@ struct Result {
     Stats stats;
     Status status = Status::Success;
     std::string message;
+    /// Where the run stopped, however it ended (t1, a terminal event, max_steps, a failure, an
+    /// interruption): the last accepted time and state, and the step size the integrator would
+    /// try next (0: it chooses its own), so that a run can be continued from there.
+    double t_last = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> y_last;
+    double h_next = 0.0;
 
     bool success() const { return status == Status::Success; }
     std::size_t size() const { return t.size(); }

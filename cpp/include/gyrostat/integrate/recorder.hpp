@@ -94,6 +94,14 @@ bool all_finite(const State& y) {
     return true;
 }
 
+/// Notes where a run stopped (Result::t_last, y_last, h_next), for continuing it.
+template <class State>
+void keep_last(Result& result, double t, const State& y, double h_next) {
+    result.t_last = t;
+    result.y_last.assign(y.data(), y.data() + y.size());
+    result.h_next = h_next;
+}
+
 /// Ends a run that was asked to stop: status Interrupted, and where.
 inline void mark_interrupted(Result& result, double t) {
     result.status = Status::Interrupted;

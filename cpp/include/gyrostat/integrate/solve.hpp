@@ -48,6 +48,31 @@ Result closed_form(const System& system, double t0, const typename System::State
     return result;
 }
 
+/// Result::t_last / y_last where the integrator did not set them: the crossing of a terminal event,
+/// else the last output (a closed form, or a run that ended before its first step), else (t0, y0);
+/// the state projected like a recorded one (a unit quaternion).
+template <class System>
+void complete_last(const System& system, Result& result, double t0, const typename System::State& y0) {
+    if (result.terminal_event >= 0 && !result.t_events[result.terminal_event].empty()) {
+        const auto& times = result.t_events[result.terminal_event];
+        const auto& states = result.y_events[result.terminal_event];
+        result.t_last = times.back();
+        result.y_last.assign(states.end() - result.dim, states.end());
+    } else if (std::isnan(result.t_last)) {
+        if (result.t.empty()) {
+            keep_last(result, t0, y0, 0.0);
+        } else {
+            result.t_last = result.t.back();
+            result.y_last.assign(result.y.end() - result.dim, result.y.end());
+        }
+    }
+    if (static_cast<int>(result.y_last.size()) == System::dim) {
+        typename System::State last = Eigen::Map<const typename System::State>(result.y_last.data());
+        model::system::project(system, last);
+        result.y_last.assign(last.data(), last.data() + System::dim);
+    }
+}
+
 /// Integrates `system` from (t0, y0) to t1 with options.method. Bad options or a non-finite y0
 /// throw std::invalid_argument; a failing run returns its partial trajectory and the reason; a
 /// run stopped through `control` returns what it computed with status Interrupted.
@@ -55,22 +80,26 @@ template <class System>
 Result solve(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
              const Control* control = nullptr) {
     model::system::check_state(system, y0);
-    if constexpr (model::system::is_closed_form<System>::value) {
-        (void)control;
-        return closed_form(system, t0, y0, t1, options);
-    } else {
-        switch (options.method) {
-            case Method::Dop853: return dop853(system, t0, y0, t1, options, control);
-            case Method::CvodeBdf: return cvode(system, t0, y0, t1, options, true, control);
-            case Method::CvodeAdams: return cvode(system, t0, y0, t1, options, false, control);
-            case Method::ArkodeVerner6:
-                return arkode_erk(system, t0, y0, t1, options, ARKODE_VERNER_8_5_6, options.method, control);
-            case Method::ArkodeFehlberg8:
-                return arkode_erk(system, t0, y0, t1, options, ARKODE_FEHLBERG_13_7_8, options.method, control);
-            case Method::Taylor: return taylor(system, t0, y0, t1, options, control);
+    Result result = [&]() -> Result {
+        if constexpr (model::system::is_closed_form<System>::value) {
+            (void)control;
+            return closed_form(system, t0, y0, t1, options);
+        } else {
+            switch (options.method) {
+                case Method::Dop853: return dop853(system, t0, y0, t1, options, control);
+                case Method::CvodeBdf: return cvode(system, t0, y0, t1, options, true, control);
+                case Method::CvodeAdams: return cvode(system, t0, y0, t1, options, false, control);
+                case Method::ArkodeVerner6:
+                    return arkode_erk(system, t0, y0, t1, options, ARKODE_VERNER_8_5_6, options.method, control);
+                case Method::ArkodeFehlberg8:
+                    return arkode_erk(system, t0, y0, t1, options, ARKODE_FEHLBERG_13_7_8, options.method, control);
+                case Method::Taylor: return taylor(system, t0, y0, t1, options, control);
+            }
+            throw std::invalid_argument("unknown integration method");
         }
-        throw std::invalid_argument("unknown integration method");
-    }
+    }();
+    complete_last(system, result, t0, y0);
+    return result;
 }
 
 }  // namespace gyrostat::integrate

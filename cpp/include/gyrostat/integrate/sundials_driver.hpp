@@ -69,6 +69,7 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
         if (stepper.suggest_stiff() &&
             (result.status == Status::MaxStepsReached || result.status == Status::StepSizeUnderflow))
             result.message += stiffness_hint(system, t, state(), result.stats.last_step, std::abs(t1 - t0));
+        keep_last(result, t, state(), result.stats.last_step);
     };
     auto stop_time = [&]() { return Stepper::exact_outputs && next < outputs.size() ? outputs[next] : t1; };
 
@@ -80,6 +81,7 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
         if (!ticker.keep_going(t)) {
             result.stats = stepper.stats();
             mark_interrupted(result, t);
+            keep_last(result, t, state(), result.stats.last_step);
             return;
         }
         if (steps >= options.max_steps) return finish(-1000);
@@ -124,6 +126,7 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
         if (stop != stop_time() && direction * (t - t1) < 0.0) stepper.set_stop_time(stop = stop_time());
     }
     result.stats = stepper.stats();
+    keep_last(result, t, state(), result.stats.last_step);
 }
 
 /// A CVODE or ARKODE run from (t0, y0) to t1: checks the input, sets up the context and the

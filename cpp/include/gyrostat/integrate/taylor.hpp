@@ -135,12 +135,14 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         while (direction * (t - t1) < 0.0) {
             if (!ticker.keep_going(t)) {
                 mark_interrupted(result, t);
+                keep_last(result, t, y, 0.0);
                 return result;
             }
             if (stats.steps >= options.max_steps) {
                 result.status = Status::MaxStepsReached;
                 result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
                                  " before t1 = " + format_number(t1) + ".";
+                keep_last(result, t, y, 0.0);
                 return result;
             }
             const double norm = y.cwiseAbs().maxCoeff();
@@ -159,6 +161,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 result.status = Status::NonFiniteState;
                 result.message = "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(t, 17) +
                                  ": the solution overflows or leaves the model's domain there";
+                keep_last(result, t_before, y_before, 0.0);
                 return result;
             }
             ++stats.rhs_evals;  // one evaluation of the coefficient recursion per step
@@ -175,6 +178,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 result.status = Status::StepSizeUnderflow;
                 result.message = "step size underflow at t = " + format_number(t_before, 17) + ": the step needed (" +
                                  format_number(std::abs(h)) + ") is below the resolution of t.";
+                keep_last(result, t, y, 0.0);
                 return result;
             }
             model::system::project(system, y);
@@ -185,6 +189,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
             while (next < outputs.size() && outputs[next] == t) record.push(t, y), ++next, recorded = true;
             if (options.every_step && !recorded) record.push(t, y);
         }
+        keep_last(result, t, y, 0.0);  // the Taylor step size follows from (t, y) alone
     }
     return result;
 }
