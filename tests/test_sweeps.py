@@ -160,16 +160,28 @@ def test_solution_to_xarray(tmp_path):
     xr.testing.assert_identical(ds, xr.open_dataset(tmp_path / "solution.nc").load())
 
 
-def test_a_dask_local_cluster_gives_the_same_dataset():
+def test_a_dask_local_cluster_gives_the_same_dataset(tmp_path, capsys):
     from distributed import Client, LocalCluster
 
     doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=11)
     local = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-            Client(cluster) as client:
-        remote = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False, client=client, chunk_size=6)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with Client(cluster) as client:
+            remote = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False, client=client, chunk_size=6)
+        # the command line on the same cluster, by its address
+        path = SCENES / "torque_free_integrated.toml"
+        vary = ["--vary", "initial.omega[0]~uniform(0.5,1.5)", "--samples", "12", "--seed", "4", "--quiet"]
+        assert main(["sweep", str(path), *vary, "--dask", cluster.scheduler_address,
+                     "--out", str(tmp_path / "dask")]) == 0
+    assert main(["sweep", str(path), *vary, "--out", str(tmp_path / "local")]) == 0
+    capsys.readouterr()
     xr.testing.assert_identical(local.drop_attrs(), remote.drop_attrs())
     assert (remote["status"] == "invalid_input").any()  # failing members travel back from the workers too
+    on_dask, here = (sweeps.open_sweep(tmp_path / where / "torque_free_integrated" / "sweep.nc").drop_attrs()
+                     for where in ("dask", "local"))
+    xr.testing.assert_identical(on_dask, here)
+    assert main(["sweep", str(path), *vary, "--dask", "tcp://127.0.0.1:1", "--out", str(tmp_path / "none")]) == 2
+    assert "cannot reach the scheduler" in capsys.readouterr().err
 
 
 # ------------------------------------------------------------------------------------ stopping and progress
@@ -288,6 +300,9 @@ def test_the_shipped_p001_map_finds_x_equal_y_off_the_papers_line(tmp_path):
 
         report = run_sweep(SCENES / "p001_xy_ratio_map.toml", tmp_path, progress=False)
     assert report["statuses"] == {"success": 39 * 61}
+    # the paper's own damper breaks its condition (4) everywhere: every member says so
+    assert report["members_with_broken_assumptions"] == 39 * 61
+    assert any("condition (4)" in text for text in report["broken_assumptions"])
     ds = sweeps.open_sweep(tmp_path / "p001_xy_ratio_map" / "sweep.nc")
     ratio = sweeps.summary(ds, "final_x / final_y")
     on_line = np.array([float(ratio.sel(A_over_C=a, I1_over_I3=a, method="nearest")) for a in ds["A_over_C"].values])

@@ -54,6 +54,9 @@ def _print_sweep(report: dict) -> None:
     print(f"  {statuses}; {report['seconds']:.3g} s ({report['members_per_second']:.3g} members/s)")
     if report["summary_range"]:
         print(f"  {report['summary']}: from {report['summary_range'][0]:.6g} to {report['summary_range'][1]:.6g}")
+    if report["members_with_broken_assumptions"]:
+        print(f"  WARNING {report['members_with_broken_assumptions']} member(s) break an assumption of their model: "
+              + "; ".join(report["broken_assumptions"][:3]) + (" ..." if len(report["broken_assumptions"]) > 3 else ""))
     if report["interrupted"]:
         print("  interrupted: the members not finished have status 'interrupted'")
     for f in report["files"]:

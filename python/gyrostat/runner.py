@@ -206,7 +206,9 @@ def run_sweep(path: str | Path, out_dir: str | Path, vary=None, *, samples: int 
               "statuses": statuses, "interrupted": bool(ds.attrs["interrupted"]), "summary": expression,
               "summary_range": [float(np.nanmin(values.values)), float(np.nanmax(values.values))]
               if np.isfinite(values.values).any() else None,
-              "parameters": json.loads(ds.attrs["plan"])["parameters"]}
+              "parameters": json.loads(ds.attrs["plan"])["parameters"],
+              "members_with_broken_assumptions": int((ds["broken_assumptions"] > 0).sum()),
+              "broken_assumptions": sorted({str(a) for a in np.unique(ds["first_broken_assumption"].values) if a})}
     files = [target, plots.sweep(ds, expression, f"{scene.title}: sweep", folder / "sweep.png",
                                  contour=spec.get("contour"), lines=spec.get("lines"))]
     report["files"] = [str(f) for f in files] + [str(folder / "sweep.json")]

@@ -480,6 +480,8 @@ def _blank(plan: Plan, count: int, trajectories: bool, extrema: tuple[str, ...])
         "status": np.full(count, "interrupted", dtype=object),
         "message": np.full(count, "not run: the sweep was stopped first", dtype=object),
         "terminal_event": np.full(count, "", dtype=object),
+        "broken_assumptions": np.zeros(count, dtype=np.int64),
+        "first_broken_assumption": np.full(count, "", dtype=object),
     }
     for name in STATS:
         arrays[name] = np.zeros(count, dtype=np.int64)
@@ -540,11 +542,14 @@ def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extr
 
 
 def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajectories: bool = True,
-                extrema: Sequence[str] = (), progress=None) -> dict[str, np.ndarray]:
+                extrema: Sequence[str] = (), check_validity: bool = True, progress=None) -> dict[str, np.ndarray]:
     """Solves members ``start`` to ``stop - 1`` of a plan and returns their arrays (what a sweep
     keeps of each). Members that share options are one :func:`gyrostat.solve_ensemble` call on
-    ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``. The
-    same on every machine: a Dask task runs exactly this."""
+    ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``; with
+    ``check_validity``, the assumptions of an averaged model are checked along each member (the
+    count of broken ones and the first, per member). The same on every machine: a Dask task
+    runs exactly this."""
+    from gyrostat.model import ModelBase
     from gyrostat.solve import solve_ensemble
 
     count = stop - start
@@ -574,8 +579,12 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
         solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
                                    threads=threads, events=list(events) or None, check_validity=False,
                                    progress=report if progress is not None else False, **dict(options))
-        for (j, _), solution in zip(members, solutions):
+        for (j, run), solution in zip(members, solutions):
             _record(arrays, j, solution, plan, trajectories, extrema)
+            if check_validity and len(solution) and type(run.model).check is not ModelBase.check:
+                broken = [str(a) for a in run.model.check(solution) if not a.holds]  # the averaging's assumptions
+                arrays["broken_assumptions"][j] = len(broken)
+                arrays["first_broken_assumption"][j] = broken[0] if broken else ""
         done += len(members)
         if any(s.status == "interrupted" for s in solutions):
             arrays["interrupted"][0] = True
@@ -668,7 +677,10 @@ def _attributes(plan: Plan, name: str) -> dict:
              "last_step": {"units": "s", "description": "the last step size"},
              "status": {"description": "success, or why the run stopped (invalid_input: the values were refused)"},
              "message": {"description": "the reason in words"},
-             "terminal_event": {"description": "the event that ended the run, or empty"}}
+             "terminal_event": {"description": "the event that ended the run, or empty"},
+             "broken_assumptions": {"description": "how many of the model's assumptions (an averaged model's "
+                                                   "validity checks) fail along the member's run"},
+             "first_broken_assumption": {"description": "the first of them, in words (empty: all hold)"}}
     if name in fixed:
         return fixed[name]
     if name in STATS:
@@ -731,7 +743,8 @@ def _chunk_size(plan: Plan, trajectories: bool, extrema: tuple[str, ...], worker
 
 def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None,
           trajectories: bool = True, extrema: Sequence[str] | None = None, chunk_size: int | None = None,
-          threads: int = 0, client=None, path: str | Path | None = None, progress=None):
+          threads: int = 0, client=None, path: str | Path | None = None, check_validity: bool = True,
+          progress=None):
     """Solves a scene for every member of a grid or a dispersion of its numeric entries.
 
     Parameters
@@ -761,6 +774,9 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     path:
         Stream each chunk to this NetCDF file as it finishes (memory bounded by a chunk) and
         return the file opened lazily (along ``member``; :func:`open_sweep` reshapes a grid).
+    check_validity:
+        Check an averaged model's assumptions along every member (``broken_assumptions``,
+        ``first_broken_assumption``): how far to trust each member's answer.
     progress:
         None: a bar over the members in a terminal; True, False, or a callable of the fraction.
 
@@ -793,7 +809,7 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     ranges = [(s, min(s + chunk_size, plan.size)) for s in range(0, plan.size, chunk_size)]
     bar = _bars.resolve(progress, total=plan.size, unit="member", description=f"sweep {plan.scene_name}")
     started = time.perf_counter()
-    options = {"trajectories": trajectories, "extrema": extrema}
+    options = {"trajectories": trajectories, "extrema": extrema, "check_validity": bool(check_validity)}
     try:
         if client is None:
             finished = _run_local(plan, ranges, sink, bar, threads, options)
