@@ -122,6 +122,54 @@ int main() {
         CHECK(rb.success(), "stiff: BDF succeeds");
     }
 
+    // Analytic Jacobians against central differences (h = 1e-6 relative: truncation ~h² and
+    // rounding ~1e-16/h, both near 1e-10 of the entries' size), at states away from symmetry.
+    {
+        auto worst = [](const auto& system, const auto& y) {
+            using System = std::decay_t<decltype(system)>;
+            typename System::Jacobian jac;
+            system.jacobian(0.3, y, jac);
+            double err = 0.0;
+            for (int k = 0; k < System::dim; ++k) {
+                const double h = 1e-6 * std::max(1.0, std::abs(y[k]));
+                typename System::State plus = y, minus = y, f_plus, f_minus;
+                plus[k] += h;
+                minus[k] -= h;
+                system.rhs(0.3, plus, f_plus);
+                system.rhs(0.3, minus, f_minus);
+                const auto column = ((f_plus - f_minus) / (2 * h)).eval();
+                err = std::max(err, (column - jac.col(k)).cwiseAbs().maxCoeff() / std::max(1.0, jac.col(k).cwiseAbs().maxCoeff()));
+            }
+            return err;
+        };
+        const TorqueSet damping({torque::Constant(Vec3(0.01, -0.02, 0.03)),
+                                 torque::LinearDamping((Mat3() << 0.1, 0.02, 0, 0.01, 0.2, 0, 0, 0.03, 0.05).finished())});
+        const model::MovingMass mass(Body(Vec3(4.0, 4.0, 2.0)), 1.0, 1.0, 10.0, 98.0, damping);
+        model::MovingMass::State ym;
+        ym << 0.3, -0.2, 1.1, 0.01, -0.02, 0.005, 0.1, 0.05, -0.03;
+        const model::LagrangeTop top(Body(Vec3(1.5, 1.5, 1.0)), 0.5, damping);
+        model::LagrangeTop::State yt;
+        yt << 0.2, -0.4, 1.7, 0.9, 0.3, -0.2, 0.1;
+        yt.tail<4>().normalize();
+        const Body gyro(Vec3(2.0, 3.0, 4.0), Vec3(0.3, -0.2, 0.5));
+        const auto law = model::MagnitudeLaw::harmonic(0.1, {0.05}, {1.3}, {0.0});
+        const model::OrthogonalTorque<true> servo(gyro, law, damping);
+        const model::OrthogonalTorque<true> smooth(gyro, law, damping, 1e-3, true);
+        const model::OrthogonalTorque<false> regularised(gyro, law, damping, 0.5);  // δ > |Q|: the other branch
+        model::OrthogonalTorque<true>::State yo;
+        yo << 0.4, -0.7, 0.2, 0.8, 0.2, -0.4, 0.4, 1.5;
+        yo.segment<4>(3).normalize();
+        model::OrthogonalTorque<false>::State yr;
+        yr << 0.4, -0.7, 0.2, 1.5;
+        const double errors[] = {worst(mass, ym), worst(top, yt), worst(servo, yo), worst(smooth, yo), worst(regularised, yr)};
+        std::printf("Jacobian vs central differences: moving mass %.1e, top %.1e, orthogonal %.1e / smooth %.1e / "
+                    "regularised %.1e\n", errors[0], errors[1], errors[2], errors[3], errors[4]);
+        double flags[9];
+        regularised.outputs(0.3, yr, flags);  // own outputs: |G|, h, g, L, |Q|, δ, regularised, ...
+        CHECK(flags[6] == 1.0 && flags[4] < flags[5], "the regularised branch (|Q| < δ) is the one tested");
+        for (double e : errors) CHECK(e < 1e-7, "analytic Jacobian = finite differences");
+    }
+
     // A run stopped by max_steps says where (the last accepted state and the next step), and
     // continuing from there with that step retraces the uninterrupted run step for step.
     {

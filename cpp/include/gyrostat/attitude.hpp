@@ -38,6 +38,19 @@ Eigen::Vector4d quaternion_rate(const Quaternion& quat, const Omega& omega) {
             0.5 * (w * r + x * q - y * p)};
 }
 
+/// The derivatives of quaternion_rate written into a Jacobian whose rows `row`..`row + 3` are
+/// (ẇ, ẋ, ẏ, ż), whose columns 0..2 are (p, q, r) and columns `row`..`row + 3` are (w, x, y, z):
+///   ∂q̇/∂ω = ½ [−x −y −z; w −z y; z w −x; −y x w],  ∂q̇/∂q = ½ [0 −p −q −r; p 0 r −q; q −r 0 p; r q −p 0].
+template <class Jacobian, class Quaternion, class Omega>
+void quaternion_rate_jacobian(Jacobian& jac, int row, const Quaternion& quat, const Omega& omega) {
+    const double w = quat[0], x = quat[1], y = quat[2], z = quat[3];
+    const double p = omega[0], q = omega[1], r = omega[2];
+    jac.template block<4, 3>(row, 0) << -x, -y, -z, w, -z, y, z, w, -x, -y, x, w;
+    jac.template block<4, 3>(row, 0) *= 0.5;
+    jac.template block<4, 4>(row, row) << 0, -p, -q, -r, p, 0, r, -q, q, -r, 0, p, r, q, -p, 0;
+    jac.template block<4, 4>(row, row) *= 0.5;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Euler conventions by name
 // ---------------------------------------------------------------------------------------------

@@ -9,6 +9,13 @@ namespace gyrostat {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
+/// Cross-product matrix: skew(a) b = a × b.
+inline Mat3 skew(const Vec3& a) {
+    Mat3 s;
+    s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+    return s;
+}
+
 /// Principal moments J = diag(A1, A2, A3) (body axes are principal axes) and the constant
 /// gyrostatic momentum k of rotors spinning at constant rate relative to the carrier.
 /// The angular momentum is G = J ω + k. A body is a gyrostat with k = 0.

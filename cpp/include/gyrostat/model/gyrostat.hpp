@@ -15,13 +15,6 @@
 
 namespace gyrostat::model {
 
-/// Cross-product matrix: skew(a) b = a × b.
-inline Mat3 skew(const Vec3& a) {
-    Mat3 s;
-    s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-    return s;
-}
-
 /// Gyrostat (body + constant rotor momentum k) under a set of torques.
 ///
 ///   J ω̇ + ω × (J ω + k) = Σ M_i(t, ω),     J = diag(A1, A2, A3),        (Euler)
@@ -69,16 +62,7 @@ public:
                              (torques_.jacobian(t, omega, body_.moments()) - skew(omega) * body_.moments().asDiagonal() +
                               skew(momentum));
         jac.template topLeftCorner<3, 3>() = d_omega;
-        if constexpr (WithAttitude) {
-            const double w = y[3], x = y[4], yy = y[5], z = y[6];
-            const double p = omega.x(), q = omega.y(), r = omega.z();
-            // d(q̇)/d(ω): rows (w, x, y, z), columns (p, q, r)
-            jac.template block<4, 3>(3, 0) << -x, -yy, -z, w, -z, yy, z, w, -x, -yy, x, w;
-            jac.template block<4, 3>(3, 0) *= 0.5;
-            // d(q̇)/d(q): ½ right-multiplication matrix of (0, ω)
-            jac.template block<4, 4>(3, 3) << 0, -p, -q, -r, p, 0, r, -q, q, -r, 0, p, r, q, -p, 0;
-            jac.template block<4, 4>(3, 3) *= 0.5;
-        }
+        if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
     }
 
     /// Taylor coefficients y[0..order] of the solution through y(t): y(t + h) = Σ y[n] hⁿ.

@@ -129,6 +129,29 @@ public:
         dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), Vec3(p, q, r));
     }
 
+    /// ∂f/∂y of the equations above: the Euler rows through (A − C) q r / A, the gravity torque
+    /// through γ(Q) (∂γ1/∂(w, x, y, z) = 2(−y, z, −w, x), ∂γ2/∂(w, x, y, z) = 2(x, w, z, y)) and the
+    /// torques through their own ∂M/∂ω; the quaternion rows as in quaternion_rate_jacobian.
+    using Jacobian = Eigen::Matrix<double, 7, 7>;
+    void jacobian(double t, const State& y, Jacobian& jac) const {
+        const double p = y[0], q = y[1], r = y[2];
+        const double w = y[3], x = y[4], yy = y[5], z = y[6];
+        jac.setZero();
+        if (!torques_.empty()) {
+            const Mat3 dM = torques_.jacobian(t, Vec3(p, q, r), body_.moments());
+            jac.template block<2, 3>(0, 0) = dM.template topRows<2>() / A_;
+            jac.template block<1, 3>(2, 0) = dM.row(2) / C_;
+        }
+        jac(0, 1) += (A_ - C_) * r / A_;
+        jac(0, 2) += (A_ - C_) * q / A_;
+        jac(1, 0) += (C_ - A_) * r / A_;
+        jac(1, 2) += (C_ - A_) * p / A_;
+        const double k = 2.0 * mu_ / A_;
+        jac.template block<1, 4>(0, 3) << k * x, k * w, k * z, k * yy;          //  μ ∂γ2/∂Q / A
+        jac.template block<1, 4>(1, 3) << k * yy, -k * z, k * w, -k * x;        // −μ ∂γ1/∂Q / A
+        quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), Vec3(p, q, r));
+    }
+
     /// Keeps |Q| = 1 to rounding (so |γ| = 1).
     void project(State& y) const { y.template segment<4>(3).normalize(); }
     void check_state(const State& y) const { check_quaternion(y.template segment<4>(3), "LagrangeTop"); }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/dual.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
@@ -52,24 +53,54 @@ public:
     const Vec3& carrier_moments() const { return carrier_; }
 
     void rhs(double t, const State& y, State& dy) const {
-        const double p = y[0], q = y[1], r = y[2], u1 = y[3], u2 = y[4], u3 = y[5], v1 = y[6], v2 = y[7], v3 = y[8];
+        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, y.head<3>(), body_.moments());
+        std::array<double, dim> x, f;
+        for (int i = 0; i < dim; ++i) x[i] = y[i];
+        evaluate(x, {M[0], M[1], M[2]}, f);
+        for (int i = 0; i < dim; ++i) dy[i] = f[i];
+    }
+
+    /// The exact ∂f/∂y: the same equations evaluated on dual numbers (model/dual.hpp), the
+    /// external torques entering through their own ∂M/∂ω.
+    using Jacobian = Eigen::Matrix<double, dim, dim>;
+    void jacobian(double t, const State& y, Jacobian& jac) const {
+        using D = Dual<dim>;
+        std::array<D, dim> x, f;
+        for (int i = 0; i < dim; ++i) x[i] = D::variable(y[i], i);
+        std::array<D, 3> M{D(0.0), D(0.0), D(0.0)};
+        if (!torques_.empty()) {
+            const Vec3 m = torques_.total(t, y.head<3>(), body_.moments());
+            const Mat3 dm = torques_.jacobian(t, y.head<3>(), body_.moments());
+            for (int i = 0; i < 3; ++i) {
+                M[i] = D(m[i]);
+                for (int k = 0; k < 3; ++k) M[i].d[k] = dm(i, k);
+            }
+        }
+        evaluate(x, M, f);
+        for (int i = 0; i < dim; ++i)
+            for (int k = 0; k < dim; ++k) jac(i, k) = f[i].d[k];
+    }
+
+    /// The equations above for any scalar T (double, or Dual for the Jacobian); M the external torque.
+    template <class T>
+    void evaluate(const std::array<T, dim>& y, const std::array<T, 3>& M, std::array<T, dim>& dy) const {
+        const T &p = y[0], &q = y[1], &r = y[2], &u1 = y[3], &u2 = y[4], &u3 = y[5], &v1 = y[6], &v2 = y[7], &v3 = y[8];
         const double mu = mu_;
-        const double d1 = u1, d2 = u2, d3 = rho_ + u3;
-        const double s1 = q * d3 - r * d2 + v1, s2 = r * d1 - p * d3 + v2, s3 = p * d2 - q * d1 + v3;
-        const double K1 = carrier_[0] * p + mu * (d2 * s3 - d3 * s2);
-        const double K2 = carrier_[1] * q + mu * (d3 * s1 - d1 * s3);
-        const double K3 = carrier_[2] * r + mu * (d1 * s2 - d2 * s1);
-        const double wd = p * d1 + q * d2 + r * d3, ww = p * p + q * q + r * r;
-        const double R1 = -2 * (q * v3 - r * v2) - (p * wd - d1 * ww) - omega2_ * u1 - lambda_ * v1;
-        const double R2 = -2 * (r * v1 - p * v3) - (q * wd - d2 * ww) - omega2_ * u2 - lambda_ * v2;
-        const double R3 = -2 * (p * v2 - q * v1) - (r * wd - d3 * ww) - omega2_ * u3 - lambda_ * v3;
-        const double dv = d1 * v1 + d2 * v2 + d3 * v3, vw = v1 * p + v2 * q + v3 * r;
-        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, Vec3(p, q, r), body_.moments());
-        const double f1 = M[0] - (q * K3 - r * K2) - mu * (2 * dv * p - v1 * wd - d1 * vw) - mu * (d2 * R3 - d3 * R2);
-        const double f2 = M[1] - (r * K1 - p * K3) - mu * (2 * dv * q - v2 * wd - d2 * vw) - mu * (d3 * R1 - d1 * R3);
-        const double f3 = M[2] - (p * K2 - q * K1) - mu * (2 * dv * r - v3 * wd - d3 * vw) - mu * (d1 * R2 - d2 * R1);
-        const double a1 = f1 / carrier_[0], a2 = f2 / carrier_[1], a3 = f3 / carrier_[2];
-        dy << a1, a2, a3, v1, v2, v3, R1 - (a2 * d3 - a3 * d2), R2 - (a3 * d1 - a1 * d3), R3 - (a1 * d2 - a2 * d1);
+        const T d1 = u1, d2 = u2, d3 = rho_ + u3;
+        const T s1 = q * d3 - r * d2 + v1, s2 = r * d1 - p * d3 + v2, s3 = p * d2 - q * d1 + v3;
+        const T K1 = carrier_[0] * p + mu * (d2 * s3 - d3 * s2);
+        const T K2 = carrier_[1] * q + mu * (d3 * s1 - d1 * s3);
+        const T K3 = carrier_[2] * r + mu * (d1 * s2 - d2 * s1);
+        const T wd = p * d1 + q * d2 + r * d3, ww = p * p + q * q + r * r;
+        const T R1 = -2.0 * (q * v3 - r * v2) - (p * wd - d1 * ww) - omega2_ * u1 - lambda_ * v1;
+        const T R2 = -2.0 * (r * v1 - p * v3) - (q * wd - d2 * ww) - omega2_ * u2 - lambda_ * v2;
+        const T R3 = -2.0 * (p * v2 - q * v1) - (r * wd - d3 * ww) - omega2_ * u3 - lambda_ * v3;
+        const T dv = d1 * v1 + d2 * v2 + d3 * v3, vw = v1 * p + v2 * q + v3 * r;
+        const T f1 = M[0] - (q * K3 - r * K2) - mu * (2.0 * dv * p - v1 * wd - d1 * vw) - mu * (d2 * R3 - d3 * R2);
+        const T f2 = M[1] - (r * K1 - p * K3) - mu * (2.0 * dv * q - v2 * wd - d2 * vw) - mu * (d3 * R1 - d1 * R3);
+        const T f3 = M[2] - (p * K2 - q * K1) - mu * (2.0 * dv * r - v3 * wd - d3 * vw) - mu * (d1 * R2 - d2 * R1);
+        const T a1 = f1 / carrier_[0], a2 = f2 / carrier_[1], a3 = f3 / carrier_[2];
+        dy = {a1, a2, a3, v1, v2, v3, R1 - (a2 * d3 - a3 * d2), R2 - (a3 * d1 - a1 * d3), R3 - (a1 * d2 - a2 * d1)};
     }
 
     /// |K| (conserved without external torques) and E (dissipated by the damper): see above.

@@ -237,6 +237,47 @@ public:
         dy[tau_index] = g;
     }
 
+    /// ∂f/∂y of the equations above. With G = Jω + k, Q = ω × G, δ = η|ω||G|:
+    ///   ∂Q/∂ω = [ω]× J − [G]×,  ∂δ/∂ω = η (|G| ω/|ω| + |ω| J G/|G|)ᵀ,
+    ///   ∂n/∂ω = Qᵀ ∂Q/∂ω / |Q|                              (|Q| ≥ δ),
+    ///         = Qᵀ ∂Q/∂ω / δ + (½ − |Q|²/(2δ²)) ∂δ/∂ω       (|Q| < δ: the regularised branch),
+    ///         = (Qᵀ ∂Q/∂ω + δ ∂δ/∂ω) / n                     (smooth),
+    ///   ∂g/∂ω = L(t)/n² ∂n/∂ω  (0 at ω = 0, where g = 1),
+    ///   ∂ω̇/∂ω = J⁻¹ (−Q ∂g/∂ω − g ∂Q/∂ω + ΣM_i'),  ∂τ̇/∂ω = ∂g/∂ω; the quaternion rows as in
+    /// quaternion_rate_jacobian; nothing depends on τ.
+    using Jacobian = Eigen::Matrix<double, dim, dim>;
+    void jacobian(double t, const State& y, Jacobian& jac) const {
+        jac.setZero();
+        const Vec3 omega = y.template head<3>();
+        const Vec3& J = body_.moments();
+        const Vec3 G = J.cwiseProduct(omega) + body_.rotor();
+        const Vec3 Q = omega.cross(G);
+        const double w_norm = omega.norm(), G_norm = G.norm(), q_norm = Q.norm();
+        const double d = eta_ * w_norm * G_norm;
+        const double n = denominator(q_norm, d);
+        const Mat3 dQ = skew(omega) * J.asDiagonal() - skew(G);
+        Eigen::RowVector3d dg = Eigen::RowVector3d::Zero();
+        double g = 1.0;
+        if (n > 0.0) {
+            const double L = law_(t);
+            g = 1.0 - L / n;
+            Eigen::RowVector3d dd = Eigen::RowVector3d::Zero();
+            if (w_norm > 0.0 && G_norm > 0.0)
+                dd = eta_ * (G_norm / w_norm * omega.transpose() + w_norm / G_norm * J.cwiseProduct(G).transpose());
+            const Eigen::RowVector3d QdQ = Q.transpose() * dQ;
+            Eigen::RowVector3d dn;
+            if (smooth_) dn = (QdQ + d * dd) / n;
+            else if (q_norm >= d) dn = QdQ / q_norm;
+            else dn = QdQ / d + (0.5 - q_norm * q_norm / (2.0 * d * d)) * dd;
+            dg = L / (n * n) * dn;
+        }
+        Mat3 dm = -Q * dg - g * dQ;
+        if (!torques_.empty()) dm += torques_.jacobian(t, omega, J);
+        jac.template topLeftCorner<3, 3>() = body_.inverse_moments().asDiagonal() * dm;
+        jac.template block<1, 3>(tau_index, 0) = dg;
+        if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
+    }
+
     /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (only with
     /// the attitude: without it the model has no projection at all).
     template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
