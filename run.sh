@@ -80,6 +80,7 @@ case $command in
         "$VENV/bin/python" "$ROOT/bench/work_precision.py" --bench-exe "$ROOT/build/bench/gyrostat_bench" "${@:2}"
         "$VENV/bin/python" "$ROOT/bench/python_overhead.py"
         "$VENV/bin/python" "$ROOT/bench/sweep_throughput.py"
+        "$VENV/bin/python" "$ROOT/bench/stiff_radau.py"
         ;;
     *)
         echo "usage: bash run.sh main [OUT] | test | bench" >&2

@@ -365,7 +365,7 @@ class Plan:
         if run is None:
             run = names[0] if len(names) == 1 else "full" if "full" in names else None
             if run is None:
-                raise ValueError(f"the scene has runs {names}: choose one with run=")
+                raise ValueError(f"the scene has runs {names}: choose one with run= (on the command line: --run NAME)")
         elif run not in names:
             raise ValueError(f"run = {run!r} is not a run of the scene ({', '.join(names)})")
         self.run = run
