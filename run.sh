@@ -3,7 +3,7 @@
 # Debian packages (compiler, Eigen, SUNDIALS, GSL), a virtual environment in .venv, the package.
 #
 #   bash run.sh main [OUT]   run every example scene, results and plots in OUT (default: results/)
-#   bash run.sh test         run the whole test suite (C++ tests, then pytest)
+#   bash run.sh test         run the whole test suite (C++ tests, plain and under sanitizers, then pytest)
 #   bash run.sh bench        build the benchmark executable and chart work-precision (bench/)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")"
@@ -55,6 +55,23 @@ run_cpp_tests() {
     (cd "$ROOT/build/cpp-tests" && ctest --output-on-failure)
 }
 
+# The C++ tests again under AddressSanitizer + UndefinedBehaviorSanitizer, and the ensemble stress
+# test under ThreadSanitizer: any report fails the run. -O0: the sanitizers' instrumentation of the
+# unrolled Taylor recursion takes minutes to optimise, and -O0 finds the same faults.
+run_sanitizer_tests() {
+    local flags=(-G Ninja -DGYROSTAT_TESTS=ON -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O0 -g1")
+    say "C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer"
+    cmake -S "$ROOT" -B "$ROOT/build/asan" "${flags[@]}" -DGYROSTAT_SANITIZE=address,undefined >/dev/null
+    cmake --build "$ROOT/build/asan" --target gyrostat_cpp_tests gyrostat_stress
+    (cd "$ROOT/build/asan" &&
+        export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 &&
+        ./gyrostat_cpp_tests >/dev/null && ./gyrostat_stress)
+    say "the ensemble stress test under ThreadSanitizer"
+    cmake -S "$ROOT" -B "$ROOT/build/tsan" "${flags[@]}" -DGYROSTAT_SANITIZE=thread >/dev/null
+    cmake --build "$ROOT/build/tsan" --target gyrostat_stress
+    (cd "$ROOT/build/tsan" && TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ./gyrostat_stress)
+}
+
 command=${1:-}
 case $command in
     main)
@@ -68,6 +85,7 @@ case $command in
         install_debian_packages
         setup_python test
         run_cpp_tests
+        run_sanitizer_tests
         say "Python tests"
         cd "$ROOT" && "$VENV/bin/python" -m pytest -q
         ;;

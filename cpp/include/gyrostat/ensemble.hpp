@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <new>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -20,7 +21,8 @@ namespace gyrostat {
 /// Runs `solve_member(i, control)` for i = 0..n−1 on `threads` threads (≤ 0: one per hardware
 /// thread) and returns the results in index order. Each member runs the same code on its own
 /// data, so results equal single runs bit for bit. A member that throws gets status
-/// InvalidInput and the message; the others are unaffected. With a `control`, the calling
+/// InvalidInput and the message (SolverFailure, "out of memory", for std::bad_alloc); the others
+/// are unaffected. With a `control`, the calling
 /// thread reports the fraction of members finished through control->poll; when poll returns
 /// false, running members stop (status Interrupted, partial trajectory kept) and members not
 /// started yet are returned empty with status Interrupted. When a thread cannot be created the
@@ -57,6 +59,12 @@ std::vector<integrate::Result> run_ensemble(std::size_t n, SolveMember&& solve_m
             } else {
                 try {
                     results[i] = solve_member(i, &member_control);
+                } catch (const std::bad_alloc&) {  // this member's outputs did not fit: the others go on
+                    results[i] = Result{};
+                    results[i].status = integrate::Status::SolverFailure;
+                    results[i].message = "member " + std::to_string(i) +
+                                         ": out of memory (its outputs could not be allocated): ask for fewer output "
+                                         "times or fewer members at once";
                 } catch (const std::exception& e) {
                     results[i] = Result{};
                     results[i].status = integrate::Status::InvalidInput;
