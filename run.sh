@@ -5,6 +5,7 @@
 #   bash run.sh main [OUT]   run every example scene, results and plots in OUT (default: results/)
 #   bash run.sh test         run the whole test suite (C++ tests, plain and under sanitizers, then pytest)
 #   bash run.sh bench        build the benchmark executable and chart work-precision (bench/)
+#   bash run.sh docs         build the documentation site into docs/_build/html (warnings are errors)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")"
 ROOT=$PWD
@@ -100,8 +101,14 @@ case $command in
         "$VENV/bin/python" "$ROOT/bench/sweep_throughput.py"
         "$VENV/bin/python" "$ROOT/bench/stiff_radau.py"
         ;;
+    docs)
+        install_debian_packages
+        setup_python test
+        say "building the documentation site into docs/_build/html"
+        "$VENV/bin/python" -m sphinx -W --keep-going -b html "$ROOT/docs" "$ROOT/docs/_build/html"
+        ;;
     *)
-        echo "usage: bash run.sh main [OUT] | test | bench" >&2
+        echo "usage: bash run.sh main [OUT] | test | bench | docs" >&2
         exit 2
         ;;
 esac

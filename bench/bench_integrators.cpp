@@ -3,7 +3,7 @@
 //   problem,method,rtol,error,steps,rhs_evals,seconds
 // error is the max-norm error of the final state against the problem's reference; seconds is the
 // best of several repetitions of one whole trajectory (the machine is shared and noisy).
-// Usage: gyrostat_bench [--quick]
+// Usage: gyrostat_bench [--quick] [--help]  (--help describes the options and the output)
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -66,8 +66,34 @@ void sweep(const char* problem, const System& system, const typename System::Sta
 
 }  // namespace
 
+constexpr const char* usage =
+    "usage: gyrostat_bench [--quick] [--help]\n"
+    "\n"
+    "Times every integrator on the standard problems (torque_free, forced, stiff, moving_mass)\n"
+    "across tolerances and prints one CSV row per run to stdout:\n"
+    "  problem,method,rtol,error,steps,rhs_evals,seconds\n"
+    "error is the max-norm error of the final state against the problem's reference; seconds is\n"
+    "the best of several repetitions of one whole trajectory. Lines starting with '#' are comments\n"
+    "(failed runs, ensemble timings). bench/work_precision.py runs it and draws the charts.\n"
+    "\n"
+    "options:\n"
+    "  --quick   two tolerances only (1e-6, 1e-10): a smoke run\n"
+    "  --help    print this help and exit\n";
+
 int main(int argc, char** argv) {
-    const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+    bool quick = false;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        if (std::strcmp(argv[i], "--quick") == 0) {
+            quick = true;
+        } else {
+            std::fprintf(stderr, "gyrostat_bench: unknown option '%s'\n%s", argv[i], usage);
+            return 2;
+        }
+    }
     const std::vector<double> tolerances =
         quick ? std::vector<double>{1e-6, 1e-10} : std::vector<double>{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
     const std::vector<Method> all = {Method::Taylor, Method::Dop853, Method::CvodeAdams, Method::CvodeBdf, Method::ArkodeFehlberg8,

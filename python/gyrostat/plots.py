@@ -18,12 +18,43 @@ from gyrostat.solution import Solution  # noqa: E402
 from gyrostat.lagrange import SEPARATRIX_LIMIT  # noqa: E402
 from gyrostat.validity import SMALL  # noqa: E402
 
+LEGEND_SIZE = 9  # points: legends readable at the figure's default size
+PI_TICKS = {"−π": -np.pi, "−π/2": -np.pi / 2, "0": 0.0, "π/2": np.pi / 2, "π": np.pi}
+SINGULAR_SIN_THETA = 0.05  # z-x-z Euler angles: ψ and φ are ill-defined where sin θ is below this
+
+
+def wrap_angle(angle: np.ndarray) -> np.ndarray:
+    """An angle wrapped to [−π, π), with NaN where it wraps so that no line crosses the plot."""
+    wrapped = np.mod(np.asarray(angle, dtype=float) + np.pi, 2 * np.pi) - np.pi
+    wrapped[1:][np.abs(np.diff(wrapped)) > np.pi] = np.nan
+    return wrapped
+
+
+def mark_singular(ax, t: np.ndarray, theta: np.ndarray) -> None:
+    """Shades the times where the z-x-z angles are singular (θ near 0 or π: ψ and φ degenerate)."""
+    near = np.abs(np.sin(theta)) < SINGULAR_SIN_THETA
+    if near.any():
+        ax.fill_between(t, 0, 1, where=near, transform=ax.get_xaxis_transform(), color="tab:gray", alpha=0.3,
+                        label=f"singular: |sin θ| < {SINGULAR_SIN_THETA}")
+
+
+def relative_change(values: np.ndarray) -> np.ndarray:
+    """x(t)/x(0) − 1 (x(0) = 0: the absolute change x(t) − x(0))."""
+    values = np.asarray(values, dtype=float)
+    return (values - values[0]) / (abs(values[0]) if values[0] != 0 else 1.0)
+
+
+CONSERVED = 1e-2  # an invariant that changes less than this is drawn as |change| on a log scale
+
 
 def _finish(fig, path: Path) -> Path:
     for ax in fig.axes:  # long scene titles wrap instead of running off the figure
         title = ax.get_title()
         if len(title) > 60:
             ax.set_title(textwrap.fill(title, 60), fontsize=10)
+    for ax in fig.axes:  # time axes show plain numbers, never a hidden offset
+        if ax.get_xscale() == "linear":
+            ax.ticklabel_format(axis="x", useOffset=False)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -47,22 +78,29 @@ def omega(solution: Solution, title: str, path: Path, reference: Solution | None
     ax.set_xlabel("t [s]")
     ax.set_ylabel("angular velocity in body axes [rad/s]")
     ax.set_title(title)
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(loc="upper right", fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3)
     return _finish(fig, path)
 
 
 def invariants(solution: Solution, title: str, path: Path) -> Path:
+    """Each invariant's relative change from the start: |X(t)/X(0) − 1| on a log scale where it
+    stays small (conserved), X(t)/X(0) − 1 on a linear scale where the torques change it."""
     fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    labels = {"angular_momentum_norm": ("|G|", "kg m²/s"), "kinetic_energy": ("T", "J"), "energy": ("E", "J")}
+    symbols = {"angular_momentum_norm": "|G|", "kinetic_energy": "T", "energy": "E"}
     for ax, (name, values) in zip(axes, solution.invariants.items()):
-        symbol, unit = labels.get(name, (name, "1"))
-        ax.plot(solution.t, values, label=symbol)
-        ax.set_ylabel(f"{symbol} [{unit}]")
-        ax.grid(alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
+        symbol = symbols.get(name, name)
+        change = relative_change(values)
+        if np.abs(change).max() < CONSERVED:  # kept to rounding or integration error: spans decades
+            ax.semilogy(solution.t, np.maximum(np.abs(change), 1e-17), label=f"{symbol}(0) = {values[0]:.6g}")
+            ax.set_ylabel(f"|{symbol}(t)/{symbol}(0) − 1| [1]")
+        else:  # changed by the torques: the signed relative change
+            ax.plot(solution.t, change, label=f"{symbol}(0) = {values[0]:.6g}")
+            ax.set_ylabel(f"{symbol}(t)/{symbol}(0) − 1 [1]")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(loc="lower right", fontsize=LEGEND_SIZE)
     axes[-1].set_xlabel("t [s]")
-    axes[0].set_title(f"{title}: invariants")
+    axes[0].set_title(f"{title}: relative change of the invariants")
     return _finish(fig, path)
 
 
@@ -75,16 +113,30 @@ def _curves(t: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, title: st
     ax.set_xlabel("t [s]")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.legend(loc=legend, fontsize=8)
+    ax.legend(loc=legend, fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3)
     return _finish(fig, path)
 
 
 def euler_angles(solution: Solution, title: str, path: Path) -> Path:
-    angles = np.unwrap(solution.euler_angles(), axis=0)
-    names = ("ψ (precession)", "θ (nutation)", "φ (proper rotation)")
-    return _curves(solution.t, {name: angles[:, i] for i, name in enumerate(names)}, "Euler angles z-x-z [rad]",
-                   f"{title}: attitude", path, legend="upper left")
+    """ψ and φ wrapped to [−π, π), θ in [0, π], the singular times (sin θ ≈ 0) shaded."""
+    psi, theta, phi = solution.euler_angles().T
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    curves = (("ψ (precession)", wrap_angle(psi), (-np.pi, np.pi)), ("θ (nutation)", theta, (0, np.pi)),
+              ("φ (proper rotation)", wrap_angle(phi), (-np.pi, np.pi)))
+    for ax, (label, values, limits) in zip(axes, curves):
+        ax.plot(solution.t, values, lw=1.0)
+        mark_singular(ax, solution.t, theta)
+        ax.set_ylim(limits[0] - 0.1, limits[1] + 0.1)
+        ticks = {label: value for label, value in PI_TICKS.items() if value >= limits[0]}
+        ax.set_yticks(list(ticks.values()), list(ticks))
+        ax.set_ylabel(f"{label} [rad]")
+        ax.grid(alpha=0.3)
+    if axes[0].get_legend_handles_labels()[0]:
+        axes[0].legend(loc="upper right", fontsize=LEGEND_SIZE)
+    axes[-1].set_xlabel("t [s]")
+    axes[0].set_title(f"{title}: attitude, Euler angles z-x-z")
+    return _finish(fig, path)
 
 
 def error(solution: Solution, reference: Solution, title: str, path: Path) -> Path:
@@ -94,44 +146,64 @@ def error(solution: Solution, reference: Solution, title: str, path: Path) -> Pa
     ax.set_xlabel("t [s]")
     ax.set_ylabel("error [rad/s]")
     ax.set_title(f"{title}: error against the closed form")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3, which="both")
     return _finish(fig, path)
 
 
+FULL_STYLE = dict(lw=1.0, ls="--", color="k")  # the full model drawn dashed over the averaged one
+AVERAGED_STYLE = dict(lw=3.0, alpha=0.6)
+
+
 def slow_curves(solutions: dict[str, Solution], title: str, path: Path, kind: str) -> Path:
-    """x = a², y = r² (kind "xy") or a and signed r (kind "slow") over time; the averaged model
-    solid, the full model's a = √(p²+q²), r thin."""
-    fig, ax = plt.subplots(figsize=(8, 4.8))
-    styles = {"averaged": dict(lw=2.0), "full": dict(lw=0.8, ls="--")}
-    for name in ("full", "averaged"):
+    """a² and r² (kind "xy") or a and signed r (kind "slow") over time: the averaged model thick
+    and solid, the full model's a = √(p²+q²), r dashed over it; when both are there, a lower
+    panel shows their difference (where the curves coincide)."""
+    both = "full" in solutions and "averaged" in solutions
+    fig, axes = plt.subplots(2 if both else 1, 1, figsize=(8, 6.5 if both else 4.8), sharex=True, squeeze=False,
+                             gridspec_kw=dict(height_ratios=[2, 1] if both else [1]))
+    ax = axes[0, 0]
+    labels = ("a²", "r²") if kind == "xy" else ("a", "r")
+    curves = {}
+    for name in ("averaged", "full"):
         if name not in solutions:
             continue
         a, r = slow_variables(solutions[name])
-        first, second = (a**2, r**2) if kind == "xy" else (a, r)
-        labels = ("x = a²", "y = r²") if kind == "xy" else ("a", "r")
-        ax.plot(solutions[name].t, first, color="tab:blue", label=f"{labels[0]} ({name})", **styles[name])
-        ax.plot(solutions[name].t, second, color="tab:red", label=f"{labels[1]} ({name})", **styles[name])
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel("x = a², y = r² [rad²/s²]" if kind == "xy" else "a, r [rad/s]")
+        curves[name] = (a**2, r**2) if kind == "xy" else (a, r)
+        for label, values, color in zip(labels, curves[name], ("tab:blue", "tab:red")):
+            style = dict(AVERAGED_STYLE, color=color) if name == "averaged" else FULL_STYLE
+            legend = f"{label} (averaged)" if name == "averaged" else ("full model" if label == labels[0] else None)
+            ax.plot(solutions[name].t, values, label=legend, **style)
+    unit = "[rad²/s²]" if kind == "xy" else "[rad/s]"
+    ax.set_ylabel(f"{', '.join(labels)} {unit}")
     ax.set_title(title)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3)
+    if both:
+        diff = axes[1, 0]
+        t_full, t_avg = solutions["full"].t, solutions["averaged"].t
+        for label, full, averaged, color in zip(labels, curves["full"], curves["averaged"], ("tab:blue", "tab:red")):
+            diff.plot(t_full, full - np.interp(t_full, t_avg, averaged), color=color, lw=1.0, label=f"{label}")
+        diff.set_ylabel(f"full − averaged {unit}")
+        diff.legend(fontsize=LEGEND_SIZE)
+        diff.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("t [s]")
     return _finish(fig, path)
 
 
 def phase(solutions: dict[str, Solution], title: str, path: Path) -> Path:
-    """The phase curve a² against r² (paper 002's y against x)."""
+    """The phase curve a² against r² (paper 002's y against its x): the full model dashed over
+    the averaged one, both starting at the black dot."""
     fig, ax = plt.subplots(figsize=(6.5, 5.5))
-    for name, style in (("full", dict(lw=0.8, ls="--")), ("averaged", dict(lw=2.0))):
+    for name, style in (("averaged", dict(AVERAGED_STYLE, color="tab:blue")), ("full", FULL_STYLE)):
         if name in solutions:
             a, r = slow_variables(solutions[name])
             ax.plot(r**2, a**2, label=name, **style)
             ax.plot(r[:1] ** 2, a[:1] ** 2, "ko", ms=4)
-    ax.set_xlabel("r² (paper 002: x) [rad²/s²]")
-    ax.set_ylabel("a² = p² + q² (paper 002: y) [rad²/s²]")
+    ax.set_xlabel("r² [rad²/s²]")
+    ax.set_ylabel("a² = p² + q² [rad²/s²]")
     ax.set_title(f"{title}: phase curve")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3)
     return _finish(fig, path)
 
@@ -188,13 +260,13 @@ def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: 
             ax.plot(tau_f[: exact_r.size], exact_r, "k:", lw=1.2, label="exact (3.3)")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper right")
+        ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     n = min(tau_f.size, tau_a.size)
     for key, color in (("G_z", "tab:blue"), ("H", "tab:red")):
         axes[3].plot(tau_f[:n], full[key][:n] - avg[key][:n], lw=0.6, color=color, label=f"{key}: full − averaged")
     axes[3].set_ylabel("difference [kg m²/s], [J]")
     axes[3].grid(alpha=0.3)
-    axes[3].legend(fontsize=8, loc="upper right")
+    axes[3].legend(fontsize=LEGEND_SIZE, loc="upper right")
     axes[0].set_title(f"{case}: first integrals")
     axes[-1].set_xlabel("slow time τ = εt [s]")
     _keep(fig, folder / "slow.png", "slow" in wanted, files)
@@ -202,16 +274,16 @@ def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: 
     fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True, gridspec_kw=dict(height_ratios=[1, 1.6]))
     axes[0].plot(tau_f, full["u3"], label="u3 (full: roots of its G_z, H, r)", **sf)
     axes[0].plot(tau_a, avg["u3"], label="u3 (averaged)", **sa)
-    axes[0].set_ylabel("u3 (≥ 1)")
+    axes[0].set_ylabel("u3 (≥ 1) [1]")
     axes[1].plot(tau_f, full["cos_theta"], lw=0.4, color="0.75", label="cos θ (full model)")
     for key, color in (("u1", "tab:blue"), ("u2", "tab:green")):
         axes[1].plot(tau_f, full[key], lw=0.8, color=color, label=f"{key} (full)")
         axes[1].plot(tau_a, avg[key], lw=1.8, ls="--", color="tab:orange" if key == "u1" else "tab:red",
                      label=f"{key} (averaged)")
-    axes[1].set_ylabel("u = cos θ: u1 ≤ cos θ ≤ u2")
+    axes[1].set_ylabel("u = cos θ: u1 ≤ cos θ ≤ u2 [1]")
     for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper right")
+        ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     axes[0].set_title(f"{case}: roots of the nutation cubic")
     axes[-1].set_xlabel("slow time τ = εt [s]")
     _keep(fig, folder / "roots.png", "roots" in wanted, files)
@@ -226,7 +298,7 @@ def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: 
     ax.set_ylabel("nutation angle θ [deg]")
     ax.set_title(f"{case}: nutation between its bounds")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=LEGEND_SIZE, loc="lower right")
     _keep(fig, folder / "nutation.png", "nutation" in wanted, files)
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
@@ -236,10 +308,10 @@ def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: 
     ax.axhline(SMALL, color="tab:blue", ls=":", lw=1, label=f"limit N = {SMALL}")
     ax.axhline(SEPARATRIX_LIMIT, color="tab:orange", ls=":", lw=1, label=f"limit 1 − k² = {SEPARATRIX_LIMIT}")
     ax.set_xlabel("slow time τ = εt [s]")
-    ax.set_ylabel("dimensionless")
+    ax.set_ylabel("N, k², 1 − k² [1]")
     ax.set_title(f"{case}: validity of the averaging (along the averaged solution)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=LEGEND_SIZE, loc="lower right")
     _keep(fig, folder / "validity.png", "validity" in wanted, files)
     return files
 
@@ -277,7 +349,7 @@ def _orthogonal_torque(scene, solutions: dict[str, Solution], derived: dict, fol
             ax.plot(sol.t, zv[:, i], "k:", lw=1, label="ω_ZV(τ(t)) (torque-free)" if i == 0 else None)
         ax.set_ylabel("ω [rad/s]")
         ax.set_title(f"{scene.title}: {_law_text(spec)}")
-        ax.legend(loc="upper right", fontsize=7, ncol=2)
+        ax.legend(loc="upper right", fontsize=LEGEND_SIZE, ncol=2)
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("t [s]")
     _keep(fig, folder / "omega.png", "omega" in wanted, files)
@@ -290,7 +362,7 @@ def _orthogonal_torque(scene, solutions: dict[str, Solution], derived: dict, fol
             ax.set_ylabel(f"{label}: relative change [1]")
     for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(loc="upper left", fontsize=8)
+        ax.legend(loc="upper left", fontsize=LEGEND_SIZE)
     axes[0].set_title(f"{scene.title}: invariants (exact for the servo torque)")
     axes[1].set_xlabel("t [s]")
     _keep(fig, folder / "invariants.png", "invariants" in wanted, files)
@@ -310,9 +382,9 @@ def _orthogonal_torque(scene, solutions: dict[str, Solution], derived: dict, fol
     axes[0].set_title(f"{scene.title}: time change τ(t) (paper (10))")
     for ax, loc in zip(axes, ("upper left", "lower left")):
         ax.grid(alpha=0.3)
-        ax.legend(loc=loc, fontsize=7, framealpha=0.8, ncol=2)
+        ax.legend(loc=loc, fontsize=LEGEND_SIZE, framealpha=0.8, ncol=2)
     axes[0].text(0.99, 0.02, "dots: g = 0 (τ stops, then reverses)", transform=axes[0].transAxes, ha="right",
-                 fontsize=7)
+                 fontsize=LEGEND_SIZE)
     _keep(fig, folder / "tau.png", "tau" in wanted, files)
     # Euler angles (θ, φ of G in body axes; ψ) with the approximations at τ(t)
     fig, axes = plt.subplots(3, n, figsize=(6 * n, 8), sharex=True, squeeze=False)
@@ -321,24 +393,25 @@ def _orthogonal_torque(scene, solutions: dict[str, Solution], derived: dict, fol
         euler = sol.euler_angles()
         ax_psi, ax_th, ax_ph = axes[:, j]
         ax_th.plot(sol.t, ang[:, 0], label="full model")
-        ax_ph.plot(sol.t, np.unwrap(ang[:, 1]), label="full model")
-        ax_psi.plot(sol.t, np.unwrap(euler[:, 0]), label="full model (quaternion; inertial G moves)")
+        ax_ph.plot(sol.t, wrap_angle(ang[:, 1]), label="full model")
+        ax_psi.plot(sol.t, wrap_angle(euler[:, 0]), label="full model (quaternion; inertial G moves)")
         styles = {"exact": ("k:", "torque-free ZV at τ(t)"), "zeroth": ("--", "zeroth approx. (21) at τ(t)"),
                   "first": ("-.", "first approx. (21)+μ(22) at τ(t)")}
         for key, a in approx.items():
             st, label = styles[key]
             if key != "exact":
                 ax_th.plot(sol.t, a[:, 1], st, label=label)
-                ax_ph.plot(sol.t, np.unwrap(a[:, 2]), st, label=label)
-            ax_psi.plot(sol.t, np.unwrap(a[:, 0]), st, label=label)
+                ax_ph.plot(sol.t, wrap_angle(a[:, 2]), st, label=label)
+            ax_psi.plot(sol.t, wrap_angle(a[:, 0]), st, label=label)
         ax_psi.set_title(f"{_law_text(spec)}")
+        mark_singular(ax_th, sol.t, ang[:, 0])
         ax_psi.set_ylabel("ψ precession [rad]")
         ax_th.set_ylabel("θ nutation (of G in body) [rad]")
         ax_ph.set_ylabel("φ proper rotation [rad]")
         ax_ph.set_xlabel("t [s]")
         for ax in axes[:, j]:
             ax.grid(alpha=0.3)
-            ax.legend(loc="best", fontsize=6, framealpha=0.7)
+            ax.legend(loc="best", fontsize=LEGEND_SIZE, framealpha=0.7)
     fig.suptitle(f"{scene.title}: Euler angles z-x-z", fontsize=10)
     _keep(fig, folder / "euler_angles.png", "euler_angles" in wanted, files)
     # errors of the approximations (nearly spherical only)
@@ -357,7 +430,7 @@ def _orthogonal_torque(scene, solutions: dict[str, Solution], derived: dict, fol
             ax.set_title(f"approximations at τ(t) vs full model, μ = {spherical.mu:g}, {_law_text(spec)}",
                          fontsize=9)
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=7)
+            ax.legend(fontsize=LEGEND_SIZE)
         files.append(_finish(fig, folder / "approximation_errors.png"))
     return files
 
@@ -375,8 +448,7 @@ def draw_scene(scene, solutions: dict[str, Solution], derived: dict, folder: Pat
 # ------------------------------------------------------------------------------------ sweeps
 def _axis_label(ds, name: str) -> str:
     attrs = ds[name].attrs
-    unit = attrs.get("units", "")
-    return f"{attrs.get('long_name', name)}" + (f" [{unit}]" if unit and unit != "1" else "")
+    return f"{attrs.get('long_name', name)} [{attrs.get('units') or '1'}]"
 
 
 def sweep(ds, expression: str, title: str, path: Path, contour: float | None = None,
@@ -387,6 +459,7 @@ def sweep(ds, expression: str, title: str, path: Path, contour: float | None = N
     from gyrostat.sweeps import summary
 
     values = summary(ds, expression)
+    label = f"{expression} [{values.attrs['units']}]"
     failed = ds["status"] != "success"
     plan = __import__("json").loads(ds.attrs["plan"])
     names = [p["name"] for p in plan["parameters"]]
@@ -397,14 +470,14 @@ def sweep(ds, expression: str, title: str, path: Path, contour: float | None = N
         fig, ax = plt.subplots(figsize=(7.5, 5.5))
     if plan["mode"] == "grid" and len(names) == 1:
         x = ds[names[0]].values
-        ax.plot(x, values.values, "o-", ms=3, label=expression)
+        ax.plot(x, values.values, "o-", ms=3, label=label)
         if bool(failed.any()):
             ax.plot(x[failed.values], np.zeros(int(failed.sum())), "rx", label="failed members")
         ax.set_xlabel(_axis_label(ds, names[0]))
-        ax.set_ylabel(expression)
+        ax.set_ylabel(label)
         for line in lines or ():
             ax.plot(line["x"], line["y"], "k--", lw=1.2, label=line["label"])
-        ax.legend(fontsize=9)
+        ax.legend(fontsize=LEGEND_SIZE)
     elif plan["mode"] == "grid":
         x, y = ds[names[0]].values, ds[names[1]].values
         z = values.transpose(names[0], names[1], ...).values.T  # rows: the second parameter
@@ -412,7 +485,7 @@ def sweep(ds, expression: str, title: str, path: Path, contour: float | None = N
         log = finite.size and np.all(finite > 0) and finite.max() / finite.min() > 100
         norm = matplotlib.colors.LogNorm(finite.min(), finite.max()) if log else None
         mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z), shading="nearest", cmap="viridis", norm=norm)
-        fig.colorbar(mesh, ax=ax, label=expression)
+        fig.colorbar(mesh, ax=ax, label=label)
         handles = []
         if contour is not None and finite.size and finite.min() < contour < finite.max():
             ax.contour(x, y, z, levels=[contour], colors="w", linewidths=2)
@@ -427,7 +500,7 @@ def sweep(ds, expression: str, title: str, path: Path, contour: float | None = N
         ax.set_xlabel(_axis_label(ds, names[0]))
         ax.set_ylabel(_axis_label(ds, names[1]))
         if handles:
-            ax.legend(handles=handles, fontsize=9, loc="best", facecolor="0.6")
+            ax.legend(handles=handles, fontsize=LEGEND_SIZE, loc="best", facecolor="0.6")
         for line in lines if along else ():
             inside = x[(x >= min(line["x"])) & (x <= max(line["x"]))]
             on_line = np.interp(inside, line["x"], line["y"])
@@ -438,23 +511,23 @@ def sweep(ds, expression: str, title: str, path: Path, contour: float | None = N
             if contour is not None:
                 below.axhline(contour, color="k", lw=0.8, ls=":")
             below.set_xlabel(_axis_label(ds, names[0]))
-            below.set_ylabel(expression)
-            below.legend(fontsize=9)
+            below.set_ylabel(label)
+            below.legend(fontsize=LEGEND_SIZE)
             below.grid(alpha=0.3)
     else:
         ok = ~failed.values
         x = ds[names[0]].values
         if len(names) == 1:
             ax.plot(x[ok], values.values[ok], ".", ms=4)
-            ax.set_ylabel(expression)
+            ax.set_ylabel(label)
         else:
             points = ax.scatter(x[ok], ds[names[1]].values[ok], c=values.values[ok], s=8, cmap="viridis")
-            fig.colorbar(points, ax=ax, label=expression)
+            fig.colorbar(points, ax=ax, label=label)
             ax.set_ylabel(_axis_label(ds, names[1]))
         ax.set_xlabel(_axis_label(ds, names[0]))
         extra = f"; plotted: {names[0]}, {names[1]}" if len(names) > 2 else ""
         ax.set_title(f"{int(ok.sum())} of {ok.size} members succeeded (seed {ds.attrs.get('seed')}){extra}",
-                     fontsize=9)
+                     fontsize=LEGEND_SIZE)
     fig.suptitle(title, fontsize=11)
     ax.grid(alpha=0.3)
     return _finish(fig, path)

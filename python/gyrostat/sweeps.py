@@ -909,7 +909,7 @@ _ALLOWED = re.compile(r"[\sA-Za-z0-9_.+\-*/()]*")
 def summary(ds, expression: str):
     """A summary of a sweep by name or by an arithmetic expression of its variables
     (``"final_x / final_y"``, ``"max_kinetic_energy - min_kinetic_energy"``): + - * / ** and
-    parentheses over the Dataset's variables, nothing else."""
+    parentheses over the Dataset's variables, nothing else; its ``units`` follow from theirs."""
     import ast
 
     if not isinstance(expression, str) or not _ALLOWED.fullmatch(expression):
@@ -917,26 +917,33 @@ def summary(ds, expression: str):
     tree = ast.parse(expression, mode="eval")
 
     def evaluate(node):
+        """(value, unit) of a node: units travel with the arithmetic ("1": dimensionless)."""
         if isinstance(node, ast.Expression):
             return evaluate(node.body)
         if isinstance(node, ast.Name):
             if node.id not in ds.variables:
                 raise ValueError(f"summary {expression!r}: {node.id!r} is not a variable of the sweep "
                                  f"({', '.join(sorted(map(str, ds.data_vars)))})")
-            return ds[node.id]
+            return ds[node.id], ds[node.id].attrs.get("units", "1")
         if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
-            return node.value
+            return node.value, "1"
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
-            value = evaluate(node.operand)
-            return -value if isinstance(node.op, ast.USub) else value
-        operators = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply, ast.Div: np.divide,
-                     ast.Pow: np.power}
-        if isinstance(node, ast.BinOp) and type(node.op) in operators:
-            return operators[type(node.op)](evaluate(node.left), evaluate(node.right))
+            value, unit = evaluate(node.operand)
+            return (-value if isinstance(node.op, ast.USub) else value), unit
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Div, ast.Pow)):
+            (left, a), (right, b) = evaluate(node.left), evaluate(node.right)
+            if isinstance(node.op, (ast.Add, ast.Sub)):
+                unit = a if a == b else f"{a} and {b} (mixed)"
+                return (left + right if isinstance(node.op, ast.Add) else left - right), unit
+            if isinstance(node.op, ast.Mult):
+                return left * right, " ".join(u for u in (a, b) if u != "1") or "1"
+            if isinstance(node.op, ast.Div):
+                return left / right, "1" if a == b else (a if b == "1" else f"{a}/({b})")
+            return left**right, a if a == "1" else f"({a})^{ast.unparse(node.right)}"
         raise ValueError(f"summary {expression!r}: use variable names, numbers, + - * / ** and parentheses")
 
     with np.errstate(divide="ignore", invalid="ignore"):
-        result = evaluate(tree)
+        result, unit = evaluate(tree)
     if not hasattr(result, "dims"):
         raise ValueError(f"summary {expression!r} names no variable of the sweep")
-    return result.rename(expression)
+    return result.rename(expression).assign_attrs(units=unit)

@@ -1,0 +1,44 @@
+"""Sphinx configuration of gyrostat's documentation site (``bash run.sh docs`` builds it).
+
+The Markdown pages (architecture, integrators, scenes, papers) are read by MyST; the Python API
+comes from the docstrings (autodoc + napoleon, NumPy style); the gallery is generated at build
+time by running every shipped scene (``gallery.py``), the C++ API page from the headers
+(``cpp_reference.py``).
+"""
+
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import cpp_reference  # noqa: E402  (docs/cpp_reference.py, beside this file)
+import gallery  # noqa: E402  (docs/gallery.py)
+
+project = "gyrostat"
+author = "gyrostat developers"
+extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.napoleon", "sphinx.ext.mathjax"]
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+exclude_patterns = ["_build", "papers"]  # the papers' records are included by _generated/paper_*.md
+myst_heading_anchors = 3
+myst_enable_extensions = ["dollarmath"]
+autodoc_member_order = "bysource"
+autodoc_typehints = "description"
+napoleon_numpy_docstring = True
+napoleon_google_docstring = False
+html_theme = "alabaster"
+html_title = "gyrostat"
+
+
+def plain_bars(app, what, name, obj, options, lines):
+    """The docstrings write norms as |G| (plain text, not reST substitutions): escape the bars."""
+    lines[:] = [line.replace("|", r"\|") for line in lines]
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", plain_bars)
+    def generate(app):
+        gallery.generate(HERE / "_generated")
+        cpp_reference.generate(HERE / "_generated")
+
+    app.connect("builder-inited", generate)
