@@ -51,8 +51,9 @@ setup_python() {
 
 run_cpp_tests() {
     say "C++ tests"
-    cmake -S "$ROOT" -B "$ROOT/build/cpp-tests" -G Ninja -DGYROSTAT_TESTS=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
-    cmake --build "$ROOT/build/cpp-tests" --target gyrostat_cpp_tests
+    cmake -S "$ROOT" -B "$ROOT/build/cpp-tests" -G Ninja -DGYROSTAT_TESTS=ON -DGYROSTAT_BENCH=ON \
+        -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build "$ROOT/build/cpp-tests" --target gyrostat_cpp_tests gyrostat_stress gyrostat_bench
     (cd "$ROOT/build/cpp-tests" && ctest --output-on-failure)
 }
 
