@@ -26,6 +26,10 @@ def reference():
 def test_forced_gyrostat_against_scipy(method, reference):
     t, ref = reference
     model = g.Model(g.Body(MOMENTS, ROTOR), [g.ConstantTorque(M0), g.LinearDamping(D)], attitude=True)
+    if method == "splitting":  # an asymmetric gyrostat with a rotor: no exact free flow to split on
+        with pytest.raises(ValueError, match="closed form here only"):
+            g.solve(model, Y0, (0, 60), method=method, step=0.1)
+        return
     context = pytest.warns(UserWarning) if method == "arkode_verner6" else contextlib.nullcontext()
     with context:
         sol = g.solve(model, Y0, (0, 60), t_eval=t, method=method, rtol=1e-11, atol=1e-13)

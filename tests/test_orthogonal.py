@@ -59,6 +59,10 @@ def test_invariants_every_integrator_long_run(method):
         with pytest.raises(ValueError, match="taylor"):
             solve(m, W0, (0, 500), method=method)
         return
+    if method == "splitting":
+        with pytest.raises(ValueError, match="'orthogonal_torque' model does not split"):
+            solve(m, W0, (0, 500), method=method, step=0.1)
+        return
     context = pytest.warns(UserWarning, match="verner") if method == "arkode_verner6" else contextlib.nullcontext()
     with context:
         sol = solve(m, W0, (0, 500), method=method, rtol=1e-10, atol=1e-12, n_out=501)

@@ -115,13 +115,16 @@ void expose_integrate(py::module_& m) {
         .def_readwrite("max_step", &Options::max_step)
         .def_readwrite("events", &Options::events)
         .def_readwrite("dense_output", &Options::dense_output)
+        .def_readwrite("step", &Options::step)
+        .def_readwrite("splitting_order", &Options::splitting_order)
         .def("__repr__", [](const Options& o) {
             return "Options(method='" + std::string(integrate::method_name(o.method)) + "', rtol=" + format_value(o.rtol) +
                    ", atol=" + format_value(o.atol) + ", n_out=" + std::to_string(o.n_out) + ", t_eval=<" +
                    std::to_string(o.t_eval.size()) + " times>, every_step=" + (o.every_step ? "True" : "False") +
                    ", max_steps=" + std::to_string(o.max_steps) + ", first_step=" + format_value(o.first_step) +
                    ", max_step=" + format_value(o.max_step) + ", events=<" + std::to_string(o.events.size()) +
-                   ">, dense_output=" + (o.dense_output ? "True" : "False") + ")";
+                   ">, dense_output=" + (o.dense_output ? "True" : "False") + ", step=" + format_value(o.step) +
+                   ", splitting_order=" + std::to_string(o.splitting_order) + ")";
         });
 
     py::class_<integrate::Stats>(m, "Stats")

@@ -113,7 +113,12 @@ void expose_models(py::module_& m) {
         },
         py::arg("body"), py::arg("law"), py::arg("torques"), py::arg("attitude"), py::arg("eta"), py::arg("smooth"));
     m.def(
-        "torque_free_model", [](const Body& body) -> BoundModel { return {model::TorqueFree(body)}; }, py::arg("body"));
+        "torque_free_model",
+        [](const Body& body, bool attitude) -> BoundModel {
+            if (attitude) return {model::TorqueFreeAttitude(body)};
+            return {model::TorqueFree(body)};
+        },
+        py::arg("body"), py::arg("attitude") = false);
 }
 
 }  // namespace gyrostat::bindings

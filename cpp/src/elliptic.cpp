@@ -94,4 +94,33 @@ double elliptic_F(double phi, double m) {
     return value;
 }
 
+double elliptic_Pi(double n, double m) {
+    require_parameter(m, "elliptic_Pi");
+    if (!(n < 1.0)) throw std::invalid_argument("elliptic_Pi: the characteristic n = " + format_value(n) + " must be below 1");
+    if (m == 1.0) return inf;
+    gsl_sf_result rf, rj;
+    const double y = 1.0 - m;
+    const double f = checked(gsl_sf_ellint_RF_e(0.0, y, 1.0, GSL_PREC_DOUBLE, &rf), rf, "elliptic_Pi (R_F)", m);
+    if (n == 0.0) return f;
+    const double j = checked(gsl_sf_ellint_RJ_e(0.0, y, 1.0, 1.0 - n, GSL_PREC_DOUBLE, &rj), rj, "elliptic_Pi (R_J)", m);
+    return f + n * j / 3.0;
+}
+
+double elliptic_Pi_jacobi(double sn, double cn, double dn, double n, double m) {
+    require_parameter(m, "elliptic_Pi_jacobi");
+    if (!(n <= 0.0)) throw std::invalid_argument("elliptic_Pi_jacobi: the characteristic n = " + format_value(n) + " must be <= 0");
+    if (!(cn >= 0.0) || !std::isfinite(sn) || !std::isfinite(dn))
+        throw std::invalid_argument("elliptic_Pi_jacobi: needs |u| <= K (cn >= 0); got sn = " + format_value(sn) +
+                                    ", cn = " + format_value(cn));
+    if (sn == 0.0) return 0.0;
+    gsl_sf_result rf, rj;
+    const double x = cn * cn, y = dn * dn;
+    const double f = checked(gsl_sf_ellint_RF_e(x, y, 1.0, GSL_PREC_DOUBLE, &rf), rf, "elliptic_Pi_jacobi (R_F)", m);
+    if (n == 0.0) return sn * f;
+    const double s3 = sn * sn * sn;
+    const double j = checked(gsl_sf_ellint_RJ_e(x, y, 1.0, 1.0 - n * sn * sn, GSL_PREC_DOUBLE, &rj), rj,
+                             "elliptic_Pi_jacobi (R_J)", m);
+    return sn * f + n * s3 * j / 3.0;
+}
+
 }  // namespace gyrostat::model

@@ -2,6 +2,7 @@
 #include "gyrostat/engine.hpp"
 
 #include "gyrostat/ensemble.hpp"
+#include "gyrostat/integrate/splitting.hpp"
 
 namespace gyrostat {
 
@@ -33,8 +34,8 @@ template <bool A>
 struct Family<model::OrthogonalTorque<A>> {
     static constexpr const char* name = "orthogonal_torque";
 };
-template <>
-struct Family<model::TorqueFree> {
+template <bool A>
+struct Family<model::TorqueFreeBody<A>> {
     static constexpr const char* name = "torque_free";
 };
 
@@ -88,7 +89,17 @@ Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& give
 integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                         const integrate::Options& options, const integrate::Control* control) {
     const Eigen::VectorXd start = y0;
-    return visit(model, [&](const auto& m) { return solve_system(m, t0, start, t1, options, control); });
+    return visit(model, [&](const auto& m) {
+        using S = std::decay_t<decltype(m)>;
+        if constexpr (!integrate::has_splitting<S>::value && !model::system::is_closed_form<S>::value) {
+            if (options.method == integrate::Method::Splitting)
+                throw std::invalid_argument(std::string("method 'splitting': the '") + Family<S>::name +
+                                            "' model does not split into the exact free-body flow and a perturbation "
+                                            "(splitting is offered for the gyrostat Model, with any of its torques); "
+                                            "choose another method");
+        }
+        return solve_system(m, t0, start, t1, options, control);
+    });
 }
 
 std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>& models,

@@ -6,5 +6,6 @@ namespace gyrostat {
 GYROSTAT_DEFINE_SOLVE(model::Gyrostat<false>)
 GYROSTAT_DEFINE_SOLVE(model::Gyrostat<true>)
 GYROSTAT_DEFINE_SOLVE(model::TorqueFree)
+GYROSTAT_DEFINE_SOLVE(model::TorqueFreeAttitude)
 
 }  // namespace gyrostat

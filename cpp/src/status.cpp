@@ -20,6 +20,7 @@ constexpr NamedMethod kMethods[] = {
     {"arkode_verner6", Method::ArkodeVerner6},
     {"arkode_fehlberg8", Method::ArkodeFehlberg8},
     {"taylor", Method::Taylor},
+    {"splitting", Method::Splitting},
 };
 
 }  // namespace
@@ -84,6 +85,10 @@ void validate(const Options& o, double t0, double t1) {
         throw std::invalid_argument("first_step = " + format_value(o.first_step) + " must be finite and >= 0 (0: automatic)");
     if (std::isnan(o.max_step) || !(o.max_step > 0.0))
         throw std::invalid_argument("max_step = " + format_value(o.max_step) + " must be positive");
+    if (!std::isfinite(o.step) || o.step < 0.0)
+        throw std::invalid_argument("step = " + format_value(o.step) + " must be finite and >= 0 (the splitting step; 0: not set)");
+    if (o.splitting_order != 2 && o.splitting_order != 4 && o.splitting_order != 6)
+        throw std::invalid_argument("splitting_order = " + std::to_string(o.splitting_order) + " must be 2, 4 or 6");
     const double direction = t1 >= t0 ? 1.0 : -1.0;
     for (std::size_t i = 0; i < o.t_eval.size(); ++i) {
         const double t = o.t_eval[i];

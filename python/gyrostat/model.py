@@ -116,19 +116,25 @@ class Model(ModelBase):
 
 
 class TorqueFreeModel(ModelBase):
-    """The torque-free rigid body (rotor k = 0) in closed form: Jacobi elliptic functions, no
-    integration. State ω = (p, q, r); outputs |G| and T (exact to rounding). A body with a rotor
-    raises ValueError (no closed form here: use :class:`Model`)."""
+    """The torque-free rigid body in closed form: Jacobi elliptic functions, no integration.
+
+    State ω = (p, q, r), or with ``attitude=True`` ω and the quaternion (q_w, q_x, q_y, q_z)
+    rotating body axes into inertial axes (the exact flow: the rotation about the fixed inertial
+    angular momentum from the incomplete elliptic integral of the third kind; see
+    docs/integrators.md). Outputs |G| and T (exact to rounding at any t) and, with attitude, the
+    z-x-z Euler angles. A gyrostat (rotor k ≠ 0) has a closed form here only for a symmetric body
+    with the rotor along its symmetry axis (or a spherical body); any other rotor raises
+    ValueError naming the body (use :class:`Model`, which integrates)."""
 
     kind = "closed_form"
 
-    def __init__(self, body: _core.Body):
+    def __init__(self, body: _core.Body, attitude: bool = False):
         self.body = check_body(body)
         self.torques = ()
-        self._core = _core.torque_free_model(body)
+        self._core = _core.torque_free_model(body, bool(attitude))
 
     def __repr__(self) -> str:
-        return f"TorqueFreeModel({self.body!r})"
+        return f"TorqueFreeModel({self.body!r}, attitude={self.attitude})"
 
 
 class AveragedModel(ModelBase):

@@ -81,6 +81,12 @@ TITLE = {
     "description": Field(str, default="", doc="what the scene shows"),
 }
 
+
+def _splitting_order(value):
+    if value not in (2, 4, 6):
+        raise ValueError("must be 2, 4 or 6")
+
+
 def _direction(value):
     if value not in (-1, 0, 1):
         raise ValueError("must be -1, 0 or 1")
@@ -233,6 +239,11 @@ class Kind:
 def _integration(doc: dict, **extra) -> dict:
     integ = doc["integration"]
     options = {"method": integ["method"], "rtol": integ["rtol"], "atol": integ["atol"], "n_out": integ["n_out"]}
+    if integ["method"] == "splitting":
+        if "step" not in integ:
+            raise SceneError("[integration] method = 'splitting' needs step = h > 0 (its fixed step; splitting is "
+                             "offered for rigid_body scenes)")
+        options.update(step=integ["step"], splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
     options.update(extra)
     return options
 
@@ -260,6 +271,10 @@ class RigidBody(Kind):
                 "model": Field(Choice(*self.models), default="auto",
                                doc="auto: the cheapest adequate model; compare: full and averaged side by side"),
                 "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
+                "step": Field(float, doc="fixed step of method 'splitting' (required there)", unit="s",
+                              check=positive),
+                "splitting_order": Field(int, default=_DEFAULT.splitting_order,
+                                         doc="order of the splitting composition: 2, 4 or 6", check=_splitting_order),
             }), required=True, doc="the run"),
             "outputs": _outputs(self.plots, ["omega", "invariants"],
                                 reference=Field(Choice("closed_form"), doc="draw and measure against the closed form")),
@@ -278,13 +293,12 @@ class RigidBody(Kind):
         if choice == "closed_form":
             if not free:
                 raise SceneError("[integration] model = 'closed_form' needs a rigid body (rotor k = 0) with no torque")
-            if attitude:
-                raise SceneError("[integration] model = 'closed_form' gives omega only; the scene asks for attitude")
             return choice, "asked for by the scene"
         if choice != "auto":
             return choice, "asked for by the scene"
-        if free and not attitude:
-            return "closed_form", "no torque, no rotor, no attitude asked for: the closed form needs no integration"
+        if free:
+            return "closed_form", ("no torque, no rotor: the exact flow (elliptic functions" +
+                                   (", attitude included" if attitude else "") + ") needs no integration")
         reasons = [f"{len(torques)} torque(s)"] if torques else []
         if np.any(np.asarray(body.rotor)):
             reasons.append("a rotor (k != 0)")
@@ -299,12 +313,13 @@ class RigidBody(Kind):
         t_span = tuple(doc["integration"]["t_span"])
         options = _integration(doc)
         runs = []
+        attitude = self.needs_attitude(doc)
+        q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
         if choice == "closed_form":
-            runs.append(Run("closed_form", _build("body", TorqueFreeModel, body), omega, t_span, options))
+            y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+            runs.append(Run("closed_form", _build("body", TorqueFreeModel, body, attitude), y0, t_span, options))
         if choice in ("full", "compare"):
-            attitude = self.needs_attitude(doc)
             model = _build("torques", Model, body, torques, attitude)
-            q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
             y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
             runs.append(Run("full", model, y0, t_span, options))
         if choice in ("averaged", "compare"):

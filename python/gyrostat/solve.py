@@ -17,18 +17,23 @@ METHODS: tuple[str, ...] = tuple(_core.methods())
 """Integrators: ``dop853`` (fixed-size, allocation-free; the default for non-stiff problems),
 ``taylor`` (adaptive-order Taylor series for the polynomial right-hand sides of the gyrostat
 with constant and linear torques: the fastest at tight tolerances), ``cvode_bdf`` (stiff),
-``cvode_adams``, ``arkode_fehlberg8``, ``arkode_verner6`` (see docs/integrators.md). A model
+``cvode_adams``, ``arkode_fehlberg8``, ``arkode_verner6``, ``splitting`` (the exact free-body
+flow composed with the torques' flow at a fixed ``step``, order ``splitting_order`` = 2, 4 or 6:
+for long horizons of weakly perturbed bodies; see docs/integrators.md). A model
 that needs no integration (:class:`gyrostat.TorqueFreeModel`) is evaluated in closed form
 whatever the method."""
 
 Options = _core.Options
 """Every integrator option with its default, in one place (the C++ engine's ``Options``):
 ``method``, ``rtol``, ``atol``, ``t_eval``, ``n_out``, ``every_step``, ``max_steps``,
-``first_step``, ``max_step``. ``repr(gyrostat.Options())`` shows the defaults."""
+``first_step``, ``max_step``, ``step`` and ``splitting_order`` (method ``splitting``).
+``repr(gyrostat.Options())`` shows the defaults."""
 
 _DEFAULT = _core.Options()
-_OPTION_NAMES = ("method", "rtol", "atol", "t_eval", "n_out", "every_step", "max_steps", "first_step", "max_step")
-_NUMBER_OPTIONS = {"rtol": float, "atol": float, "n_out": int, "max_steps": int, "first_step": float, "max_step": float}
+_OPTION_NAMES = ("method", "rtol", "atol", "t_eval", "n_out", "every_step", "max_steps", "first_step", "max_step",
+                 "step", "splitting_order")
+_NUMBER_OPTIONS = {"rtol": float, "atol": float, "n_out": int, "max_steps": int, "first_step": float, "max_step": float,
+                   "step": float, "splitting_order": int}
 
 
 def make_options(options: Options | None = None, **given) -> Options:
@@ -66,6 +71,10 @@ def make_options(options: Options | None = None, **given) -> Options:
                     raise ValueError(f"{name} = {value!r} must be a whole number")
                 if abs(value) > 2**62:
                     raise ValueError(f"{name} = {value!r} is too large")
+            if name == "step" and not (value > 0):  # NaN fails too
+                raise ValueError(f"step = {value!r} must be a positive number (the fixed step of method 'splitting')")
+            if name == "splitting_order" and value not in (2, 4, 6):
+                raise ValueError(f"splitting_order = {value!r} must be 2, 4 or 6")
             value = kind(value)
         elif name == "every_step":
             value = bool(value)
@@ -78,16 +87,18 @@ def make_options(options: Options | None = None, **given) -> Options:
 _CACHE: dict[tuple, Options] = {}
 
 
-def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step) -> Options:
+def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step=None,
+             splitting_order=None) -> Options:
     """make_options, with the Options of recent keyword combinations kept (they are never
     modified once made): repeated calls with the same options cost a dictionary look-up."""
     if t_eval is None and options is None:
-        key = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step)
+        key = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
         try:
             return _CACHE[key]
         except KeyError:
             made = make_options(method=method, rtol=rtol, atol=atol, n_out=n_out, every_step=every_step,
-                                max_steps=max_steps, first_step=first_step, max_step=max_step)
+                                max_steps=max_steps, first_step=first_step, max_step=max_step, step=step,
+                                splitting_order=splitting_order)
             if len(_CACHE) >= 256:
                 _CACHE.clear()
             _CACHE[key] = made
@@ -97,7 +108,8 @@ def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, 
     elif n_out is not None and t_eval is not None:
         raise ValueError("give t_eval or n_out, not both")
     return make_options(options, method=method, rtol=rtol, atol=atol, t_eval=t_eval, n_out=n_out,
-                        every_step=every_step, max_steps=max_steps, first_step=first_step, max_step=max_step)
+                        every_step=every_step, max_steps=max_steps, first_step=first_step, max_step=max_step,
+                        step=step, splitting_order=splitting_order)
 
 
 def _bad_call(core, y0, t0, t1) -> ValueError:
@@ -174,7 +186,8 @@ def _checked(solution: Solution, model, check_validity: bool) -> Solution:
 
 def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = None, atol: float | None = None,
           t_eval=None, n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
-          first_step: float | None = None, max_step: float | None = None, options: Options | None = None,
+          first_step: float | None = None, max_step: float | None = None, step: float | None = None,
+          splitting_order: int | None = None, options: Options | None = None,
           events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
           check_validity: bool = True) -> Solution:
     """Solves any model from the initial state ``y0`` over ``t_span = (t0, t1)``.
@@ -199,6 +212,11 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         output times). Outputs come from each method's dense output between steps, so memory
         grows with the outputs asked for, not with the steps; ``every_step=True`` records every
         accepted step as well. ``options`` gives them all at once.
+    step, splitting_order:
+        For ``method="splitting"``: the fixed step h (required; a ValueError names a value
+        ≤ 0 or NaN) and the order of the composition (2: Strang, 4 (default), 6: Yoshida's triple
+        jumps). The free flow is exact (elliptic functions); constant and linear torques have an
+        exact flow too, the others are integrated over each sub-step by one 8th-order step.
     events:
         :class:`gyrostat.events.Event` (a state component or named output crossing a value,
         evaluated in C++) or callables ``f(t, y)`` as in SciPy (the slow path), or a list of
@@ -228,7 +246,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         core = model._core
     except AttributeError:
         core = _core_model(model)
-    opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step)
+    opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step,
+                    splitting_order)
     if events is not None or dense_output:
         opts = _with_events(opts, events, dense_output, core)
     try:
@@ -258,7 +277,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
 def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, threads: int = 0,
                    method: str | None = None, rtol: float | None = None, atol: float | None = None, t_eval=None,
                    n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
-                   first_step: float | None = None, max_step: float | None = None, options: Options | None = None,
+                   first_step: float | None = None, max_step: float | None = None, step: float | None = None,
+                   splitting_order: int | None = None, options: Options | None = None,
                    events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
                    check_validity: bool = True) -> list[Solution]:
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
@@ -290,7 +310,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         count = len(y0s)
     if len(models) not in (1, count):
         raise ValueError(f"{len(models)} models for {count} initial states: give 1 or {count}")
-    opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step)
+    opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step,
+                    splitting_order)
     if events is not None or dense_output:
         if len({tuple(c.state_names) + tuple(c.output_names) for c in cores}) > 1:
             raise ValueError("events in an ensemble need members of one family (the same state and output names)")

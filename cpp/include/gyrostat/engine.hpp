@@ -23,7 +23,8 @@ namespace gyrostat {
 /// header, one alternative here, one solve_system overload (src/solve_*.cpp) and its binding.
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
-                              model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree>;
+                              model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
+                              model::TorqueFreeAttitude>;
 
 /// The family of a model: "gyrostat", "averaged_symmetric", "moving_mass", "lagrange_top",
 /// "lagrange_averaged", "orthogonal_torque", "torque_free".
@@ -37,7 +38,8 @@ Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y);
 Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& given);
 
 /// Solves `model` from (t0, y0) to t1 (y0 may be short: see initial_state). Bad input throws
-/// std::invalid_argument naming the value; a failing run returns its partial trajectory.
+/// std::invalid_argument naming the value (method 'splitting' for a model that does not split
+/// names the model); a failing run returns its partial trajectory.
 integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                         const integrate::Options& options, const integrate::Control* control = nullptr);
 
@@ -62,6 +64,7 @@ GYROSTAT_DECLARE_SOLVE(model::LagrangeAveraged)
 GYROSTAT_DECLARE_SOLVE(model::OrthogonalTorque<false>)
 GYROSTAT_DECLARE_SOLVE(model::OrthogonalTorque<true>)
 GYROSTAT_DECLARE_SOLVE(model::TorqueFree)
+GYROSTAT_DECLARE_SOLVE(model::TorqueFreeAttitude)
 #undef GYROSTAT_DECLARE_SOLVE
 
 }  // namespace gyrostat

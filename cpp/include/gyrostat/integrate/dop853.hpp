@@ -85,9 +85,9 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     Recorder<System> record(system, result, outputs.size());
     EventLocator<System> events(system, options.events, result);
     result.dense = make_dense<System>(options);
-    std::size_t next_output = 0;
 
     const double direction = t1 >= t0 ? 1.0 : -1.0;
+    OutputCursor<System> cursor(record, outputs, direction);
     const double rtol = options.rtol, atol = options.atol;
     Stats& stats = result.stats;
 
@@ -98,7 +98,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     system.rhs(t, y, f);
     ++stats.rhs_evals;
 
-    while (next_output < outputs.size() && outputs[next_output] == t0) record.push(t0, y), ++next_output;
+    cursor.start(t0, y);
     events.start(t0, y);
     keep_last(result, t, y, 0.0);  // until the first step is accepted
     if (t0 == t1) return result;
@@ -264,14 +264,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
             monomials(F, y, c.data());
             result.dense->add(t, terminated ? t_stop : t_new, t, h, 7, c[0].data());
         }
-        while (next_output < outputs.size() && direction * (outputs[next_output] - t_new) < 0.0 &&
-               (!terminated || direction * (outputs[next_output] - t_stop) <= 0.0)) {
-            record.push(outputs[next_output], dense(outputs[next_output]));
-            ++next_output;
-        }
-        if (terminated) {
-            while (next_output < outputs.size() && outputs[next_output] == t_stop)
-                record.push(t_stop, dense(t_stop)), ++next_output;
+        if (cursor.inside(t_new, t_stop, dense)) {
             mark_terminated(result, t_stop);
             return result;
         }
@@ -284,13 +277,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
         t = t_new;
         y = y_new;
         f = f_new;
-        bool recorded = false;
-        while (next_output < outputs.size() && outputs[next_output] == t) {
-            record.push(t, y);
-            ++next_output;
-            recorded = true;
-        }
-        if (options.every_step && !recorded) record.push(t, y);
+        cursor.at_end(t, y, options.every_step);
     }
     keep_last(result, t, y, h_abs);
     return result;

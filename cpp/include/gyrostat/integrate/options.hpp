@@ -18,6 +18,7 @@ enum class Method {
     ArkodeVerner6,   ///< ARKODE ERK, Verner 8-stage 6(5) table ARKODE_VERNER_8_5_6
     ArkodeFehlberg8, ///< ARKODE ERK, Fehlberg 13-stage 8(7) table ARKODE_FEHLBERG_13_7_8
     Taylor,          ///< Taylor series of adaptive order (polynomial right-hand sides only)
+    Splitting,       ///< exact free-body flow composed with the perturbation's flow, fixed step (splitting.hpp)
 };
 
 Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names
@@ -57,6 +58,10 @@ struct Options {
     std::vector<Event> events;
     /// Keep every step's continuous extension (Result::dense): memory grows with the steps.
     bool dense_output = false;
+    /// Fixed step of method 'splitting' (required there: 0 means not set; unused by the others).
+    double step = 0.0;
+    /// Order of the splitting composition: 2 (Strang), 4 or 6 (Yoshida's triple jumps).
+    int splitting_order = 4;
 };
 
 enum class Status {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -78,6 +80,53 @@ public:
 private:
     const System& system_;
     Result& result_;
+};
+
+/// The output grid of a stepping integrator and the next time to record: what every step does
+/// with it after it is accepted (outputs inside the step from its continuous extension, those at
+/// a terminal event, those at the step's end).
+template <class System>
+class OutputCursor {
+public:
+    using State = typename System::State;
+    OutputCursor(Recorder<System>& record, std::vector<double> times, double direction)
+        : record_(record), times_(std::move(times)), direction_(direction) {}
+
+    /// Records the outputs at t0 (the initial state).
+    void start(double t0, const State& y0) {
+        while (next_ < times_.size() && times_[next_] == t0) record_.push(t0, y0), ++next_;
+    }
+    /// Records the outputs strictly inside the step ending at t_new from `dense(t)`; when the run
+    /// ends at a terminal event t_stop (not NaN), those up to and at t_stop instead. Returns
+    /// whether the run ended there.
+    template <class Dense>
+    bool inside(double t_new, double t_stop, Dense&& dense) {
+        const bool terminated = !std::isnan(t_stop);
+        while (next_ < times_.size() && direction_ * (times_[next_] - t_new) < 0.0 &&
+               (!terminated || direction_ * (times_[next_] - t_stop) <= 0.0)) {
+            record_.push(times_[next_], dense(times_[next_]));
+            ++next_;
+        }
+        if (terminated)
+            while (next_ < times_.size() && times_[next_] == t_stop) record_.push(t_stop, dense(t_stop)), ++next_;
+        return terminated;
+    }
+    /// Records the outputs at the step's end t, or the step itself with `every_step`.
+    void at_end(double t, const State& y, bool every_step) {
+        bool recorded = false;
+        while (next_ < times_.size() && times_[next_] == t) {
+            record_.push(t, y);
+            ++next_;
+            recorded = true;
+        }
+        if (every_step && !recorded) record_.push(t, y);
+    }
+
+private:
+    Recorder<System>& record_;
+    std::vector<double> times_;
+    double direction_;
+    std::size_t next_ = 0;
 };
 
 inline std::string format_number(double x, int precision = 6) {

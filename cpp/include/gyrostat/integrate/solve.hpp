@@ -4,6 +4,7 @@
 #include "gyrostat/integrate/arkode.hpp"
 #include "gyrostat/integrate/cvode.hpp"
 #include "gyrostat/integrate/dop853.hpp"
+#include "gyrostat/integrate/splitting.hpp"
 #include "gyrostat/integrate/taylor.hpp"
 
 namespace gyrostat::integrate {
@@ -94,6 +95,14 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
                 case Method::ArkodeFehlberg8:
                     return arkode_erk(system, t0, y0, t1, options, ARKODE_FEHLBERG_13_7_8, options.method, control);
                 case Method::Taylor: return taylor(system, t0, y0, t1, options, control);
+                case Method::Splitting:
+                    if constexpr (has_splitting<System>::value)
+                        return splitting(system, t0, y0, t1, options, control);
+                    else
+                        throw std::invalid_argument(
+                            "method 'splitting' needs a model that splits into the exact free-body flow and a "
+                            "perturbation (the gyrostat Model); this model (state " +
+                            model::system::join_names(System::state_names.data(), System::dim) + ") does not");
             }
             throw std::invalid_argument("unknown integration method");
         }

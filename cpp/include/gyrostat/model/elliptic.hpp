@@ -23,5 +23,14 @@ std::array<double, 3> jacobi_sn_cn_dn(double u, double m);
 double mean_sn_squared(double m);
 /// F(φ | m) = ∫_0^φ dϑ / √(1 − m sin²ϑ) for any real φ (F(φ + nπ) = F(φ) + 2nK), 0 ≤ m < 1.
 double elliptic_F(double phi, double m);
+/// Π(n | m) = ∫_0^{π/2} dϑ / ((1 − n sin²ϑ) √(1 − m sin²ϑ)) = R_F(0, 1−m, 1) + (n/3) R_J(0, 1−m, 1, 1−n),
+/// n < 1, 0 ≤ m < 1 (Carlson's forms, DLMF 19.25.2).
+double elliptic_Pi(double n, double m);
+/// The incomplete integral of the third kind in Jacobi's form, ∫_0^u dv / (1 − n sn²(v | m)) =
+/// Π(n; am u | m), for |u| ≤ K(m), given by sn, cn (≥ 0) and dn of u:
+///   sn R_F(cn², dn², 1) + (n/3) sn³ R_J(cn², dn², 1, 1 − n sn²)      (DLMF 19.25.14),
+/// n ≤ 0 here (the free rigid body's characteristic; no pole), 0 ≤ m ≤ 1. Passing cn² and dn²
+/// directly (not cos² of the amplitude) keeps full relative accuracy next to the separatrix.
+double elliptic_Pi_jacobi(double sn, double cn, double dn, double n, double m);
 
 }  // namespace gyrostat::model

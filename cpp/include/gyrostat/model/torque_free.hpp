@@ -21,14 +21,15 @@ namespace gyrostat::model {
 ///   m = k² = (B − A)(2TC − G²)/((C − B)(G² − 2TA)),  ν = σ (C − B) b c/(A a),
 /// with σ = ±1 from the sign of ω3' and the parity of the relabelling, and u0 = F(φ0, k),
 /// φ0 = atan2(ω2'(t0)/b, ω1'(t0)/a) (Landau & Lifshitz, Mechanics §37).
-/// Permanent rotations (a = b = 0) and the spherical body give a constant ω.
-/// Attitude is not given in closed form (it needs the incomplete integral of the third kind):
-/// integrate when attitude is needed.
+/// Permanent rotations (a = b = 0) and the spherical body give a constant ω. The argument u is
+/// reduced to r ∈ [−K, K] (u = 2jK + r; sn, cn change sign with j, dn does not) so that the
+/// cost does not depend on t. The attitude is FreeBodyFlow's (below).
 class TorqueFreeSolution {
 public:
     /// Throws std::invalid_argument when the body has a rotor (k ≠ 0: the Zhukovsky–Volterra
     /// gyrostat has no such closed form here) or ω0 is not finite.
     TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0 = 0.0);
+    TorqueFreeSolution() = default;  ///< at rest (a placeholder)
 
     Vec3 omega(double t) const;
     Vec3 at(double t) const { return omega(t); }                          ///< the flow's state at t
@@ -42,40 +43,177 @@ public:
     double event_step() const { return period() / 32.0; }
     bool is_constant() const { return constant_; }
 
+    /// u(t) = 2jK + r, |r| ≤ K: (j, sn r, cn r, dn r) (j = 0 and r = u on the separatrix m = 1).
+    struct Reduced {
+        double j, sn, cn, dn;
+    };
+    Reduced reduced(double t) const;
+    /// The relabelling: body index of axes 1', 2', 3' (3' is the axis the polhode encircles).
+    const int* axes() const { return axis_; }
+    double a() const { return a_; }
+    double b() const { return b_; }
+    double c() const { return c_; }
+    double sign3() const { return sign3_; }
+    double argument0() const { return u0_; }  ///< u0 = u(t0)
+
 private:
-    Vec3 omega0_;
-    double t0_;
-    bool constant_ = false;
+    Vec3 omega0_ = Vec3::Zero();
+    double t0_ = 0.0;
+    bool constant_ = true;
     int axis_[3] = {0, 1, 2};   // body axis index of 1', 2', 3'
-    double a_ = 0, b_ = 0, c_ = 0, m_ = 0, nu_ = 0, u0_ = 0, sign3_ = 1;
+    double a_ = 0, b_ = 0, c_ = 0, m_ = 0, nu_ = 0, u0_ = 0, sign3_ = 1, K_ = 0;
 };
 
-/// The torque-free rigid body as a model that needs no integration (model/system.hpp, `flow`):
-/// state ω, outputs |G| and T (conserved exactly: the closed form keeps them to rounding).
-class TorqueFree {
+// ---------------------------------------------------------------------------------------------
+// The exact free-body flow with attitude
+// ---------------------------------------------------------------------------------------------
+//
+// Conventions: the quaternion q = (w, x, y, z) rotates BODY axes into INERTIAL axes,
+// x_inertial = q ⊗ (0, x_body) ⊗ q* = R(q) x_body (attitude.hpp, python/gyrostat/attitude.py); ω is
+// in body axes; the inertial angular momentum G_in = R(q) (J ω + k) is constant.
+//
+// Derivation (rigid body, k = 0, asymmetric; Landau & Lifshitz §37, Celledoni, Fassò, Säfström
+// & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084, §2–3; van Zon & Schofield, J. Comput. Phys. 225
+// (2007) 145). Take the relabelled axes (1', 2', 3') of TorqueFreeSolution, 3' the axis the
+// polhode encircles, made RIGHT-HANDED by e2' = s e_{axis 1'}, s = +1 for a cyclic relabelling and
+// −1 for an odd one: x' = S x_body with S a proper signed permutation (the paper's case-by-case
+// sign conventions, and the corrections published to it, were not checked here: this explicit S
+// and the tests against integrated quaternions for both parities stand instead). Let Z be the
+// inertial axis along G_in and
+// g' = S J ω / |G| the unit vector of G in primed body axes. The z-x-z Euler angles (φ, θ, ψ)
+// of the primed body axes relative to a frame with z along G satisfy
+//   g' = (sin θ sin ψ, sin θ cos ψ, cos θ)          (θ, ψ: ω alone fixes them),
+// i.e. W(t) = Rx(θ) Rz(ψ) maps g' to e_z. The kinematic equations ω'1 = φ̇ sin θ sin ψ + θ̇ cos ψ,
+// ω'2 = φ̇ sin θ cos ψ − θ̇ sin ψ give φ̇ sin²θ |G| = A ω'1² + B ω'2², so, with
+// A²ω'1² + B²ω'2² = G² − C²ω'3² and A ω'1² + B ω'2² = 2T − C ω'3²,
+//   φ̇ = |G| (2T − C ω'3²) / (G² − C² ω'3²) = |G|/C + |G| (2TC − G²) / (C (G² − C² ω'3²)).
+// With ω'3 = ±c dn u, dn² = 1 − m sn², G² − C²c² = A²a² (the value at sn = 0):
+//   G² − C² ω'3² = A² a² (1 − N sn² u),   N = −C² c² m / (A² a²) = −C (B − A) / (A (C − B)) ≤ 0,
+// and (2TC − G²)/(A² a²) = (C − A)/A, so with du = ν dt
+//   φ(t) − φ(t0) = |G| (t − t0)/C + |G| (C − A) / (C A ν) · [Π̃(u) − Π̃(u0)],
+//   Π̃(u) = ∫_0^u dv / (1 − N sn² v) = 2j Π(N | m) + Π(N; am r | m),  u = 2jK + r, |r| ≤ K,
+// the incomplete integral of the third kind by Carlson's R_F, R_J (elliptic.hpp). N ≤ 0: no
+// pole, for both orderings (rotation about the largest axis, C > B > A, and about the smallest,
+// C < B < A: then C − A < 0 and φ̇ = |G|/A > 0 at sn = 0 as well). On the separatrix (m = 1,
+// K = ∞) nothing is reduced and the same formulas hold with sn = tanh, cn = dn = sech.
+// ψ is made continuous across the pieces of u: ψ = atan2(A a cn r, s B b sn r) − s j π.
+// Then, body → inertial,
+//   R(t) = R_in Rz(φ(t) − φ(t0)) Rx(θ(t)) Rz(ψ(t)) S,   R_in = R(q0) Sᵀ (Rx(θ0) Rz(ψ0))ᵀ,
+// in quaternions q(t) = q_in ⊗ q_z(Δφ) ⊗ q_x(θ) ⊗ q_z(ψ) ⊗ q_S, continuous in t (no sign jumps):
+// R(t) J ω(t) = |G| R_in e_z is constant, as it must be.
+//
+// Symmetric body (two equal moments A, symmetry axis e, moment C) with a rotor along e, or a
+// spherical body with any rotor (the gyrostat cases with a closed form here): ω = G_b/A − λ,
+// λ = ((C − A) ω·e + k·e)/A e (λ = k/A for the sphere), so ω̇ = λ × ω and
+//   ω(t) = exp(Δt [λ]×) ω0,   R(t) = exp(Δt |G|/A [n]×) R0 exp(−Δt [λ]×),  n = G_in/|G|.
+// Constant ω (at rest, a permanent rotation): R(t) = R0 exp(Δt [ω0]×).
+// Any other gyrostat (an asymmetric body or a rotor off the symmetry axis) has no closed form
+// here: the constructor throws std::invalid_argument naming the body.
+//
+// Accuracy: |G| and T are those of ω(t) from the elliptic functions, exact to rounding at any t;
+// the phases carry the rounding of ν (t − t0) and |G| (t − t0)/C, about ε |ω| t (the condition
+// of the problem in double precision), and the cost of one evaluation does not depend on t.
+class FreeBodyFlow {
 public:
-    static constexpr int dim = 3;
-    using State = Eigen::Vector3d;
-    static constexpr std::array<const char*, dim> state_names{"p", "q", "r"};
+    using State = Eigen::Matrix<double, 7, 1>;
+    /// From (ω0, q0) at t0. `attitude = false` skips the quaternion's constants (at() then
+    /// returns the identity quaternion's flow only in ω: use omega()). Throws
+    /// std::invalid_argument for a gyrostat without a closed form here (see above) or a
+    /// non-finite input.
+    FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Vector4d& q0, double t0 = 0.0, bool attitude = true);
 
-    /// Throws std::invalid_argument for a gyrostat (k ≠ 0): no closed form here.
-    explicit TorqueFree(Body body);
+    /// Throws std::invalid_argument naming the body when its free flow has no closed form here.
+    static void require_closed_form(const Body& body, const char* who);
+
+    Vec3 omega(double t) const;
+    Eigen::Vector4d quaternion(double t) const;
+    State at(double t) const;
+    double period() const;
+    double event_step() const;
+
+private:
+    enum class Kind { Constant, Symmetric, Elliptic };
+    Kind kind_ = Kind::Constant;
+    double t0_;
+    Vec3 omega0_;
+    Eigen::Vector4d q0_;
+    TorqueFreeSolution elliptic_;
+    // Symmetric: ω̇ = λ × ω and the precession rate vector G_in/A.
+    Vec3 lambda_ = Vec3::Zero(), precession_ = Vec3::Zero();
+    // Elliptic: the constants of the derivation, for ω0/scale_ and the time scale_ (t − t0).
+    Eigen::Vector4d q_in_ = Eigen::Vector4d(1, 0, 0, 0), q_s_ = Eigen::Vector4d(1, 0, 0, 0);
+    Mat3 S_ = Mat3::Identity();
+    double scale_ = 1, s_ = 1, G_ = 0, A_ = 0, B_ = 0, C_ = 0, N_ = 0, Pi_complete_ = 0, Pi0_ = 0, rate_ = 0, coeff_ = 0;
+};
+
+/// q0 ⊗ q_rot(v), q_rot(v) = (cos |v|/2, sin(|v|/2) v/|v|): the rotation by the vector v.
+Eigen::Vector4d rotation_quaternion(const Vec3& v);
+
+/// The torque-free rigid body (or symmetric gyrostat with an axial rotor) as a model that needs
+/// no integration (model/system.hpp, `flow`): state ω, or ω and the quaternion; outputs |G| and
+/// T (conserved exactly: the closed form keeps them to rounding), with attitude the Euler angles.
+template <bool WithAttitude>
+class TorqueFreeBody {
+public:
+    static constexpr int dim = WithAttitude ? 7 : 3;
+    using State = Eigen::Matrix<double, dim, 1>;
+    static constexpr auto state_names = rate_state_names<WithAttitude>();
+
+    /// Throws std::invalid_argument for a gyrostat without a closed form here.
+    explicit TorqueFreeBody(Body body) : body_(std::move(body)) {
+        FreeBodyFlow::require_closed_form(body_, "TorqueFree");
+    }
     const Body& body() const { return body_; }
 
-    TorqueFreeSolution flow(double t0, const State& y0) const { return TorqueFreeSolution(body_, y0, t0); }
-    /// ω̇ = J⁻¹ (Jω × ω), for checks and stiffness diagnostics (the solve never integrates it).
+    struct Flow {
+        FreeBodyFlow exact;
+        State at(double t) const {
+            if constexpr (WithAttitude)
+                return exact.at(t);
+            else
+                return exact.omega(t);
+        }
+        double event_step() const { return exact.event_step(); }
+    };
+    Flow flow(double t0, const State& y0) const {
+        if constexpr (WithAttitude)
+            return {FreeBodyFlow(body_, y0.template head<3>(), y0.template tail<4>(), t0, true)};
+        else
+            return {FreeBodyFlow(body_, y0, Eigen::Vector4d(1, 0, 0, 0), t0, false)};
+    }
+    /// ω̇ = J⁻¹ ((Jω + k) × ω), q̇ = ½ q ⊗ (0, ω): for checks and stiffness diagnostics (the solve
+    /// never integrates it).
     void rhs(double, const State& y, State& dy) const {
-        dy = body_.inverse_moments().cwiseProduct(body_.moments().cwiseProduct(y).cross(y));
+        const Vec3 omega = y.template head<3>();
+        dy.template head<3>() = body_.inverse_moments().cwiseProduct(body_.angular_momentum(omega).cross(omega));
+        if constexpr (WithAttitude) dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
+    }
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
+    void project(State& y) const {
+        y.template segment<4>(3).normalize();
+    }
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
+    void check_state(const State& y) const {
+        check_quaternion(y.template segment<4>(3), "TorqueFree");
+    }
+    State initial_state(const Eigen::VectorXd& given) const {
+        return complete_rate_state<State>(given, WithAttitude, state_names.data());
     }
 
-    static constexpr std::array<OutputInfo, 2> outputs_info{{{"angular_momentum_norm", true}, {"kinetic_energy", true}}};
+    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", true}, {"kinetic_energy", true}}};
+    static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     void outputs(double, const State& y, double* out) const {
-        out[0] = body_.angular_momentum(y).norm();
-        out[1] = body_.kinetic_energy(y);
+        const Vec3 omega = y.template head<3>();
+        out[0] = body_.angular_momentum(omega).norm();
+        out[1] = body_.kinetic_energy(omega);
+        if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out + 2);
     }
 
 private:
     Body body_;
 };
+
+using TorqueFree = TorqueFreeBody<false>;
+using TorqueFreeAttitude = TorqueFreeBody<true>;
 
 }  // namespace gyrostat::model

@@ -1,0 +1,203 @@
+// Splitting integrators: the exact flow of the free body composed with the flow of the
+// perturbation (Celledoni, Fassò, Säfström & Zanna, SIAM J. Sci. Comput. 30 (2008), §5;
+// McLachlan & Quispel, Acta Numerica 11 (2002) 341 for the compositions).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/events.hpp"
+#include "gyrostat/integrate/options.hpp"
+#include "gyrostat/integrate/recorder.hpp"
+
+namespace gyrostat::integrate {
+
+/// A System splits when it gives (model/gyrostat.hpp)
+///   void require_splitting() const;               throws when its free part has no exact flow
+///   void free_flow(double h, State& y) const;     the exact flow of the free part over h
+///   Perturbation perturbation(double h) const;    the perturbation's flow over h, prepared
+///   void perturb(const Perturbation&, double t, State& y) const;   applied at frozen time t
+template <class S, class = void>
+struct has_splitting : std::false_type {};
+template <class S>
+struct has_splitting<S, std::void_t<decltype(std::declval<const S&>().perturbation(0.0))>> : std::true_type {};
+
+namespace splitting_detail {
+
+/// The Strang sub-steps of a composition of order 2, 4 or 6, as fractions of the step:
+///   2: Strang  S(h) = P(h/2) F(h) P(h/2)  (P the perturbation's flow, F the free flow);
+///   4: Yoshida's (Forest–Ruth) triple jump S(γ1 h) S(γ2 h) S(γ1 h), γ1 = 1/(2 − 2^{1/3}),
+///      γ2 = 1 − 2γ1 (Yoshida, Phys. Lett. A 150 (1990) 262);
+///   6: the triple jump of the order-4 method, δ1 = 1/(2 − 2^{1/5}), δ2 = 1 − 2δ1 (9 Strang steps).
+inline std::vector<double> strang_fractions(int order) {
+    if (order == 2) return {1.0};
+    const double g1 = 1.0 / (2.0 - std::cbrt(2.0)), g2 = 1.0 - 2.0 * g1;
+    const std::vector<double> four{g1, g2, g1};
+    if (order == 4) return four;
+    const double d1 = 1.0 / (2.0 - std::pow(2.0, 0.2)), d2 = 1.0 - 2.0 * d1;
+    std::vector<double> six;
+    for (double d : {d1, d2, d1})
+        for (double g : four) six.push_back(d * g);
+    return six;
+}
+
+}  // namespace splitting_detail
+
+/// One composite step of size h from (t, y): P(a_0 h) F(b_1 h) P(a_1 h) … F(b_s h) P(a_s h), the
+/// halves of neighbouring Strang steps merged (a_0 = c_1/2, a_i = (c_i + c_{i+1})/2, a_s = c_s/2).
+template <class System>
+class SplittingStep {
+public:
+    using State = typename System::State;
+    SplittingStep(const System& system, int order) : system_(system) {
+        const std::vector<double> c = splitting_detail::strang_fractions(order);
+        free_ = c;
+        perturb_.assign(c.size() + 1, 0.0);
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            perturb_[i] += 0.5 * c[i];
+            perturb_[i + 1] += 0.5 * c[i];
+        }
+    }
+    /// Prepares the perturbation flows of step size h (once per distinct h).
+    void prepare(double h) {
+        if (h == h_) return;
+        h_ = h;
+        prepared_.clear();
+        for (double a : perturb_) prepared_.push_back(system_.perturbation(a * h));
+    }
+    /// y ← the composite step of size h from time t; returns the number of sub-flows.
+    long advance(double t, double h, State& y) {
+        prepare(h);
+        double time = t;
+        system_.perturb(prepared_[0], time, y);
+        for (std::size_t i = 0; i < free_.size(); ++i) {
+            system_.free_flow(free_[i] * h, y);
+            time += free_[i] * h;
+            system_.perturb(prepared_[i + 1], time, y);
+        }
+        return static_cast<long>(2 * free_.size() + 1);
+    }
+    /// The same step of size h from (t, y) without touching the prepared flows of the main step.
+    State partial(double t, double h, const State& y) const {
+        State z = y;
+        if (h == 0.0) return z;
+        double time = t;
+        system_.perturb(system_.perturbation(perturb_[0] * h), time, z);
+        for (std::size_t i = 0; i < free_.size(); ++i) {
+            system_.free_flow(free_[i] * h, z);
+            time += free_[i] * h;
+            system_.perturb(system_.perturbation(perturb_[i + 1] * h), time, z);
+        }
+        model::system::project(system_, z);
+        return z;
+    }
+
+private:
+    const System& system_;
+    std::vector<double> free_, perturb_;
+    std::vector<typename System::Perturbation> prepared_;
+    double h_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Integrates `system` from (t0, y0) to t1 with steps of options.step (the last one shortened to
+/// land on t1) and the composition of options.splitting_order. Output times and events inside a
+/// step use the method itself: y(t_n + s) = the composite step of size s from y_n (a continuous
+/// extension of the method's order, equal to y_{n+1} at s = h). The dense output kept after the
+/// run (Options::dense_output) is the cubic Hermite interpolant of (y_n, f_n, y_{n+1}, f_{n+1}).
+/// stats.rhs_evals counts the sub-flows (free and perturbation), not right-hand sides.
+template <class System>
+Result splitting(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
+                 const Control* control = nullptr) {
+    using State = typename System::State;
+    validate(options, t0, t1);
+    require_finite(y0, "initial state y0");
+    if (!(options.step > 0.0))
+        throw std::invalid_argument("method 'splitting' needs a fixed step: set step = h > 0 (got step = " +
+                                    format_value(options.step) + ")");
+    system.require_splitting();
+
+    Result result;
+    result.method = method_name(Method::Splitting);
+    const std::vector<double> outputs = output_times(options, t0, t1);
+    Recorder<System> record(system, result, outputs.size());
+    EventLocator<System> events(system, options.events, result);
+    result.dense = make_dense<System>(options);
+    Stats& stats = result.stats;
+
+    const double direction = t1 >= t0 ? 1.0 : -1.0;
+    OutputCursor<System> cursor(record, outputs, direction);
+    const double span = std::abs(t1 - t0);
+    const double h_full = direction * options.step;
+    const double n_steps = std::ceil(span / options.step * (1.0 - 4.0 * std::numeric_limits<double>::epsilon()));
+    State y = y0;
+    model::system::project(system, y);
+    cursor.start(t0, y);
+    events.start(t0, y);
+    if (t0 == t1) return result;
+    SplittingStep<System> stepper(system, options.splitting_order);
+    Ticker ticker(control, t0, t1);
+    State f0, f1;
+    double t = t0;
+    // The number of steps is known in advance: run as far as the budget allows, like the
+    // adaptive methods, and say why the run stopped.
+    const double budget = std::min(n_steps, static_cast<double>(options.max_steps));
+    for (double i = 0.0; i < budget; i += 1.0) {
+        if (!ticker.keep_going(t)) {
+            mark_interrupted(result, t);
+            return result;
+        }
+        // Full steps are of size h_full exactly (t_n = t0 + n h_full only labels them); the last
+        // one is shortened to land on t1.
+        const bool last = i + 1.0 >= n_steps;
+        const double t_new = last ? t1 : t0 + (i + 1.0) * h_full;
+        const double h = last ? t1 - t : h_full;
+        State y_new = y;
+        stats.rhs_evals += stepper.advance(t, h, y_new);
+        model::system::project(system, y_new);
+        ++stats.steps;
+        stats.last_step = std::abs(h);
+        if (!all_finite(y_new)) {
+            result.status = Status::NonFiniteState;
+            result.message = "the state became non-finite (inf/NaN) in the splitting step from t = " + format_number(t, 17);
+            return result;
+        }
+        const State y_start = y;
+        const double t_start = t;
+        auto dense = [&](double time) { return stepper.partial(t_start, time - t_start, y_start); };
+        const double t_stop = events.step(t, t_new, y_new, dense);
+        const bool terminated = !std::isnan(t_stop);
+        if (result.dense) {  // cubic Hermite in s = (t − t_n)/h
+            system.rhs(t, y, f0);
+            system.rhs(t_new, y_new, f1);
+            std::array<State, 4> c;
+            c[0] = y;
+            c[1] = h * f0;
+            c[2] = 3.0 * (y_new - y) - h * (2.0 * f0 + f1);
+            c[3] = 2.0 * (y - y_new) + h * (f0 + f1);
+            result.dense->add(t, terminated ? t_stop : t_new, t, h, 3, c[0].data());
+        }
+        if (cursor.inside(t_new, t_stop, dense)) {
+            mark_terminated(result, t_stop);
+            return result;
+        }
+        t = t_new;
+        y = y_new;
+        cursor.at_end(t, y, options.every_step);
+    }
+    if (budget < n_steps) {
+        result.status = Status::MaxStepsReached;
+        result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
+                         " before t1 = " + format_number(t1) + ": splitting with step " + format_value(options.step) +
+                         " needs " + format_number(n_steps, 17) + " steps (raise max_steps or the step)";
+    }
+    return result;
+}
+
+}  // namespace gyrostat::integrate

@@ -1,0 +1,331 @@
+"""The exact free-body flow with attitude and the splitting integrators built on it.
+
+References written here, independent of the library: Euler's equations and q̇ = ½ q ⊗ (0, ω)
+integrated by SciPy's DOP853 at rtol 1e-13; the rotation matrix of a quaternion; the invariants
+(the inertial angular momentum R(q) J ω, |G|, T).
+"""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import gyrostat as g
+from gyrostat.events import Event
+
+J = np.array([2.0, 3.0, 4.0])
+W0 = np.array([0.4, 0.9, -0.3])
+Q0 = np.array([0.8, 0.1, -0.5, 0.3]) / np.linalg.norm([0.8, 0.1, -0.5, 0.3])
+
+
+def rhs(t, y, moments, rotor=(0.0, 0.0, 0.0), torque=None):
+    w, q = y[:3], y[3:]
+    moments, rotor = np.asarray(moments), np.asarray(rotor)
+    m = np.zeros(3) if torque is None else torque(t, w)
+    dw = (m - np.cross(w, moments * w + rotor)) / moments
+    qw, qx, qy, qz = q
+    p, qq, r = w
+    dq = 0.5 * np.array([-qx * p - qy * qq - qz * r, qw * p + qy * r - qz * qq, qw * qq + qz * p - qx * r,
+                         qw * r + qx * qq - qy * p])
+    return np.concatenate([dw, dq])
+
+
+def reference(moments, w0, t, q0=Q0, rotor=(0.0, 0.0, 0.0), torque=None):
+    y0 = np.concatenate([w0, q0])
+    sol = solve_ivp(rhs, (t[0], t[-1]), y0, method="DOP853", t_eval=t, rtol=1e-13, atol=1e-14,
+                    args=(moments, rotor, torque))
+    y = sol.y.T
+    y[:, 3:] /= np.linalg.norm(y[:, 3:], axis=1)[:, None]
+    return y
+
+
+def rotation(q):
+    w, x, y, z = q / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def same_sign(q, ref):
+    """q and −q are one rotation: align each row of q with the reference's sign."""
+    return q * np.sign(np.sum(q * ref, axis=1))[:, None]
+
+
+def exact(moments, w0, t, q0=Q0, rotor=(0.0, 0.0, 0.0)):
+    model = g.TorqueFreeModel(g.Body(moments, rotor), attitude=True)
+    return g.solve(model, np.concatenate([w0, q0]), (t[0], t[-1]), t_eval=t)
+
+
+def energy_ordering(moments, w0):
+    """+1: the polhode encircles the largest axis (G² > 2TB), −1: the smallest."""
+    moments, w0 = np.asarray(moments), np.asarray(w0)
+    return np.sign(np.sum(moments * (moments - moments[1]) * w0 ** 2))
+
+
+CASES = {
+    # name: (moments, ω0); the orderings checked in the test
+    "largest_axis": ([2.0, 3.0, 4.0], [0.4, 0.9, -0.3]),
+    "smallest_axis": ([2.0, 3.0, 4.0], [1.0, 0.3, 0.2]),
+    "relabelled_odd": ([3.0, 4.0, 2.0], [0.2, -0.3, 1.1]),
+    "relabelled_cyclic": ([4.0, 2.0, 3.0], [-0.5, 0.8, 0.6]),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_exact_attitude_against_integrated_quaternion(name):
+    moments, w0 = CASES[name]
+    t = np.linspace(0.0, 60.0, 301)
+    ref = reference(moments, w0, t)
+    sol = exact(moments, w0, t)
+    # SciPy's DOP853 at rtol 1e-13 over ~10 periods: ~1e-11; the closed form: rounding
+    assert np.max(np.abs(sol.y[:, :3] - ref[:, :3])) < 1e-9
+    assert np.max(np.abs(same_sign(sol.y[:, 3:], ref[:, 3:]) - ref[:, 3:])) < 1e-9
+    # the closed form's quaternion is continuous in t (no jumps between q and −q)
+    assert np.max(np.linalg.norm(np.diff(sol.y[:, 3:], axis=0), axis=1)) < 0.2
+
+
+def test_both_energy_orderings_are_covered():
+    assert energy_ordering(*CASES["largest_axis"]) == 1
+    assert energy_ordering(*CASES["smallest_axis"]) == -1
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_inertial_angular_momentum_is_constant_at_any_horizon(name):
+    """Basilisk's convention check: with q rotating body into inertial axes, R(q) J ω is fixed.
+    |G| and T exact to rounding at any t (the closed form's cost does not depend on t)."""
+    moments, w0 = CASES[name]
+    moments = np.asarray(moments)
+    t = np.array([0.0, 1.0, 1e3, 1e5, 1e7, 1e9])
+    sol = exact(moments, w0, t)
+    g_in = np.array([rotation(q) @ (moments * w) for w, q in zip(sol.y[:, :3], sol.y[:, 3:])])
+    G = np.linalg.norm(moments * np.asarray(w0))
+    # rounding of the rotation's angles, ~ε|ω|t, dominates at t = 1e9 (|ω|t ≈ 1e9: 2e-7)
+    assert np.max(np.abs(g_in[:4] - g_in[0])) < 1e-12 * G * 100
+    assert np.max(np.abs(g_in - g_in[0])) < 1e-6 * G
+    # |G| and T: relative rounding only, at every horizon
+    assert np.max(np.abs(sol["angular_momentum_norm"] / G - 1)) < 1e-14
+    T = 0.5 * np.sum(moments * np.asarray(w0) ** 2)
+    assert np.max(np.abs(sol["kinetic_energy"] / T - 1)) < 1e-14
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_near_the_separatrix(side):
+    """ω0 within 1e-6 (relative) of the separatrix G² = 2TB, on either side."""
+    moments = np.array([2.0, 3.0, 4.0])
+    # on the separatrix: A(A−B) p² + C(C−B) r² = 0 → p² = 2 r²
+    r = 0.5
+    w0 = np.array([np.sqrt(2.0) * r * (1.0 + side * 1e-6), 0.05, r])
+    assert energy_ordering(moments, w0) == -side
+    t = np.linspace(0.0, 40.0, 201)
+    ref = reference(moments, w0, t)
+    sol = exact(moments, w0, t)
+    # the separatrix amplifies errors (Lyapunov growth ~e^{λt} on the homoclinic loop);
+    # SciPy's DOP853 at rtol 1e-13 is good to ~1e-10 here: 1e-8 allowed
+    assert np.max(np.abs(sol.y[:, :3] - ref[:, :3])) < 1e-8
+    assert np.max(np.abs(same_sign(sol.y[:, 3:], ref[:, 3:]) - ref[:, 3:])) < 1e-8
+
+
+def test_symmetric_body_and_axial_rotor():
+    t = np.linspace(0.0, 50.0, 201)
+    for moments, rotor in (([2.0, 2.0, 3.5], [0.0, 0.0, 0.0]), ([2.0, 2.0, 3.5], [0.0, 0.0, 0.7]),
+                           ([3.0, 2.0, 2.0], [-0.4, 0.0, 0.0]), ([2.5, 2.5, 2.5], [0.3, -0.2, 0.5])):
+        ref = reference(moments, W0, t, rotor=rotor)
+        sol = exact(moments, W0, t, rotor=rotor)
+        # SciPy at rtol 1e-13 over ~10 turns: ~1e-11
+        assert np.max(np.abs(sol.y[:, :3] - ref[:, :3])) < 1e-9, (moments, rotor)
+        assert np.max(np.abs(same_sign(sol.y[:, 3:], ref[:, 3:]) - ref[:, 3:])) < 1e-9, (moments, rotor)
+
+
+def test_gyrostat_without_closed_form_is_refused():
+    with pytest.raises(ValueError, match="closed form here only.*rotor k = \\(0.1, 0, 0.2\\)"):
+        g.TorqueFreeModel(g.Body([2.0, 3.0, 4.0], [0.1, 0.0, 0.2]), attitude=True)
+    model = g.Model(g.Body([2.0, 3.0, 4.0], [0.1, 0.0, 0.2]))
+    with pytest.raises(ValueError, match="closed form here only"):
+        g.solve(model, W0, (0, 1), method="splitting", step=0.1)
+
+
+# --- splitting ----------------------------------------------------------------------------------
+
+EPS = 0.05
+
+
+def linear_case():
+    D = EPS * np.array([[1.0, 0.2, 0.0], [0.0, 0.5, 0.1], [0.3, 0.0, 2.0]])
+    M0 = EPS * np.array([0.1, -0.2, 0.05])
+    torques = [g.LinearDamping(D), g.ConstantTorque(M0)]
+    return torques, (lambda t, w: M0 - D @ w)
+
+
+def cavity_case():
+    cavity = g.ViscousCavity(EPS, 1.0, 1.0)  # κ = ρ P0 / ν = ε
+    return [cavity], None
+
+
+@pytest.mark.parametrize("order", [2, 4, 6])
+def test_order_of_splitting_with_exact_perturbation_flow(order):
+    torques, torque = linear_case()
+    model = g.Model(g.Body(J), torques, attitude=True)
+    t = np.array([0.0, 8.0])
+    ref = reference(J, W0, np.linspace(0, 8.0, 3), torque=torque)[-1]
+    steps = {2: (0.4, 0.2), 4: (0.8, 0.4), 6: (1.6, 0.8)}[order]
+    errors = []
+    for h in steps:
+        y = g.solve(model, np.concatenate([W0, Q0]), (0, 8.0), t_eval=t, method="splitting", step=h,
+                    splitting_order=order).y[-1]
+        y[3:] *= np.sign(y[3:] @ ref[3:])
+        errors.append(np.max(np.abs(y - ref)))
+    measured = np.log2(errors[0] / errors[1])
+    # the error ratio at halved step is 2^order asymptotically; ±0.5 for the pre-asymptotic range
+    assert abs(measured - order) < 0.5, (errors, measured)
+
+
+def test_order_of_splitting_with_the_cavity():
+    """The cavity's perturbation flow is one 8th-order step per sub-step: the composition keeps
+    its order (measured against SciPy with the cavity torque written from the library's
+    formula, checked against the engine's right-hand side first)."""
+    torques, _ = cavity_case()
+    model = g.Model(g.Body(J), torques, attitude=True)
+    free = g.Model(g.Body(J), attitude=True)
+
+    def torque(t, w):  # the torque from the engine's rhs: J (f − f_free)
+        y = np.concatenate([w, Q0])
+        return J * (model.rhs(t, y)[:3] - free.rhs(t, y)[:3])
+
+    # the torque is independent of q and of t; written-out check for one ω: G·M = 0 (internal)
+    m = torque(0.0, W0)
+    assert abs(np.dot(J * W0, m)) < 1e-15
+    t_end = 8.0
+    ref = reference(J, W0, np.array([0.0, t_end]), torque=torque)[-1]
+    for order, steps in ((2, (0.4, 0.2)), (4, (0.8, 0.4))):
+        errors = []
+        for h in steps:
+            y = g.solve(model, np.concatenate([W0, Q0]), (0, t_end), t_eval=[0, t_end], method="splitting", step=h,
+                        splitting_order=order).y[-1]
+            y[3:] *= np.sign(y[3:] @ ref[3:])
+            errors.append(np.max(np.abs(y - ref)))
+        measured = np.log2(errors[0] / errors[1])
+        assert abs(measured - order) < 0.5, (order, errors, measured)
+
+
+def test_splitting_keeps_G_when_the_perturbation_does():
+    """The cavity conserves |G| (an internal torque): both sub-flows keep it, so the splitting
+    keeps it to rounding over a long run (no secular drift), while T decays."""
+    torques, _ = cavity_case()
+    model = g.Model(g.Body(J), torques)
+    sol = g.solve(model, W0, (0, 2e4), method="splitting", step=0.5, splitting_order=4, n_out=11)
+    G = sol["angular_momentum_norm"]
+    # per step: the free flow's rounding and the 8th-order step's error in |G| (~ε h⁹):
+    # a random walk of 4e4 steps of ~1e-16
+    assert np.max(np.abs(G / G[0] - 1)) < 1e-12
+    assert sol["kinetic_energy"][-1] < 0.99 * sol["kinetic_energy"][0]
+
+
+def test_torque_free_splitting_is_the_exact_flow():
+    model = g.Model(g.Body(J), attitude=True)
+    t = np.linspace(0, 100, 11)
+    split = g.solve(model, np.concatenate([W0, Q0]), (0, 100), t_eval=t, method="splitting", step=3.0)
+    closed = exact(J, W0, t)
+    # composition of exact flows: rounding per sub-flow
+    assert np.max(np.abs(split.y[:, :3] - closed.y[:, :3])) < 1e-12
+    assert np.max(np.abs(same_sign(split.y[:, 3:], closed.y[:, 3:]) - closed.y[:, 3:])) < 1e-11
+
+
+def test_events_dense_output_and_ensembles_with_splitting():
+    torques, torque = linear_case()
+    model = g.Model(g.Body(J), torques)
+    opts = dict(method="splitting", step=0.05, splitting_order=6)
+    sol = g.solve(model, W0, (0, 20), events=Event("q", 0.0),
+                  dense_output=True, n_out=5, **opts)
+    ref = solve_ivp(lambda t, w: rhs(t, np.concatenate([w, Q0]), J, torque=torque)[:3], (0, 20), W0, method="DOP853",
+                    rtol=1e-13, atol=1e-14, events=lambda t, w: w[1], dense_output=True)
+    # order-6 splitting at h = 0.05 with ε = 0.05: ~1e-10; events located to a few ulps on it
+    assert np.allclose(sol.t_events[0], ref.t_events[0], atol=1e-8, rtol=0)
+    # the kept dense output is cubic Hermite: O(h⁴ |ω⁽⁴⁾|) ≈ 1e-6
+    tt = np.linspace(0.3, 19.7, 37)
+    assert np.max(np.abs(np.array([sol(x) for x in tt]) - ref.sol(tt).T)) < 1e-5
+    members = g.solve_ensemble(model, np.array([W0, 1.1 * W0]), (0, 20), n_out=5, **opts)
+    assert np.array_equal(members[0].y, g.solve(model, W0, (0, 20), n_out=5, **opts).y)
+
+
+def test_splitting_progress_and_interrupt():
+    import os
+    import signal
+    import threading
+    import time
+
+    model = g.Model(g.Body(J), [g.LinearDamping(np.eye(3) * 1e-4)])
+    seen = []
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    started = time.perf_counter()
+    with pytest.warns(RuntimeWarning, match="interrupted"):
+        sol = g.solve(model, W0, (0, 1e8), method="splitting", step=0.1, max_steps=10**12, n_out=1001,
+                      progress=seen.append)
+    timer.join()
+    # stopped within the poll interval (0.1 s) plus the signal's delay; progress was reported
+    assert time.perf_counter() - started < 2.0
+    assert sol.status == "interrupted" and 1 <= len(sol) < 1001 and seen and 0 <= seen[-1] < 1
+
+
+@pytest.mark.parametrize("step", [0.0, -1.0, float("nan")])
+def test_bad_splitting_step(step):
+    model = g.Model(g.Body(J))
+    with pytest.raises(ValueError, match="step = "):
+        g.solve(model, W0, (0, 1), method="splitting", step=step)
+
+
+def test_splitting_needs_a_step_and_a_model_that_splits():
+    with pytest.raises(ValueError, match="needs a fixed step"):
+        g.solve(g.Model(g.Body(J)), W0, (0, 1), method="splitting")
+    with pytest.raises(ValueError, match="splitting_order = 3"):
+        g.solve(g.Model(g.Body(J)), W0, (0, 1), method="splitting", step=0.1, splitting_order=3)
+    top = g.lagrange.LagrangeTop(2.0, 1.0, 0.5)
+    with pytest.raises(ValueError, match="'lagrange_top' model does not split"):
+        g.solve(top, np.full(top.dim, 0.1), (0, 1), method="splitting", step=0.1)
+
+
+def test_auto_scene_picks_the_exact_flow_with_attitude():
+    from gyrostat.scene import Scene
+
+    doc = {"body": {"moments": [2, 3, 4]}, "initial": {"omega": list(W0), "attitude": list(Q0)},
+           "integration": {"t_span": [0, 50]}}
+    scene = Scene.from_dict(doc)
+    assert scene.model_choice == "closed_form" and "attitude included" in scene.model_reason
+    run = scene.runs[0]
+    sol = g.solve(run.model, run.y0, run.t_span, t_eval=[0.0, 50.0])
+    ref = reference(J, W0, np.array([0.0, 50.0]))
+    assert np.max(np.abs(same_sign(sol.y[:, 3:], ref[:, 3:]) - ref[:, 3:])) < 1e-9
+
+
+def test_scene_with_splitting():
+    from gyrostat.scene import Scene, SceneError
+
+    doc = {"body": {"moments": [2, 3, 4]}, "initial": {"omega": list(W0)},
+           "torques": [{"type": "linear_damping", "matrix": (1e-3 * np.eye(3)).tolist()}],
+           "integration": {"t_span": [0, 10], "method": "splitting", "step": 0.1, "splitting_order": 6, "n_out": 3}}
+    run = Scene.from_dict(doc).runs[0]
+    assert run.options["step"] == 0.1 and run.options["splitting_order"] == 6
+    sol = g.solve(run.model, run.y0, run.t_span, **run.options)
+    ref = g.solve(run.model, run.y0, run.t_span, n_out=3, method="taylor", rtol=1e-14, atol=1e-16)
+    # order 6, h = 0.1, ε = 1e-3: ~1e-12
+    assert np.max(np.abs(sol.y - ref.y)) < 1e-10
+    del doc["integration"]["step"]
+    with pytest.raises(SceneError, match="needs step"):
+        Scene.from_dict(doc).runs
+
+
+def test_splitting_step_budget():
+    sol = g.solve(g.Model(g.Body(J)), W0, (0, 10), method="splitting", step=0.1, max_steps=20, n_out=11)
+    # 20 steps of 0.1 reach t = 2: outputs at 0, 1, 2 are kept
+    assert sol.status == "max_steps_reached" and "needs 100 steps" in sol.message
+    assert np.allclose(sol.t, [0.0, 1.0, 2.0])
+
+
+def test_exact_flow_of_a_decayed_rate():
+    """ω(t; s ω0) = s ω(s t; ω0) and q(t; s ω0) = q(s t; ω0): at s = 1e-160 (ω² would underflow)
+    the flow keeps all its digits (it works with ω0/max|ω0_i| and the time s t)."""
+    t = np.linspace(0.0, 30.0, 31)
+    ref = exact(J, W0, t)
+    tiny = exact(J, 1e-160 * W0, t * 1e160)
+    # the same formulas on the same unit vector: rounding only
+    assert np.max(np.abs(tiny.y[:, :3] * 1e160 - ref.y[:, :3])) < 1e-13
+    assert np.max(np.abs(tiny.y[:, 3:] - ref.y[:, 3:])) < 1e-12
