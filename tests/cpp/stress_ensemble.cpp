@@ -152,8 +152,8 @@ int main() {
     CHECK(counts[0][1] > 0 && counts[2][0] > 0, "the mix has successes and failures");
 
     // Fault injection through run_ensemble's own seam: member 3 runs out of memory, member 5's
-    // GSL call fails (K(m) for m = 2), member 7's CVODE solve fails (the blowing-up model); the
-    // others finish, equal to their single runs.
+    // GSL call fails (K(m) for m = 2), member 7's CVODE solve fails (the blowing-up model), member
+    // 8 throws something that is not a std::exception; the others finish, equal to their single runs.
     {
         integrate::Options options;
         options.n_out = 11;
@@ -163,6 +163,7 @@ int main() {
         const Eigen::VectorXd w0 = Eigen::Vector3d(1.0, 0.5, -0.3);
         auto member = [&](std::size_t i, const integrate::Control* control) {
             if (i == 3) throw std::bad_alloc();
+            if (i == 8) throw 42;  // not a std::exception: must not terminate the process
             if (i == 5) (void)model::elliptic_K(2.0);
             if (i == 7) return solve(models[2], 0.0, w0, 50.0, stiff, control);
             return solve(models[0], 0.0, w0, 5.0, options, control);
@@ -176,6 +177,9 @@ int main() {
             } else if (i == 5) {
                 CHECK(results[i].status == Status::InvalidInput && results[i].message.find("m = 2") != std::string::npos,
                       "a GSL failure is named: " + results[i].message);
+            } else if (i == 8) {
+                CHECK(results[i].status == Status::SolverFailure && results[i].message.find("unknown exception") != std::string::npos,
+                      "a foreign exception is contained: " + results[i].message);
             } else if (i == 7) {
                 CHECK(!results[i].success() && !results[i].message.empty(), "a CVODE failure is named: " + results[i].message);
             } else {

@@ -69,6 +69,10 @@ std::vector<integrate::Result> run_ensemble(std::size_t n, SolveMember&& solve_m
                     results[i] = Result{};
                     results[i].status = integrate::Status::InvalidInput;
                     results[i].message = "member " + std::to_string(i) + ": " + e.what();
+                } catch (...) {  // anything else thrown must not escape the thread (std::terminate)
+                    results[i] = Result{};
+                    results[i].status = integrate::Status::SolverFailure;
+                    results[i].message = "member " + std::to_string(i) + ": an unknown exception";
                 }
                 if (results[i].status == integrate::Status::Interrupted) stop = true;  // the caller asked
             }
