@@ -32,6 +32,12 @@ void expose_models(py::module_& m) {
              py::arg("y"))
         .def("initial_state", [](const BoundModel& b, const Eigen::VectorXd& y) { return initial_state(b.model, y); },
              py::arg("given"))
+        .def("full_state",
+             [](const BoundModel& b, const Eigen::VectorXd& y, double phase) { return full_state(b.model, y, phase); },
+             py::arg("slow"), py::arg("phase") = 0.0)
+        .def("outputs_at",
+             [](const BoundModel& b, double t, const Eigen::VectorXd& y) { return outputs_at(b.model, t, y); },
+             py::arg("t"), py::arg("y"))
         // averaged symmetric system
         .def("fast_frequency",
              [](const BoundModel& b, double r) {

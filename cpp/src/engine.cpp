@@ -86,6 +86,34 @@ Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& give
     return visit(model, [&](const auto& m) -> Eigen::VectorXd { return model::system::initial_state(m, given); });
 }
 
+Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, double phase) {
+    return visit(model, [&](const auto& m) -> Eigen::VectorXd {
+        using S = std::decay_t<decltype(m)>;
+        if constexpr (model::system::has_full_state<S>::value) {
+            if (slow.size() != S::dim)
+                throw std::invalid_argument("full_state: the slow state has " + std::to_string(slow.size()) +
+                                            " components; this model needs " + std::to_string(S::dim) + " (" +
+                                            model::system::join_names(S::state_names.data(), S::dim) + ")");
+            if (!std::isfinite(phase)) throw std::invalid_argument("full_state: the phase must be finite");
+            return m.full_state(typename S::State(slow), phase);
+        } else {
+            (void)phase;
+            throw std::invalid_argument(std::string("full_state: the '") + Family<S>::name +
+                                        "' model is not an averaged model (it has no full state to lift to)");
+        }
+    });
+}
+
+Eigen::VectorXd outputs_at(const AnyModel& model, double t, const Eigen::VectorXd& y) {
+    return visit(model, [&](const auto& m) -> Eigen::VectorXd {
+        using S = std::decay_t<decltype(m)>;
+        const typename S::State state = model::system::initial_state(m, y);
+        Eigen::VectorXd out(model::system::n_outputs<S>());
+        model::system::outputs(m, t, state, out.data());
+        return out;
+    });
+}
+
 integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                         const integrate::Options& options, const integrate::Control* control) {
     const Eigen::VectorXd start = y0;

@@ -23,6 +23,13 @@ def _print_report(report: dict) -> None:
     print(f"{report['scene']}: {report['title']}")
     print(f"  model: {report['model']} ({report['model_reason']}); status: {report['status']}; "
           f"time: {report['seconds']:.3g} s")
+    if "ladder" in report:
+        ladder = report["ladder"]
+        switches = ladder["switches"]
+        print(f"  ladder (accuracy {ladder['accuracy']:g}): {ladder['summary']}"
+              + (f"; {len(switches)} switch(es)" if switches else ""))
+        for switch in switches[:6]:
+            print(f"    t = {switch['t']:.6g}: {switch['from']} -> {switch['to']} ({switch['reason']})")
     for name, run in report.get("runs", {}).items():
         stats = run["stats"]
         drift = ", ".join(f"{k} {v['relative_change']:+.3e}" if "relative_change" in v else

@@ -242,44 +242,55 @@ def _rigid_body(scene, solutions: dict[str, Solution], derived: dict, folder: Pa
 
 
 def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: Path) -> list[Path]:
-    """slow.png (G_z, H, r), roots.png (u1, u2, u3 and cos θ), nutation.png (θ), validity.png."""
-    full, avg, exact_r = solutions["full"], solutions["averaged"], derived["exact_r"]
+    """slow.png (G_z, H, r), roots.png (u1, u2, u3 and cos θ), nutation.png (θ), validity.png; the
+    full and the averaged top side by side, or the one the model ladder chose."""
+    full, avg, exact_r = solutions.get("full"), solutions.get("averaged"), derived["exact_r"]
     epsilon = scene.doc["torque"]["epsilon"]
-    tau_f, tau_a = epsilon * full.t, epsilon * avg.t
+    main = full if full is not None else avg
+    tau_f = epsilon * full.t if full is not None else None
+    tau_a = epsilon * avg.t if avg is not None else None
     case = f"{scene.title} (ε = {epsilon:g})"
     sf = dict(lw=0.6, color="tab:blue", alpha=0.8)
     sa = dict(lw=1.8, ls="--", color="tab:orange")
     files = []
     wanted = set(scene.plots)
+    both = full is not None and avg is not None
 
-    fig, axes = plt.subplots(4, 1, figsize=(8, 10), sharex=True)
+    fig, axes = plt.subplots(4 if both else 3, 1, figsize=(8, 10 if both else 8), sharex=True)
     for ax, key, label in zip(axes, ("G_z", "H", "r"), ("G_z [kg m²/s]", "H [J]", "r [rad/s]")):
-        ax.plot(tau_f, full[key], label="full model (ω, quaternion)", **sf)
-        ax.plot(tau_a, avg[key], label="averaged over nutation", **sa)
+        if full is not None:
+            ax.plot(tau_f, full[key], label="full model (ω, quaternion)", **sf)
+        if avg is not None:
+            ax.plot(tau_a, avg[key], label="averaged over nutation", **sa)
         if key == "r":
-            ax.plot(tau_f[: exact_r.size], exact_r, "k:", lw=1.2, label="exact (3.3)")
+            ax.plot(epsilon * main.t[: exact_r.size], exact_r, "k:", lw=1.2, label="exact (3.3)")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
-    n = min(tau_f.size, tau_a.size)
-    for key, color in (("G_z", "tab:blue"), ("H", "tab:red")):
-        axes[3].plot(tau_f[:n], full[key][:n] - avg[key][:n], lw=0.6, color=color, label=f"{key}: full − averaged")
-    axes[3].set_ylabel("difference [kg m²/s], [J]")
-    axes[3].grid(alpha=0.3)
-    axes[3].legend(fontsize=LEGEND_SIZE, loc="upper right")
+    if both:
+        n = min(tau_f.size, tau_a.size)
+        for key, color in (("G_z", "tab:blue"), ("H", "tab:red")):
+            axes[3].plot(tau_f[:n], full[key][:n] - avg[key][:n], lw=0.6, color=color, label=f"{key}: full − averaged")
+        axes[3].set_ylabel("difference [kg m²/s], [J]")
+        axes[3].grid(alpha=0.3)
+        axes[3].legend(fontsize=LEGEND_SIZE, loc="upper right")
     axes[0].set_title(f"{case}: first integrals")
     axes[-1].set_xlabel("slow time τ = εt [s]")
     _keep(fig, folder / "slow.png", "slow" in wanted, files)
 
     fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True, gridspec_kw=dict(height_ratios=[1, 1.6]))
-    axes[0].plot(tau_f, full["u3"], label="u3 (full: roots of its G_z, H, r)", **sf)
-    axes[0].plot(tau_a, avg["u3"], label="u3 (averaged)", **sa)
+    if full is not None:
+        axes[0].plot(tau_f, full["u3"], label="u3 (full: roots of its G_z, H, r)", **sf)
+        axes[1].plot(tau_f, full["cos_theta"], lw=0.4, color="0.75", label="cos θ (full model)")
+    if avg is not None:
+        axes[0].plot(tau_a, avg["u3"], label="u3 (averaged)", **sa)
     axes[0].set_ylabel("u3 (≥ 1) [1]")
-    axes[1].plot(tau_f, full["cos_theta"], lw=0.4, color="0.75", label="cos θ (full model)")
     for key, color in (("u1", "tab:blue"), ("u2", "tab:green")):
-        axes[1].plot(tau_f, full[key], lw=0.8, color=color, label=f"{key} (full)")
-        axes[1].plot(tau_a, avg[key], lw=1.8, ls="--", color="tab:orange" if key == "u1" else "tab:red",
-                     label=f"{key} (averaged)")
+        if full is not None:
+            axes[1].plot(tau_f, full[key], lw=0.8, color=color, label=f"{key} (full)")
+        if avg is not None:
+            axes[1].plot(tau_a, avg[key], lw=1.8, ls="--", color="tab:orange" if key == "u1" else "tab:red",
+                         label=f"{key} (averaged)")
     axes[1].set_ylabel("u = cos θ: u1 ≤ cos θ ≤ u2 [1]")
     for ax in axes:
         ax.grid(alpha=0.3)
@@ -288,12 +299,14 @@ def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: 
     axes[-1].set_xlabel("slow time τ = εt [s]")
     _keep(fig, folder / "roots.png", "roots" in wanted, files)
 
+    bounds, tau_b = (avg, tau_a) if avg is not None else (full, tau_f)
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.plot(tau_f, np.degrees(full["theta"]), lw=0.4, color="tab:blue", label="θ (full model)")
+    if full is not None:
+        ax.plot(tau_f, np.degrees(full["theta"]), lw=0.4, color="tab:blue", label="θ (full model)")
     with np.errstate(invalid="ignore"):
         for key, style in (("u1", "--"), ("u2", ":")):
-            ax.plot(tau_a, np.degrees(np.arccos(np.clip(avg[key], -1, 1))), ls=style, lw=1.6, color="tab:orange",
-                    label=f"arccos {key} (averaged)")
+            ax.plot(tau_b, np.degrees(np.arccos(np.clip(bounds[key], -1, 1))), ls=style, lw=1.6, color="tab:orange",
+                    label=f"arccos {key}" + (" (averaged)" if bounds is avg else " (full)"))
     ax.set_xlabel("slow time τ = εt [s]")
     ax.set_ylabel("nutation angle θ [deg]")
     ax.set_title(f"{case}: nutation between its bounds")
@@ -302,14 +315,16 @@ def _lagrange_top(scene, solutions: dict[str, Solution], derived: dict, folder: 
     _keep(fig, folder / "nutation.png", "nutation" in wanted, files)
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.semilogy(tau_a, avg["adiabaticity"], label="N = rate · T_nut (must be ≪ 1)")
-    ax.semilogy(tau_a, np.maximum(1 - avg["m"], 1e-17), label="1 − k² (separatrix at 0)")
-    ax.semilogy(tau_a, np.maximum(avg["m"], 1e-17), label="k² (regular precession at 0)")
+    if "adiabaticity" in bounds:
+        ax.semilogy(tau_b, bounds["adiabaticity"], label="N = rate · T_nut (must be ≪ 1)")
+    ax.semilogy(tau_b, np.maximum(1 - bounds["m"], 1e-17), label="1 − k² (separatrix at 0)")
+    ax.semilogy(tau_b, np.maximum(bounds["m"], 1e-17), label="k² (regular precession at 0)")
     ax.axhline(SMALL, color="tab:blue", ls=":", lw=1, label=f"limit N = {SMALL}")
     ax.axhline(SEPARATRIX_LIMIT, color="tab:orange", ls=":", lw=1, label=f"limit 1 − k² = {SEPARATRIX_LIMIT}")
     ax.set_xlabel("slow time τ = εt [s]")
     ax.set_ylabel("N, k², 1 − k² [1]")
-    ax.set_title(f"{case}: validity of the averaging (along the averaged solution)")
+    ax.set_title(f"{case}: validity of the averaging (along the " + ("averaged" if bounds is avg else "full")
+                 + " solution)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=LEGEND_SIZE, loc="lower right")
     _keep(fig, folder / "validity.png", "validity" in wanted, files)
@@ -442,7 +457,40 @@ DRAW = {"rigid_body": _rigid_body, "averaged": _rigid_body, "moving_mass": _rigi
 def draw_scene(scene, solutions: dict[str, Solution], derived: dict, folder: Path) -> list[Path]:
     """The plots the scene asks for (``scene.plots``), by its kind; ``derived`` holds what the
     kind's analysis computed beside the runs (gyrostat.runner)."""
-    return DRAW[scene.kind.name](scene, solutions, derived, folder)
+    files = DRAW[scene.kind.name](scene, solutions, derived, folder)
+    if "ladder" in derived:
+        files.append(ladder(derived["ladder"], f"{scene.title}: the model ladder", folder / "ladder.png",
+                            scene.doc["integration"]["accuracy"]))
+    return files
+
+
+def ladder(rows: list[dict], title: str, path: Path, accuracy: float) -> Path:
+    """Each rung's cost (seconds for the whole span) against its error measured against the top
+    rung, the chosen one ringed, its estimate drawn as an arrow from the measured error, and the
+    requested accuracy as a line: which model was cheap enough and accurate enough, at a glance."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    floor = min([r["error"] for r in rows if r["error"] > 0] + [accuracy]) * 1e-2
+    for row in rows:
+        error = max(row["error"], floor)
+        reference = row["error"] == 0.0 and not row.get("estimate")
+        ax.loglog(row["seconds"], error, "s" if reference else "o", ms=9, color="tab:gray" if reference else "tab:blue")
+        label = row["rung"] + (" (reference)" if reference else "") + \
+            (f", {row['switches']} switch(es)" if row.get("switches") else "")
+        ax.annotate(label, (row["seconds"], error), textcoords="offset points", xytext=(8, 6), fontsize=9)
+        if row.get("estimate"):
+            ax.plot([row["seconds"]] * 2, [error, max(row["estimate"], floor)], color="tab:orange", lw=1.5)
+            ax.plot(row["seconds"], max(row["estimate"], floor), "_", ms=14, mew=2, color="tab:orange")
+        if row["chosen"]:
+            ax.loglog(row["seconds"], error, "o", ms=18, mfc="none", mec="tab:red", mew=2)
+    ax.axhline(accuracy, color="tab:red", ls="--", lw=1, label=f"requested accuracy {accuracy:g}")
+    ax.plot([], [], color="tab:orange", marker="_", lw=1.5, label="error estimate (probe)")
+    ax.plot([], [], "o", ms=12, mfc="none", mec="tab:red", mew=2, label="chosen")
+    ax.set_xlabel("cost: time for the whole span [s]")
+    ax.set_ylabel("error against the most complete model [1] (relative)")
+    ax.set_title(title)
+    ax.legend(fontsize=9, loc="best")
+    ax.grid(True, which="both", alpha=0.3)
+    return _finish(fig, path)
 
 
 # ------------------------------------------------------------------------------------ sweeps

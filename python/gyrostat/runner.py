@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from gyrostat import _core, lagrange, orthogonal, output, plots, validity
+from gyrostat import ladder as _ladder
 from gyrostat import progress as _bars
 from gyrostat.averaged import slow_variables
 from gyrostat.scene import Scene, SceneError
@@ -24,7 +25,8 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     kind's analysis derived for its plots (references, comparisons)."""
     started = time.perf_counter()
     solutions: dict[str, Solution] = {}
-    for run in scene.runs:
+    choice = _solve_ladder(scene, solutions, progress) if scene.ladder is not None else None
+    for run in scene.runs if choice is None else ():
         report = _bars.resolve(None if progress else False, description=f"{scene.name}: {run.name}")
         try:  # a bar in a terminal for a run longer than the engine's first poll (0.1 s)
             solutions[run.name] = solve(run.model, run.y0, run.t_span, **run.options, check_validity=False,
@@ -47,7 +49,11 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     checks = []
     for run in scene.runs:
         solution = solutions[run.name]
-        if len(solution):
+        if isinstance(solution, _ladder.SwitchedSolution):  # checked where the lower rung ran
+            keep = solution.rung == 0
+            checks += validity.check(run.model, solution.y[keep], solution.t[keep], warn=False,
+                                     outputs={k: v[keep] for k, v in solution.outputs.items()})
+        elif len(solution):
             checks += validity.check(run.model, solution.y, solution.t, warn=False, outputs=solution.outputs) \
                 if scene.kind.name in ("rigid_body", "averaged", "moving_mass") else run.model.check(solution)
     unique = {}
@@ -56,11 +62,50 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     report["assumptions"] = [output.assumption_entry(a) for a in unique.values()]
     report["broken_assumptions"] = [str(a) for a in unique.values() if not a.holds]
     derived: dict = {}
+    if choice is not None:
+        report["ladder"] = _ladder_report(choice, solutions)
+        if "ladder" in scene.plots:
+            derived["ladder"] = _ladder.measure(choice, scene.runs[0].t_span, scene.runs[0].options)
+            report["ladder"]["measured"] = derived["ladder"]
     ANALYSES.get(scene.kind.name, lambda *_: None)(scene, solutions, report, derived)
     statuses = {s.status for s in solutions.values()}
     report["status"] = ("success" if statuses == {"success"} else
                         "interrupted" if "interrupted" in statuses else "failed")
     return solutions, report, derived
+
+
+# ------------------------------------------------------------------------------------ the ladder
+def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Choice":
+    """model = "auto": the ladder's choice (probes included), then the run on the chosen rung,
+    switching up and down where its assumptions stop and start holding. The scene's runs become
+    the one run solved (named as the kind's plots expect it)."""
+    from gyrostat.scene import Run
+
+    template = scene.runs[0]
+    integration = scene.doc["integration"]
+    choice = _ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"])
+    rung = choice.chosen
+    name = rung.name if rung.name in ("closed_form", "averaged") else "full"
+    events = [e for e in template.options.get("events", ()) if getattr(e, "quantity", None) in
+              rung.model.state_names + rung.model.output_names]
+    options = {**template.options, "events": events}
+    bar = _bars.resolve(None if progress else False, description=f"{scene.name}: {rung.name}")
+    try:
+        solutions[name] = _ladder.run(choice, template.t_span, options, integration["phase"],
+                                      progress=bar if bar is not None else False)
+    finally:
+        _bars.close(bar)
+    scene.runs = [Run(name, rung.model, rung.y0, template.t_span, options)]
+    scene.model_choice, scene.model_reason = rung.name, "the model ladder: " + choice.summary
+    return choice
+
+
+def _ladder_report(choice: "_ladder.Choice", solutions: dict) -> dict:
+    entry = choice.report()
+    solution = next(iter(solutions.values()))
+    switches = getattr(solution, "switches", [])
+    entry["switches"] = [{"t": t, "from": a, "to": b, "reason": why} for t, a, b, why in switches]
+    return entry
 
 
 # ------------------------------------------------------------------------------------ analyses
@@ -79,17 +124,20 @@ def _rigid_body(scene: Scene, solutions: dict, report: dict, derived: dict) -> N
 
 
 def _lagrange(scene: Scene, solutions: dict, report: dict, derived: dict) -> None:
-    full, averaged = solutions["full"], solutions["averaged"]
+    full, averaged = solutions.get("full"), solutions.get("averaged")
     tq = scene.doc["torque"]
-    n = min(len(full), len(averaged))
-    exact_r = lagrange.r_exact(scene.runs[0].y0[2], scene.doc["body"]["C"], tq["epsilon"], tq["b"], full.t[:n])
+    main = full if full is not None else averaged
+    n = min(len(s) for s in (full, averaged) if s is not None)
+    r0 = scene.runs[0].y0[2]
+    exact_r = lagrange.r_exact(r0, scene.doc["body"]["C"], tq["epsilon"], tq["b"], main.t[:n])
     derived["exact_r"] = exact_r
-    report["initial_nutation"] = {k: float(averaged[k][0]) for k in ("u1", "u2", "u3", "m", "v", "T_nut")} \
-        if len(averaged) else {}
-    report["averaged_vs_full_slow"] = {f"max_abs_error_{k}": float(np.max(np.abs(full[k][:n] - averaged[k][:n])))
-                                       for k in ("G_z", "H", "r", "u1", "u2", "u3", "v")}
-    report["r_vs_exact_3_3"] = {"full": float(np.max(np.abs(full["r"][:n] - exact_r))),
-                                "averaged": float(np.max(np.abs(averaged["r"][:n] - exact_r)))}
+    if averaged is not None and len(averaged):
+        report["initial_nutation"] = {k: float(averaged[k][0]) for k in ("u1", "u2", "u3", "m", "v", "T_nut")}
+    if full is not None and averaged is not None:
+        report["averaged_vs_full_slow"] = {f"max_abs_error_{k}": float(np.max(np.abs(full[k][:n] - averaged[k][:n])))
+                                           for k in ("G_z", "H", "r", "u1", "u2", "u3", "v")}
+    report["r_vs_exact_3_3"] = {name: float(np.max(np.abs(s["r"][:n] - exact_r)))
+                                for name, s in (("full", full), ("averaged", averaged)) if s is not None}
 
 
 def _orthogonal(scene: Scene, solutions: dict, report: dict, derived: dict) -> None:

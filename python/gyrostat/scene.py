@@ -44,7 +44,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gyrostat import _core, lagrange, orthogonal
+from gyrostat import _core, lagrange, orthogonal, validity
+from gyrostat import ladder as _ladder
 from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, OneOf, SceneError, Table, Variants, Vector,
                              at_least, describe, increasing, non_negative, positive, validate)
@@ -144,6 +145,11 @@ RTOL = Field(float, default=_DEFAULT.rtol, doc="relative tolerance", check=posit
 ATOL = Field(float, default=_DEFAULT.atol, doc="absolute tolerance", check=non_negative)
 N_OUT = Field(int, default=_DEFAULT.n_out, doc="number of evenly spaced output times", check=at_least(2))
 T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=_span_order)
+ACCURACY = Field(float, default=_ladder.ACCURACY, check=positive,
+                 doc="model = 'auto': the largest relative error accepted on the quantities the outputs need; "
+                     "the cheapest model whose measured error estimate is below it is taken")
+PHASE = Field(float, default=0.0, unit="rad", check=_finite,
+              doc="model = 'auto': the fast phase at which a switch up the ladder lifts the slow variables")
 
 BODY = Table({
     "moments": Field(Vector(3), required=True, doc="principal moments A1, A2, A3", unit="kg m^2",
@@ -235,6 +241,11 @@ class Kind:
         """(runs, the model chosen, why)."""
         raise NotImplementedError
 
+    def ladder(self, doc: dict) -> list | None:
+        """The rungs of the model ladder for ``model = "auto"`` (cheapest first, the scene's most
+        complete model last: :mod:`gyrostat.ladder`), or None where the kind has one model."""
+        return None
+
 
 def _integration(doc: dict, **extra) -> dict:
     integ = doc["integration"]
@@ -248,11 +259,48 @@ def _integration(doc: dict, **extra) -> dict:
     return options
 
 
+def averaged_rung(doc: dict, body, torques, omega, drawable: tuple[str, ...], attitude: bool = False):
+    """The averaged (a, r) rung of the ladder of a rigid body or, with the damper's quasi-static
+    torque among ``torques``, of the moving-mass family. Blocked when the scene's outputs need
+    ω(t) (plots not in ``drawable``, the attitude, a closed-form reference) or when the torques
+    have no average (the model's own message)."""
+    y0 = np.array([math.hypot(omega[0], omega[1]), omega[2]])
+    description = "the system averaged over the symmetric Euler-Poinsot motion, in (a, r)"
+    needs = [p for p in doc["outputs"]["plots"] if p not in drawable]
+    blocked = ("the scene integrates the attitude: the averaged model has none" if attitude else
+               f"the plots {needs} need omega(t): the averaged model gives a and r only" if needs else
+               "the closed-form reference is of omega(t)" if doc["outputs"].get("reference") else "")
+    model = None
+    if not blocked:
+        try:
+            model = AveragedModel(body, torques)
+        except ValueError as error:
+            blocked = f"no averaged model: {error}"
+    if blocked:
+        return _ladder.Rung("averaged", None, y0, description, blocked=blocked)
+    exact = validity.exact_reduction(model)
+    fast = model.fast_frequency(y0[1])
+    span = doc["integration"]["t_span"]
+    # an exact reduction has no fast motion to resolve: its probe is the longest one, a twentieth of the span
+    # an exact reduction has no fast oscillation to sample: its probe may be shorter than 20 periods
+    share = _ladder.PROBE_FRACTION * abs(span[1] - span[0]) / _ladder.PROBE_PERIODS
+    period = 2.0 * math.pi / fast if fast > 0 else math.inf
+    period = min(period, share) if exact else period
+    watches = () if exact else (_ladder.Watch("slow_to_fast", validity.SMALL, 0.5 * validity.SMALL,
+                                              "slow rate / fast frequency << 1", scales_error=True),)
+    return _ladder.Rung("averaged", model, y0, description, compare=_ladder.slow_variables, fast_period=period,
+                        watches=watches, exact=exact,
+                        start_checks=lambda: [a for a in validity.check(model, y0, warn=False)
+                                              if a.part == "averaged model"],
+                        basis="the (a, r) reduction is exact for this symmetric scene: r = 0 is not a limit" if exact
+                        else "")
+
+
 class RigidBody(Kind):
     name = "rigid_body"
     doc = ("A rigid body or gyrostat under perturbation torques: the full model, its closed form when nothing "
            "perturbs it, or the system averaged over the symmetric Euler-Poinsot motion in (a, r).")
-    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase")
+    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase", "ladder")
     models = ("auto", "full", "closed_form", "averaged", "compare")
 
     @property
@@ -269,7 +317,9 @@ class RigidBody(Kind):
             }), required=True, doc="the initial state"),
             "integration": Field(Table({
                 "model": Field(Choice(*self.models), default="auto",
-                               doc="auto: the cheapest adequate model; compare: full and averaged side by side"),
+                               doc="auto: the cheapest model that meets the accuracy (the model ladder); compare: "
+                                   "full and averaged side by side"),
+                "accuracy": ACCURACY, "phase": PHASE,
                 "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
                 "step": Field(float, doc="fixed step of method 'splitting' (required there)", unit="s",
                               check=positive),
@@ -305,6 +355,25 @@ class RigidBody(Kind):
         if attitude:
             reasons.append("attitude asked for")
         return "full", "full model: " + ", ".join(reasons)
+
+    # plots an averaged model can draw: functions of its slow variables
+    slow_plots = ("xy", "slow", "phase", "invariants", "ladder")
+
+    def ladder(self, doc):
+        body, torques = _body(doc), _torques(doc)
+        omega = np.asarray(doc["initial"]["omega"], float)
+        attitude = self.needs_attitude(doc)
+        q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
+        y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+        free = not torques and not np.any(np.asarray(body.rotor))
+        closed = _ladder.Rung("closed_form", TorqueFreeModel(body, attitude) if free else None, y0,
+                              "the exact torque-free flow (elliptic functions)",
+                              blocked="" if free else "torques or a rotor perturb the body")
+        full = _ladder.Rung("full", _build("torques", Model, body, torques, attitude), y0,
+                            "Euler's equations" + (" with the attitude" if attitude else ""),
+                            compare=_ladder.slow_variables)
+        rungs = [closed, averaged_rung(doc, body, torques, omega, self.slow_plots, attitude), full]
+        return rungs
 
     def runs(self, doc):
         body, torques = _body(doc), _torques(doc)
@@ -372,7 +441,7 @@ class MovingMass(Kind):
     name = "moving_mass"
     doc = ("The explicit moving-mass model (paper 001): a carrier and a point mass on a damped spring, "
            "9 states, stiff for a strong damper (method cvode_bdf by default).")
-    plots = ("omega", "invariants", "mass")
+    plots = ("omega", "invariants", "mass", "ladder")
 
     @property
     def schema(self) -> Table:
@@ -387,29 +456,67 @@ class MovingMass(Kind):
                 "start": Field(Choice("quasi_static", "at_rest"), default="quasi_static",
                                doc="quasi_static: the mass on its forced motion; at_rest: u = v = 0"),
             }), required=True, doc="the initial state"),
-            "integration": Field(Table({"method": Field(Choice(*_core.methods()), default="cvode_bdf",
+            "integration": Field(Table({"model": Field(Choice("auto", "explicit", "reduced", "averaged"), default="auto",
+                                                       doc="auto: the cheapest model that meets the accuracy; "
+                                                           "averaged: (a, r); reduced: the quasi-static damper torque; "
+                                                           "explicit: the mass, spring and damper"),
+                                        "accuracy": ACCURACY, "phase": PHASE,
+                                        "method": Field(Choice(*_core.methods()), default="cvode_bdf",
                                                         doc="integrator (stiff: cvode_bdf)"),
                                         "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT}),
                                  required=True, doc="the run"),
-            "outputs": _outputs(self.plots, list(self.plots)),
+            "outputs": _outputs(self.plots, ["omega", "invariants", "mass"]),
         })
 
-    def runs(self, doc):
+    def ladder(self, doc):
         body, torques = _body(doc), _torques(doc)
         d = doc["damper"]
+        damper = _build("damper", _core.MovingMassDamper, d["mass"], d["arm"], d["frequency"], d["damping"])
         model = _build("damper", MovingMassModel, body, d["mass"], d["arm"], d["frequency"], d["damping"], torques)
         omega = np.asarray(doc["initial"]["omega"], float)
         y0 = model.quasi_static_state(omega) if doc["initial"]["start"] == "quasi_static" else \
             np.concatenate([omega, np.zeros(6)])
-        return ([Run("full", model, y0, tuple(doc["integration"]["t_span"]), _integration(doc))], "moving_mass",
-                "asked for by the scene kind: the explicit mass, spring and damper")
+        plots = doc["outputs"]["plots"]
+        compare = _ladder.rates if "omega" in plots else _ladder.slow_variables
+        explicit = _ladder.Rung("explicit", model, y0, "the carrier, the point mass, its spring and damper (9 states)",
+                                compare=compare)
+        reduced_model = _build("damper", Model, body, [damper, *torques])
+        checks = [a for a in validity.check(reduced_model, omega, warn=False)
+                  if a.part == "moving-mass damper" and "condition (4)" not in a.statement]
+        A, C = body.moments[0], body.moments[2]
+        fast = abs((C - A) * omega[2] / A)
+        reduced = _ladder.Rung(
+            "reduced", reduced_model, omega, "the rigid body under the damper's quasi-static torque (Chernousko)",
+            compare=compare, fast_period=2.0 * math.pi / fast if fast > 0 else math.inf,
+            phase_compared=compare is _ladder.rates,
+            blocked="the plot 'mass' needs the mass's own motion" if "mass" in plots else "",
+            start_checks=lambda: checks, small=max(a.value for a in checks),
+            basis="; ".join(f"{a.statement} = {a.value:.3g}" for a in checks))
+        averaged = averaged_rung(doc, body, [damper, *torques], omega, ("invariants", "ladder"))
+        return [averaged, reduced, explicit]
+
+    def runs(self, doc):
+        choice = doc["integration"]["model"]
+        rungs = {rung.name: rung for rung in self.ladder(doc)}
+        rung = rungs["explicit" if choice == "auto" else choice]
+        if rung.blocked:
+            raise SceneError(f"[integration] model = {choice!r}: {rung.blocked}")
+        reason = {"explicit": "the explicit mass, spring and damper", "reduced": "the quasi-static damper torque",
+                  "averaged": "the averaged (a, r) system with the damper's torque"}[rung.name]
+        return ([Run("averaged" if rung.name == "averaged" else "full", rung.model, rung.y0,
+                     tuple(doc["integration"]["t_span"]), _integration(doc))], rung.name,
+                f"asked for by the scene: {reason}" if choice != "auto" else "the scene's own model (the ladder "
+                "chooses when it is solved)")
 
 
 class LagrangeTopKind(Kind):
     name = "lagrange_top"
     doc = ("Paper 003: the heavy symmetric top under M = eps(-a(tau) p, -a(tau) q, -b(tau) r), tau = eps t: the "
            "full top in (omega, quaternion) next to the system averaged over the nutation in (G_z, H, r).")
-    plots = ("slow", "roots", "nutation", "validity")
+    plots = ("slow", "roots", "nutation", "validity", "ladder")
+
+    def ladder(self, doc):
+        return _lagrange_ladder(self, doc)
 
     @property
     def schema(self) -> Table:
@@ -432,7 +539,11 @@ class LagrangeTopKind(Kind):
                 "phi_deg": Field(float, default=0.0, doc="proper rotation angle", unit="deg", check=_finite),
                 "psi_deg": Field(float, default=0.0, doc="precession angle", unit="deg", check=_finite),
             }), required=True, doc="the initial state (z-x-z Euler angles)"),
-            "integration": Field(Table({"method": METHOD, "rtol": Field(float, default=1e-10, doc="relative tolerance",
+            "integration": Field(Table({"model": Field(Choice("compare", "auto", "full", "averaged"), default="compare",
+                                                       doc="compare: the full and the averaged top side by side; auto: "
+                                                           "the cheapest that meets the accuracy (the model ladder)"),
+                                        "accuracy": ACCURACY, "phase": PHASE,
+                                        "method": METHOD, "rtol": Field(float, default=1e-10, doc="relative tolerance",
                                                                         check=positive),
                                         "atol": Field(float, default=1e-12, doc="absolute tolerance",
                                                       check=non_negative),
@@ -441,7 +552,7 @@ class LagrangeTopKind(Kind):
                                         "n_out": Field(int, default=4001, doc="number of output times",
                                                        check=at_least(2))}),
                                  required=True, doc="the run"),
-            "outputs": _outputs(self.plots, list(self.plots)),
+            "outputs": _outputs(self.plots, ["slow", "roots", "nutation", "validity"]),
         })
 
     def runs(self, doc):
@@ -453,10 +564,37 @@ class LagrangeTopKind(Kind):
                                     math.radians(ini["psi_deg"]))
         span = (0.0, doc["integration"]["tau_end"] / tq["epsilon"])
         options = _integration(doc)
+        choice = doc["integration"]["model"]
+        if choice in ("full", "averaged"):
+            return ([Run(choice, full if choice == "full" else averaged, y0, span, options)], choice,
+                    "asked for by the scene")
         return ([Run("full", full, y0, span, options), Run("averaged", averaged, y0, span, options)],
                 "full_and_averaged",
                 f"paper 003: full top (omega, quaternion) next to the nutation-averaged (G_z, H, r) system; "
                 f"epsilon = {tq['epsilon']:g}, a = {tq['a']}, b = {tq['b']}")
+
+
+def _lagrange_ladder(kind: "LagrangeTopKind", doc: dict) -> list:
+    """The heavy top's rungs: averaged over the nutation in (G_z, H, r), then the full top.
+    The averaged one is blocked when a plot needs θ(t) itself; it watches the adiabaticity N and
+    the distance from the separatrix 1 − k², switching to the full top where either fails."""
+    runs, _, _ = kind.runs({**doc, "integration": {**doc["integration"], "model": "compare"}})
+    full, averaged = runs
+    slow0 = np.asarray(averaged.model._core.initial_state(full.y0))
+    period = float(lagrange.nutation_table(averaged.model, slow0)["T_nut"][0])
+    needs = [p for p in doc["outputs"]["plots"] if p == "nutation"]
+    top = _ladder.Rung("full", full.model, full.y0, "the full top (omega, quaternion)",
+                       compare=_ladder.top_slow_variables)
+    limit = lagrange.SEPARATRIX_LIMIT
+    lower = _ladder.Rung(
+        "averaged", averaged.model, slow0, "the top averaged over the nutation, in (G_z, H, r)",
+        compare=_ladder.top_slow_variables, fast_period=period if period > 0 else math.inf,
+        blocked=f"the plots {needs} need theta(t): the averaged top gives its bounds only" if needs else "",
+        watches=(_ladder.Watch("adiabaticity", validity.SMALL, 0.5 * validity.SMALL,
+                               "nutation period short against the slow time, N << 1", scales_error=True),
+                 _ladder.Watch("m", 1.0 - limit, 1.0 - 2.0 * limit, "away from the separatrix, 1 - k^2 >= 1e-3")),
+        start_checks=lambda: lagrange.check(averaged.model, slow0, [0.0], warn=False))
+    return [lower, top]
 
 
 LAW = Variants("kind", {
@@ -592,6 +730,8 @@ class Scene:
     runs: list[Run] = field(default_factory=list)
     model_choice: str = ""
     model_reason: str = ""
+    ladder: list | None = None
+    """With model = "auto": the kind's rungs (gyrostat.ladder), chosen among when the scene is solved."""
 
     @property
     def title(self) -> str:
@@ -620,7 +760,8 @@ class Scene:
         doc = validate(kind.schema, data)
         runs, choice, reason = kind.runs(doc)
         _add_events(doc, runs)
-        return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason)
+        rungs = kind.ladder(doc) if doc.get("integration", {}).get("model") == "auto" else None
+        return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason, ladder=rungs)
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Scene":

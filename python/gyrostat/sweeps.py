@@ -18,8 +18,9 @@ file would be (the key's type and checks), and its model built by the scene's ki
 whose values the physics refuses (a negative moment of inertia after dispersion) is recorded
 with status ``invalid_input`` and the message, never lost and never stopping the others.
 
-``model = "auto"`` is resolved once, from the scene as written, so that every member is solved
-with the same model; one run of the scene is swept (``run=``; the only run, or ``"full"``).
+``model = "auto"`` is resolved once, from the scene as written (the model ladder's choice, probes
+included: :mod:`gyrostat.ladder`), so that every member is solved with the same model, without
+switching rungs along its run; one run of the scene is swept (``run=``; the only run, or ``"full"``).
 
 Dispersions draw member i's values from its own stream, ``SeedSequence(seed, spawn_key=(i,))``:
 a member is reproducible alone (:meth:`Plan.scene`), and the same seed gives the same members
@@ -357,9 +358,18 @@ class Plan:
         self.scene_name, self.kind_name = scene.name, scene.kind.name
         doc = copy.deepcopy(scene.doc)
         integration = doc.get("integration", {})
-        if integration.get("model") == "auto":
-            integration["model"] = scene.model_choice
         self.model_choice, self.model_reason = scene.model_choice, scene.model_reason
+        if scene.ladder is not None:  # the ladder chooses once, on the scene as written
+            from gyrostat import ladder
+            from gyrostat.scene import Scene
+
+            template = scene.runs[0]
+            choice = ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"])
+            integration["model"] = choice.chosen.name
+            scene = Scene.from_dict(copy.deepcopy(doc), scene.name)
+            self.model_choice, self.model_reason = choice.chosen.name, "the model ladder: " + choice.summary
+        elif integration.get("model") == "auto":
+            integration["model"] = scene.model_choice
         self.base = doc
         names = [r.name for r in scene.runs]
         if run is None:

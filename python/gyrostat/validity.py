@@ -48,7 +48,8 @@ def _omegas(model, states: np.ndarray) -> np.ndarray:
     return states[:, :3]
 
 
-def _exact_reduction(model) -> bool:
+def exact_reduction(model) -> bool:
+    """Whether the (a, r) reduction of a symmetric scene is exact (then r = 0 is no limit)."""
     A1, A2, _ = np.asarray(model.body.moments)
     if A1 != A2 or np.any(np.asarray(model.body.rotor)):
         return False
@@ -118,7 +119,7 @@ def check(model, states, times=None, warn: bool = True, outputs: dict | None = N
             results.append(Assumption("averaged model", "asymmetry against the separatrix distance "
                                       "(|B − A|/A)/(|G²/2T − A|/A) ≪ 1", float(ratio[worst]), SMALL,
                                       ratio[worst] <= SMALL, f"worst at t = {times[worst]:.4g}"))
-        if _exact_reduction(model):
+        if exact_reduction(model):
             results.append(Assumption("averaged model", "fast frequency ≫ slow rates", 0.0, SMALL, True,
                                       "not needed: the (a, r) reduction is exact for this symmetric scene"))
         else:

@@ -36,6 +36,11 @@ std::vector<std::string> output_names(const AnyModel& model);
 Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y);
 /// The full initial state from what was given (e.g. ω alone for a model with attitude).
 Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& given);
+/// An averaged model's state lifted to the model it averages, at the fast phase given
+/// (model/system.hpp: full_state); std::invalid_argument for a model that averages nothing.
+Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, double phase);
+/// The model's named outputs at (t, y), as the engine records them (NaN where undefined).
+Eigen::VectorXd outputs_at(const AnyModel& model, double t, const Eigen::VectorXd& y);
 
 /// Solves `model` from (t0, y0) to t1 (y0 may be short: see initial_state). Bad input throws
 /// std::invalid_argument naming the value (method 'splitting' for a model that does not split

@@ -61,6 +61,22 @@ public:
     /// (ȧ, ṙ) = Σ_i averaged contribution of torque i at (a, r), moments (A, A, C).
     void rhs(double t, const State& y, State& dy) const { dy = torques_.averaged(t, y[0], y[1], A_, C_); }
 
+    /// (a, r) of a full state: a = √(p² + q²), r = ω3 (ω alone, or ω followed by the quaternion).
+    State initial_state(const Eigen::VectorXd& given) const {
+        if (given.size() != 3 && given.size() != 7)
+            throw std::invalid_argument("initial state has " + std::to_string(given.size()) +
+                                        " components; AveragedSymmetric needs (a, r), or ω = (p, q, r) (optionally "
+                                        "followed by the attitude quaternion) of the full model");
+        return {std::hypot(given[0], given[1]), given[2]};
+    }
+
+    /// The generating motion at phase φ: ω = (a cos φ, a sin φ, r) (the full model's state when
+    /// the averaging stops holding; a near-symmetric body's (p, q) is a circle to first order).
+    Eigen::VectorXd full_state(const State& y, double phase) const {
+        check_state(y);
+        return Eigen::Vector3d(y[0] * std::cos(phase), y[0] * std::sin(phase), y[1]);
+    }
+
     /// a = √(p² + q²) is an amplitude: a < 0 is not a state of the generating motion.
     void check_state(const State& y) const {
         if (!(y[0] >= 0.0))

@@ -109,6 +109,27 @@ public:
         return top_.first_integrals(full);
     }
 
+    /// A full top state (ω, Q) with these (G_z, H, r), at the top of the nutation u = cos θ = u2
+    /// (a turning point: θ̇ = 0), precession angle ψ = 0 and proper rotation φ = `phase`.
+    /// With the z-x-z angles, γ = (sin θ sin φ, sin θ cos φ, cos θ) in body axes and at θ̇ = 0
+    ///   p = ψ̇ sin θ sin φ,  q = ψ̇ sin θ cos φ,  ψ̇ sin²θ = (G_z − C r u)/A,
+    /// so that G_z = A(p γ1 + q γ2) + C r γ3; H = ½A(p² + q²) + ½C r² + μu holds because u2 is a
+    /// root of the nutation cubic. Q = q_x(θ) ⊗ q_z(φ) = (c cφ, s cφ, −s sφ, c sφ), c = cos θ/2,
+    /// s = sin θ/2, cφ = cos φ/2, sφ = sin φ/2. At sin θ = 0 (a sleeping top) p = q = 0.
+    Eigen::VectorXd full_state(const State& x, double phase) const {
+        check_state(x);
+        const Nutation n = nutation(top_.A(), top_.C(), top_.mu(), x[0], x[1], x[2]);
+        const double u = std::clamp(n.u2, -1.0, 1.0);
+        const double theta = std::acos(u);
+        const double sin_theta = std::sin(theta);
+        const double transverse = sin_theta > 1e-12 ? (x[0] - top_.C() * x[2] * u) / (top_.A() * sin_theta) : 0.0;
+        Eigen::VectorXd full(LagrangeTop::dim);
+        full << transverse * std::sin(phase), transverse * std::cos(phase), x[2], std::cos(0.5 * theta) * std::cos(0.5 * phase),
+            std::sin(0.5 * theta) * std::cos(0.5 * phase), -std::sin(0.5 * theta) * std::sin(0.5 * phase),
+            std::cos(0.5 * theta) * std::sin(0.5 * phase);
+        return full;
+    }
+
     static constexpr std::array<OutputInfo, 7> outputs_info{{{"u1", false},
                                                              {"u2", false},
                                                              {"u3", false},

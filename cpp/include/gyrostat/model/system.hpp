@@ -45,6 +45,11 @@ struct OutputInfo {
 ///   State initial_state(const Eigen::VectorXd& given) const;     completes a shorter initial state
 ///                                                                (ω alone → ω, identity quaternion)
 ///                                                                (default: the size must be dim)
+///   Eigen::VectorXd full_state(const State& slow, double phase) const;
+///                                                                an averaged model: a state of the
+///                                                                model it averages with these slow
+///                                                                variables, at the fast phase given
+///                                                                (the model ladder's switch up)
 /// A system that needs no integration gives instead of rhs
 ///   auto flow(double t0, const State& y0) const;                 an object with State at(double t)
 namespace system {
@@ -86,6 +91,12 @@ struct has_initial_state : std::false_type {};
 template <class S>
 struct has_initial_state<S, std::void_t<decltype(std::declval<const S&>().initial_state(
                                 std::declval<const Eigen::VectorXd&>()))>> : std::true_type {};
+
+template <class S, class = void>
+struct has_full_state : std::false_type {};
+template <class S>
+struct has_full_state<S, std::void_t<decltype(std::declval<const S&>().full_state(
+                             std::declval<const typename S::State&>(), 0.0))>> : std::true_type {};
 
 template <class S, class = void>
 struct is_closed_form : std::false_type {};

@@ -1,0 +1,483 @@
+"""The model ladder: a scene gets no more model than it needs.
+
+Each family has rungs, cheapest first; the last is the scene's most complete model (the *top*):
+
+=================  =====================================================================================
+family             rungs
+=================  =====================================================================================
+rigid_body         closed form (nothing perturbs a rigid body) → averaged (a, r) → full (Euler's equations)
+moving_mass        averaged (a, r) with the damper's quasi-static torque → reduced (the rigid body with the
+                   quasi-static damper torque) → explicit (carrier, point mass, spring and damper)
+lagrange_top       averaged over the nutation (G_z, H, r) → full top (ω, quaternion)
+orthogonal_torque  full only: its exact solution, the torque-free gyrostat at τ(t), needs τ(t) from the
+                   full run; the nearly spherical approximations of §4 are compared in the plots, not a rung
+=================  =====================================================================================
+
+``model = "auto"`` with a requested accuracy (``integration.accuracy``: the largest relative error
+accepted on the quantities the scene's outputs need) takes the cheapest rung that
+
+1. can give those quantities at all (an averaged model gives no ω(t), only its slow variables);
+2. has its assumptions holding at the start (:mod:`gyrostat.validity`);
+3. has a *measured* error estimate below the accuracy (:func:`probe`): the rung and the top are both run
+   over a probe window at the start (20 periods of the fast motion the rung averages or reduces, at most
+   a twentieth of the span), their difference in the compared quantities gives the O(ε) constant (the
+   largest difference over the window, relative to the quantities' size) and its growth (the largest
+   difference over the window's second half minus the first's, per unit time), extrapolated to the
+   horizon linearly (the growth law of first-order averaging over times ~1/ε) for slow variables, and
+   quadratically where ω(t) itself is compared (its phase error integrates the slow error), times 2.
+
+The chosen lower rung then runs with terminal events on its assumptions (:class:`Watch`): where one
+stops holding (r near zero, the nutation period long against the slow time, k² near 1), the run
+continues on the top from the state lifted back (C++ ``full_state``: the slow variables at the fast
+phase ``integration.phase``, default 0) and comes back down when the assumption holds again with a
+margin (hysteresis). :class:`SwitchedSolution` joins the pieces in the lower rung's variables; the
+report lists every switch with its time and reason. The closed form needs no estimate (it is exact to
+rounding). The integrator is part of the choice too: ``method = "auto"`` (the scenes' default) picks
+DOP853 or CVODE BDF by the stiffness measured along the run.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from gyrostat import _core
+from gyrostat.events import Event
+from gyrostat.solution import Solution
+from gyrostat.solve import solve
+from gyrostat.validity import SMALL, Assumption
+
+ACCURACY = 1e-3
+"""Default of ``integration.accuracy``: the relative error accepted on the compared quantities."""
+PROBE_PERIODS = 20
+"""The probe covers this many periods of the fast motion."""
+PROBE_FRACTION = 0.05
+"""... and at most this fraction of the span (so that it costs at most that much of a full run)."""
+SAFETY = 2.0
+"""The measured estimate is multiplied by this before it is compared with the accuracy."""
+MAX_SWITCHES = 100
+"""A run that switches more often than this stays on the top rung (the assumption flickers)."""
+
+
+# ------------------------------------------------------------------------------------ pieces
+@dataclass(frozen=True)
+class Watch:
+    """An assumption of a lower rung watched along its run: the model output ``output`` must stay
+    below ``limit``; after a switch up, the run comes back down when it falls below ``back``."""
+
+    output: str
+    limit: float
+    back: float
+    statement: str
+    scales_error: bool = False
+    """The output is the small parameter of the rung's error (slow rate / fast frequency, the
+    adiabaticity N): its limit is lowered so that the error c·value stays within the accuracy."""
+
+    def ratio(self, value: float) -> float:
+        """0 at ``back``, 1 at ``limit``."""
+        return (value - self.back) / (self.limit - self.back)
+
+
+@dataclass
+class Rung:
+    """One model of a family's ladder: the model, its initial state, and how it is compared."""
+
+    name: str
+    model: object
+    y0: np.ndarray
+    description: str
+    compare: Callable[[Solution], np.ndarray] | None = None
+    """The quantities compared with the top, (n, m), from a solution of this rung."""
+    blocked: str = ""
+    """Why this rung cannot answer the scene ("" when it can)."""
+    fast_period: float = math.inf
+    """The period of the motion the rung averages or reduces (sets the probe's length)."""
+    watches: tuple[Watch, ...] = ()
+    """Assumptions watched along the run (empty: nothing to switch on)."""
+    start_checks: Callable[[], list[Assumption]] = lambda: []
+    """The rung's assumptions at the initial state."""
+    basis: str = ""
+    """What the error estimate rests on, besides the probe."""
+    small: float | None = None
+    """The small parameter of a reduction: the probe reports its constant, measured / small."""
+    exact: bool = False
+    """The reduction is exact (no model error): the probe's difference is the integrators' own."""
+    phase_compared: bool = False
+    """The compared quantities include the fast motion itself (ω(t), not only slow variables):
+    its phase error is the integral of a frequency error that grows like the slow one, so the
+    error grows quadratically, not linearly."""
+
+
+@dataclass
+class Estimate:
+    """A measured error estimate of a rung against the top, extrapolated to the horizon."""
+
+    value: float
+    measured: float
+    growth: float
+    probe: tuple[float, float]
+    seconds: dict[str, float]
+    basis: str
+
+    def as_dict(self) -> dict:
+        return {"value": self.value, "measured_in_probe": self.measured, "growth_per_unit_time": self.growth,
+                "probe": list(self.probe), "probe_seconds": self.seconds, "basis": self.basis}
+
+
+@dataclass
+class Choice:
+    """The ladder's decision for a scene: each rung considered, why it was taken or not."""
+
+    rungs: list[Rung]
+    chosen: Rung
+    accuracy: float
+    entries: list[dict] = field(default_factory=list)
+    estimate: Estimate | None = None
+
+    @property
+    def summary(self) -> str:
+        if self.estimate is None:
+            error = "exact to rounding" if self.chosen.name == "closed_form" else "reference model"
+        else:
+            error = f"estimated error {self.estimate.value:.2g} <= {self.accuracy:g}"
+        return f"model {self.chosen.name} ({error})"
+
+    def report(self) -> dict:
+        return {"accuracy": self.accuracy, "chosen": self.chosen.name, "summary": self.summary,
+                "estimate": self.estimate.as_dict() if self.estimate else None, "rungs": self.entries}
+
+
+# ------------------------------------------------------------------------------------ compared quantities
+def slow_variables(solution) -> np.ndarray:
+    """(a, r) of a rigid-body solution, full or averaged: (n, 2)."""
+    from gyrostat.averaged import slow_variables as a_r
+
+    return np.column_stack(a_r(solution))
+
+
+def rates(solution) -> np.ndarray:
+    """ω = (p, q, r): (n, 3)."""
+    return np.column_stack([solution["p"], solution["q"], solution["r"]])
+
+
+def top_slow_variables(solution) -> np.ndarray:
+    """(G_z, H, r) of a heavy top, full (outputs) or averaged (state): (n, 3)."""
+    return np.column_stack([solution["G_z"], solution["H"], solution["r"]])
+
+
+# ------------------------------------------------------------------------------------ the probe
+def _solve(rung: Rung, y0, span, options: dict, t_eval=None, events=None) -> Solution:
+    kept = {k: v for k, v in options.items() if k in ("method", "rtol", "atol", "max_steps")}
+    return solve(rung.model, y0, span, **kept, t_eval=t_eval, events=events, check_validity=False, progress=False)
+
+
+def probe(rung: Rung, top: Rung, span: tuple[float, float], options: dict) -> Estimate:
+    """The rung's error against the top, measured at the start and extrapolated to the horizon.
+
+    Both run over [t0, t0 + T], T = min(20 fast periods, span/20), compared at 201 times:
+    d(t) = |Δ(compared quantities)| / max |compared quantities of the top|. The estimate at the
+    horizon t1 is SAFETY · (max(max d, floor) + g (t1 − t0 − T)), g = max(0, max d(second half) −
+    max d(first half)) / (T/2): the oscillating O(ε) part, plus the drift measured over the window,
+    grown linearly (quadratically, g (t² / 1.5T), where ω(t) itself is compared). The floor
+    rtol·√(fast periods in the span) is the integrators' own error (per-period local errors adding
+    up like a random walk), which the comparison with the top cannot resolve below."""
+    t0, t1 = span
+    window = min(PROBE_PERIODS * rung.fast_period, PROBE_FRACTION * (t1 - t0))
+    times = np.linspace(t0, t0 + window, 201)
+    started = time.perf_counter()
+    upper = _solve(top, top.y0, (t0, t0 + window), options, t_eval=times)
+    middle = time.perf_counter()
+    lower = _solve(rung, rung.y0, (t0, t0 + window), options, t_eval=times)
+    ended = time.perf_counter()
+    seconds = {top.name: middle - started, rung.name: ended - middle}
+    if not (upper.success and lower.success) or len(upper) != len(times) or len(lower) != len(times):
+        failed = upper if not upper.success else lower
+        return Estimate(math.inf, math.inf, math.inf, (t0, t0 + window), seconds,
+                        f"the probe failed ({failed.status}: {failed.message})")
+    reference = top.compare(upper)
+    scale = float(np.max(np.linalg.norm(reference, axis=1))) or 1.0
+    difference = np.linalg.norm(reference - rung.compare(lower), axis=1) / scale
+    measured = float(np.max(difference))
+    half = len(times) // 2
+    growth = max(0.0, float(np.max(difference[half:]) - np.max(difference[:half]))) / (0.5 * window)
+    rest = max(0.0, t1 - t0 - window)
+    # d = c t²: the halves' maxima differ by (3/4) c T², so growth = 1.5 c T and c = growth / (1.5 T)
+    # the integrators' own error as a floor: per-period local errors ~ rtol adding up like a random walk
+    periods = (t1 - t0) / rung.fast_period
+    floor = float(options.get("rtol", _core.Options().rtol)) * math.sqrt(max(periods, 1.0))
+    value = SAFETY * (max(measured, floor) + (growth * (rest + rest**2 / (1.5 * window)) if rung.phase_compared
+                                             else growth * rest))
+    law = ("quadratically (the fast phase is compared)" if rung.phase_compared else
+           "linearly (an exact reduction: the difference is the integrators' own, and grows as theirs)" if rung.exact
+           else "linearly")
+    basis = (f"probe over [{t0:g}, {t0 + window:g}] ({window / rung.fast_period:.3g} fast periods): largest relative "
+             f"difference {measured:.3g} (at least rtol x sqrt(fast periods) = {floor:.3g}, the integrators' own), "
+             f"growth {growth:.3g} per unit time, extrapolated {law} to t = {t1:g}, times {SAFETY:g}" + (f"; {rung.basis}" if rung.basis else "")
+             + (f"; constant of the O(small) error: {measured / rung.small:.3g}" if rung.small else ""))
+    return Estimate(value, measured, growth, (t0, t0 + window), seconds, basis)
+
+
+def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy: float = ACCURACY) -> Choice:
+    """The cheapest rung that can answer, whose assumptions hold at the start and whose measured
+    estimate is at most ``accuracy``; the top when none is."""
+    rungs = list(rungs)
+    top = rungs[-1]
+    entries: list[dict] = []
+    for index, rung in enumerate(rungs[:-1]):
+        entry = {"rung": rung.name, "model": rung.description}
+        entries.append(entry)
+        if rung.blocked:
+            entry.update(taken=False, reason=rung.blocked)
+            continue
+        broken = [a for a in rung.start_checks() if not a.holds]
+        if broken:
+            entry.update(taken=False, reason="assumption broken at the start: " + "; ".join(map(str, broken)))
+            continue
+        if rung.name == "closed_form":
+            entry.update(taken=True, reason="nothing perturbs the body: the exact flow needs no integration",
+                         estimate=None)
+            return Choice(rungs, rung, accuracy, entries + _rest(rungs, rung))
+        t0, t1 = span
+        if not math.isfinite(rung.fast_period) or PROBE_PERIODS * rung.fast_period > PROBE_FRACTION * (t1 - t0):
+            entry.update(taken=False, reason=(
+                f"the span holds {(t1 - t0) / rung.fast_period:.3g} fast periods: too few for the averaging to pay "
+                f"(a probe of {PROBE_PERIODS} periods would cost more than {PROBE_FRACTION:.0%} of the full run)"))
+            continue
+        estimate = probe(rung, top, span, options)
+        refusal = "" if estimate.value <= accuracy else f"estimated error {estimate.value:.3g} > accuracy {accuracy:g}"
+        if not refusal:
+            rung, refusal = _fit_watches(rung, estimate, accuracy)
+            rungs[index] = rung
+        entry["estimate"] = estimate.as_dict()
+        if refusal:
+            entry.update(taken=False, reason=refusal)
+            continue
+        if estimate.value <= accuracy:
+            entry.update(taken=True, reason=f"estimated error {estimate.value:.3g} <= accuracy {accuracy:g}")
+            return Choice(rungs, rung, accuracy, entries + _rest(rungs, rung), estimate)
+        entry.update(taken=False, reason=f"estimated error {estimate.value:.3g} > accuracy {accuracy:g}")
+    entries.append({"rung": top.name, "model": top.description, "taken": True,
+                    "reason": "the scene's most complete model (the reference of the rungs below)"})
+    return Choice(rungs, top, accuracy, entries)
+
+
+def _fit_watches(rung: Rung, estimate: Estimate, accuracy: float) -> tuple[Rung, str]:
+    """The rung with its error-scaling watch fitted to the accuracy. Its error is c·x, x the
+    watched small parameter (slow/fast, N) and c measured by the probe (its largest difference
+    over x at the start). At a switch up the error is at most 3c·x: c·x carried by the lower
+    rung, and up to 2c·x from lifting at a fixed phase instead of the true one (the slow
+    variables' oscillation c·x·f(φ) differs by at most twice its amplitude). The run therefore
+    leaves the rung where SAFETY·3c·x reaches the accuracy: limit = min(the assumption's own
+    limit, accuracy / (3 SAFETY c)), and comes back below limit/2; the estimate covers it,
+    SAFETY·3c·limit. ("" or why the rung cannot hold the accuracy even at the start.)"""
+    watches = list(rung.watches)
+    scaling = [i for i, w in enumerate(watches) if w.scales_error]
+    if not scaling or not math.isfinite(estimate.measured):
+        return rung, ""
+    i = scaling[0]
+    watch = watches[i]
+    names = list(rung.model.output_names)
+    start = float(rung.model._core.outputs_at(estimate.probe[0], np.asarray(rung.y0, float))[names.index(watch.output)])
+    if not start > 0:
+        return rung, ""
+    c = estimate.measured / start
+    limit = min(watch.limit, accuracy / (3.0 * SAFETY * c)) if c > 0 else watch.limit
+    if start >= limit:
+        return rung, (f"the measured error constant c = {c:.3g} of the O({watch.output}) error needs {watch.output} <= "
+                      f"{limit:.3g} for the accuracy {accuracy:g}; it is {start:.3g} at the start")
+    watches[i] = dataclasses.replace(watch, limit=limit, back=0.5 * limit)
+    estimate.value = max(estimate.value, 3.0 * SAFETY * c * limit)
+    estimate.basis += (f"; error = c {watch.output} with c = {c:.3g} (measured): the run switches up where "
+                       f"{watch.output} reaches {limit:.3g} and back below {0.5 * limit:.3g}, an error of at most "
+                       f"{SAFETY:g} x 3c x {limit:.3g} = {3.0 * SAFETY * c * limit:.3g} there")
+    return dataclasses.replace(rung, watches=tuple(watches)), ""
+
+
+def _rest(rungs: list[Rung], chosen: Rung) -> list[dict]:
+    above = rungs[rungs.index(chosen) + 1:]
+    return [{"rung": r.name, "model": r.description, "taken": False, "reason": "not needed"} for r in above]
+
+
+# ------------------------------------------------------------------------------------ switching
+class SwitchedSolution:
+    """A run that went up and down the ladder, in the lower rung's variables: the pieces run on
+    the top are mapped down by the lower model's own projection (C++ ``initial_state``) and its
+    outputs evaluated there (C++ ``outputs_at``). ``segments``: (rung name, Solution) in order;
+    ``switches``: (t, from, to, reason); ``rung``: per output time, 0 on the lower rung, 1 on the top."""
+
+    def __init__(self, lower: Rung, top: Rung, segments: list[tuple[str, Solution]], switches: list[tuple]):
+        self.model = lower.model
+        self.segments, self.switches = segments, switches
+        self.notes: list[str] = []
+        core = lower.model._core
+        ts, ys, outs, rung = [], [], [], []
+        for name, sol in segments:
+            if not len(sol):
+                continue
+            ts.append(sol.t)
+            if name == lower.name:
+                ys.append(sol.y)
+                outs.append(np.column_stack([sol[n] for n in core.output_names]) if core.output_names else
+                            np.zeros((len(sol), 0)))
+            else:
+                projected = np.array([core.initial_state(row) for row in sol.y])
+                ys.append(projected)
+                outs.append(np.array([core.outputs_at(float(t), row) for t, row in zip(sol.t, projected)]))
+            rung.append(np.full(len(sol), 0.0 if name == lower.name else 1.0))
+        dim, n_out = len(core.state_names), len(core.output_names)
+        self.t = np.concatenate(ts) if ts else np.zeros(0)
+        self.y = np.vstack(ys) if ys else np.zeros((0, dim))
+        self._outputs = np.vstack(outs) if outs else np.zeros((0, n_out))
+        self.rung = np.concatenate(rung) if rung else np.zeros(0)
+        self.state_names = tuple(core.state_names)
+        self.output_names = tuple(core.output_names)
+        last = segments[-1][1]
+        self.status, self.message, self.success = last.status, last.message, last.success
+        self.method = "+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in segments))
+        self.t_last = last.t_last
+        self.y_last = (last.y_last if segments[-1][0] == lower.name else np.asarray(core.initial_state(last.y_last)))
+        self.h_next = last.h_next
+        self.stats = {k: sum(sol.stats[k] for _, sol in segments) for k in last.stats if k != "last_step"}
+        self.stats["last_step"] = last.stats["last_step"]
+        self.event_names, self.t_events, self.terminal_event = (), [], None
+
+    @property
+    def outputs(self) -> dict[str, np.ndarray]:
+        return {name: self._outputs[:, i] for i, name in enumerate(self.output_names)}
+
+    @property
+    def conserved(self) -> tuple[str, ...]:
+        return ()
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.state_names or name in self.output_names
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name == "t":
+            return self.t
+        if name in self.state_names:
+            return self.y[:, self.state_names.index(name)]
+        if name in self.output_names:
+            return self._outputs[:, self.output_names.index(name)]
+        raise KeyError(f"{name!r} is neither a state component ({', '.join(self.state_names)}) nor an output "
+                       f"({', '.join(self.output_names)}) of this solution")
+
+    def columns(self) -> dict[str, np.ndarray]:
+        columns = {"t": self.t, **{n: self[n] for n in self.state_names}, **self.outputs}
+        columns["rung"] = self.rung
+        return columns
+
+    def __repr__(self) -> str:
+        return (f"SwitchedSolution({len(self)} times, {len(self.switches)} switches, status={self.status!r}, "
+                f"method={self.method!r})")
+
+
+def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
+    """g(t, y) on the top rung: the largest Watch.ratio of the lower model's outputs at the
+    projected state, minus 0 (so g falls through 0 where every assumption holds with margin)."""
+    core = lower.model._core
+    names = list(core.output_names)
+    indices = [names.index(w.output) for w in lower.watches]
+
+    def back_down(t, y):
+        values = np.asarray(core.outputs_at(float(t), np.asarray(y, float)))
+        ratios = [w.ratio(values[i]) for w, i in zip(lower.watches, indices)]
+        worst = max(ratios)
+        return worst if math.isfinite(worst) else 1.0
+
+    back_down.direction = -1
+    back_down.terminal = True
+    back_down.__name__ = "assumptions hold again"
+    return back_down
+
+
+def run(choice: Choice, span: tuple[float, float], options: dict, phase: float = 0.0, progress=None):
+    """Solves the chosen rung over the span; a lower rung with watched assumptions switches up to
+    the top where one stops holding and back down where all hold again. Returns a Solution, or a
+    :class:`SwitchedSolution` when the run switched."""
+    rung, top = choice.chosen, choice.rungs[-1]
+    t0, t1 = span
+    kept = {k: v for k, v in options.items() if k not in ("n_out", "t_eval", "events")}
+    n_out = int(options.get("n_out", _core.Options().n_out))
+    grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
+    extra_events = list(options.get("events", []))
+    if rung is top or not rung.watches:
+        return solve(rung.model, rung.y0, span, **kept, t_eval=grid, events=extra_events or None,
+                     check_validity=False, progress=progress if progress is not None else False)
+    fails = [Event(w.output, w.limit, 1, True, w.statement) for w in rung.watches]
+    back_down = _trouble(rung)
+    segments: list[tuple[str, Solution]] = []
+    switches: list[tuple] = []
+    t, state, on_top = t0, rung.y0, False
+    while True:
+        times = grid[(grid > t) | ((grid == t) & (not segments))]
+        times = times if len(times) else np.array([t1])
+        if on_top:
+            sol = solve(top.model, state, (t, t1), **kept, t_eval=times, events=[back_down], check_validity=False,
+                        progress=False)
+            segments.append((top.name, sol))
+        else:
+            sol = solve(rung.model, state, (t, t1), **kept, t_eval=times, events=fails, check_validity=False,
+                        progress=False)
+            segments.append((rung.name, sol))
+        if not sol.success or sol.terminal_event is None or sol.t_last >= t1:
+            break
+        t = float(sol.t_last)
+        if on_top:
+            state = np.asarray(rung.model._core.initial_state(np.asarray(sol.y_last)))
+            switches.append((t, top.name, rung.name, "every watched assumption holds again with margin"))
+        else:
+            watch = rung.watches[sol.terminal_event]
+            state = np.asarray(rung.model._core.full_state(np.asarray(sol.y_last), float(phase)))
+            if top.model.attitude and len(state) < top.model.dim:
+                state = top.model.initial_state(state)
+            switches.append((t, rung.name, top.name, f"{watch.statement}: {watch.output} reached {watch.limit:g}"))
+        on_top = not on_top
+        if len(switches) > MAX_SWITCHES:
+            rest = solve(top.model, state if on_top else rung.model._core.full_state(state, float(phase)), (t, t1),
+                         **kept, t_eval=grid[grid > t], check_validity=False, progress=False)
+            segments.append((top.name, rest))
+            switches.append((t, rung.name, top.name, f"more than {MAX_SWITCHES} switches: stays on the top"))
+            break
+    if not switches:
+        return segments[0][1]
+    return SwitchedSolution(rung, top, segments, switches)
+
+
+# ------------------------------------------------------------------------------------ the chart
+def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[dict]:
+    """Every rung that can answer, run over the whole span (switching where it would), timed, and
+    its largest relative error in the compared quantities against the top at the output times:
+    what the ladder chart draws. (The chart's cost: one run of every rung, the top included.)"""
+    top = choice.rungs[-1]
+    runs = {}
+    for rung in choice.rungs:
+        if rung.blocked or rung.model is None:
+            continue
+        started = time.perf_counter()
+        solution = run(Choice(choice.rungs, rung, choice.accuracy), span, options)
+        runs[rung.name] = (time.perf_counter() - started, solution)
+    seconds_top, reference = runs[top.name]
+    expected = top.compare(reference)
+    scale = float(np.max(np.linalg.norm(expected, axis=1))) or 1.0
+    rows = []
+    for rung in choice.rungs:
+        if rung.name not in runs:
+            continue
+        seconds, solution = runs[rung.name]
+        n = min(len(solution), len(reference))
+        compare = rung.compare if rung.compare is not None else top.compare
+        error = 0.0 if rung is top else float(np.max(np.linalg.norm(compare(solution)[:n] - expected[:n], axis=1))) / scale
+        estimate = next((e.get("estimate") for e in choice.entries if e["rung"] == rung.name), None)
+        rows.append({"rung": rung.name, "seconds": seconds, "error": error, "chosen": rung is choice.chosen,
+                     "estimate": estimate["value"] if estimate else None, "steps": int(solution.stats["steps"]),
+                     "switches": len(getattr(solution, "switches", []))})
+    return rows

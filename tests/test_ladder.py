@@ -1,0 +1,240 @@
+"""The model ladder (issue 15): model = "auto" takes the cheapest rung whose assumptions hold and
+whose measured error estimate meets the requested accuracy, switches up and down along the run,
+and reports every choice. References: the full model at tight tolerance over the whole span
+(what each rung approximates), the papers' own scenes, and closed forms for the lift maps."""
+
+from __future__ import annotations
+
+import copy
+import json
+import subprocess
+import sys
+import tomllib
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrostat as g
+from gyrostat import lagrange, runner
+from gyrostat.ladder import SwitchedSolution
+from gyrostat.scene import SCENES, Scene, SceneError
+
+TIGHT = dict(rtol=1e-12, atol=1e-14)
+
+
+def _doc(name: str) -> dict:
+    with open(SCENES / f"{name}.toml", "rb") as handle:
+        return tomllib.load(handle)
+
+
+def _solve(doc: dict, name: str = "scene"):
+    scene = Scene.from_dict(copy.deepcopy(doc), name)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        solutions, report, derived = runner.solve_scene(scene, progress=False)
+    return scene, next(iter(solutions.values())), report
+
+
+def _slow_error(solution, reference) -> float:
+    """Largest |Δ(a, r)| relative to the largest |(a, r)| of the reference."""
+    a, r = np.hypot(reference["p"], reference["q"]), reference["r"]
+    return float(np.max(np.hypot(solution["a"] - a, solution["r"] - r)) / np.max(np.hypot(a, r)))
+
+
+def _switching_doc() -> dict:
+    """Paper 000's body (A = 8, C = 4) with a weaker cavity (ν = 1e4), an axial torque that drives
+    r through zero and a small transverse torque M1 = 0.002 that the (a, r) averaging drops: the
+    reduction is not exact, and the averaging fails where the fast frequency (C − A) r / A
+    vanishes."""
+    doc = _doc("p000_A8_C4_M3-0p1")
+    doc["torques"][0]["viscosity"] = 1e4
+    doc["torques"][1]["moment"] = [0.002, 0.0, -0.005]
+    doc["initial"]["omega"] = [1.0, 0.0, 2.0]
+    doc["integration"].update(model="auto", accuracy=0.05, t_span=[0.0, 4000.0], n_out=4001)
+    doc["outputs"] = {"plots": ["xy", "slow"]}
+    return doc
+
+
+def test_exact_reduction_takes_the_averaged_model_within_its_estimate():
+    """Paper 000 (A = 8, C = 4, M3 = -0.1): the (a, r) reduction of a symmetric body under the
+    cavity and an axial torque is exact, so r crossing zero (t ≈ 40) is no limit: auto takes
+    the averaged model, and it agrees with Euler's equations through the crossing to the
+    integration tolerance, inside its measured estimate."""
+    doc = _doc("p000_A8_C4_M3-0p1")
+    doc["integration"].update(model="auto", accuracy=1e-6)
+    scene, solution, report = _solve(doc)
+    assert report["model"] == "averaged"
+    ladder = report["ladder"]
+    assert ladder["chosen"] == "averaged" and ladder["switches"] == []
+    estimate = ladder["estimate"]["value"]
+    full = g.solve(scene.ladder[-1].model, doc["initial"]["omega"], (0.0, 60.0), t_eval=solution.t, **TIGHT)
+    assert np.min(full["r"]) < 0 < full["r"][0]  # the crossing is in the span
+    error = _slow_error(solution, full)
+    assert error <= estimate <= 1e-6, f"error {error:.3g} must be within the estimate {estimate:.3g} and 1e-6"
+    assert "exact" in ladder["estimate"]["basis"]
+
+
+def test_paper_002_own_scene_takes_the_full_model():
+    """Paper 002's own scene breaks the averaging (the cavity rate is ~1e8 times the fast
+    frequency): auto refuses the averaged model at the start and says why."""
+    doc = _doc("p002_paper_scene")
+    doc["integration"]["model"] = "auto"
+    scene, solution, report = _solve(doc)
+    assert report["model"] == "full"
+    averaged = next(e for e in report["ladder"]["rungs"] if e["rung"] == "averaged")
+    assert not averaged["taken"] and "slow rate / fast frequency" in averaged["reason"]
+
+
+def test_a_short_span_takes_the_full_model():
+    """Paper 000's scene with the transverse torque over its own 60 s: too few fast periods for
+    the averaging to pay or to hold, so the full model, with the reason."""
+    doc = _switching_doc()
+    doc["integration"]["t_span"] = [0.0, 60.0]
+    _, _, report = _solve(doc)
+    assert report["model"] == "full"
+    assert "fast periods" in report["ladder"]["rungs"][1]["reason"] or \
+        "BROKEN" in report["ladder"]["rungs"][1]["reason"]
+
+
+def test_switching_through_r_zero_matches_the_full_model():
+    """The averaging fails as r approaches zero: the run switches up to Euler's equations where
+    slow/fast reaches 0.1, comes back down where it falls below 0.05, and matches the full model
+    through the crossing to the requested accuracy (and within the estimate)."""
+    doc = _switching_doc()
+    scene, solution, report = _solve(doc)
+    assert report["model"] == "averaged"
+    assert isinstance(solution, SwitchedSolution)
+    switches = report["ladder"]["switches"]
+    assert [s["to"] for s in switches[:2]] == ["full", "averaged"], switches
+    up, down = switches[0]["t"], switches[1]["t"]
+    averaged = scene.ladder[1].model
+    on_top = solution.t[(solution.t > up) & (solution.t < down)]
+    assert np.all(solution.rung[np.isin(solution.t, on_top)] == 1)
+    # at the switch up the averaged model's slow/fast ratio is the limit 0.1
+    segment = solution.segments[0][1]
+    assert segment.terminal_event == 0
+    assert averaged._core.outputs_at(up, segment.y_last)[-1] == pytest.approx(0.1, rel=1e-6)
+    full = g.solve(scene.ladder[-1].model, doc["initial"]["omega"], (0.0, 4000.0), t_eval=solution.t, **TIGHT)
+    assert full["r"][0] > 0 > np.min(full["r"])  # r crosses zero in the span
+    error = _slow_error(solution, full)
+    estimate = report["ladder"]["estimate"]["value"]
+    assert error <= 0.05 and error <= estimate, f"error {error:.3g}, estimate {estimate:.3g}, accuracy 0.05"
+    # times are those asked for, once each, in order; the run's columns say which rung made each
+    assert np.array_equal(solution.t, np.linspace(0.0, 4000.0, 4001))
+    assert set(np.unique(solution.columns()["rung"])) == {0.0, 1.0}
+
+
+def test_moving_mass_ladder_on_the_explorer_like_body():
+    """Explorer-1-like prolate body with the explicit moving-mass damper (moments (10, 10, 2),
+    m = 0.1, ρ = 1, Ω = 5, λ = 1, ω0 = (0.05, 0, 2)): λ|ν|/Ω² = 0.064, |G|²/(A²Ω²) = 0.0064, so the
+    quasi-static reduction holds; asked for ω(t), auto takes it (the averaged one gives no ω), and
+    it agrees with the explicit model within its estimate."""
+    doc = {"kind": "moving_mass", "body": {"moments": [10.0, 10.0, 2.0]},
+           "damper": {"mass": 0.1, "arm": 1.0, "frequency": 5.0, "damping": 1.0},
+           "initial": {"omega": [0.05, 0.0, 2.0]},
+           "integration": {"model": "auto", "accuracy": 0.05, "method": "dop853", "rtol": 1e-8, "atol": 1e-10,
+                           "t_span": [0.0, 2000.0], "n_out": 401},
+           "outputs": {"plots": ["omega", "invariants"]}}
+    scene, solution, report = _solve(doc)
+    rungs = {e["rung"]: e for e in report["ladder"]["rungs"]}
+    assert "omega(t)" in rungs["averaged"]["reason"]
+    assert report["model"] == "reduced", rungs
+    basis = report["ladder"]["estimate"]["basis"]
+    assert "λ|ν|/Ω²" in basis and "constant of the O(small) error" in basis
+    explicit = scene.ladder[-1]
+    reference = g.solve(explicit.model, explicit.y0, (0.0, 2000.0), t_eval=solution.t, method="dop853", **TIGHT)
+    error = float(np.max(np.linalg.norm(solution.omega - reference.omega, axis=1))
+                  / np.max(np.linalg.norm(reference.omega, axis=1)))
+    assert error <= report["ladder"]["estimate"]["value"] <= 0.05, error
+    # the mass's own motion asked for: only the explicit model has it
+    doc["outputs"]["plots"] = ["mass"]
+    _, _, report = _solve(doc)
+    assert report["model"] == "explicit"
+
+
+def test_lagrange_top_takes_the_averaged_model_within_its_estimate():
+    """Paper 003 case 3 (θ0 = 150°): the nutation averaging holds (N ≤ 0.06) and the span holds
+    enough nutation periods: auto takes the averaged top; the ladder chart's own measurement
+    (every rung over the whole span against the full top) is within the estimate."""
+    doc = _doc("p003_case3_theta0_150deg")
+    doc["integration"].update(model="auto", accuracy=1e-2)
+    doc["outputs"] = {"plots": ["slow", "roots", "validity", "ladder"]}
+    scene, solution, report = _solve(doc)
+    assert report["model"] == "averaged"
+    measured = {row["rung"]: row for row in report["ladder"]["measured"]}
+    assert measured["averaged"]["chosen"] and measured["full"]["error"] == 0.0
+    assert 0 < measured["averaged"]["error"] <= measured["averaged"]["estimate"] <= 1e-2
+    # asking for θ(t) itself blocks the averaged top
+    doc["outputs"]["plots"] = ["nutation"]
+    _, _, report = _solve(doc)
+    assert report["model"] == "full" and "theta(t)" in report["ladder"]["rungs"][0]["reason"]
+
+
+def test_lift_maps_against_closed_forms():
+    """full_state: (a, r) at phase φ is ω = (a cos φ, a sin φ, r); the top's (G_z, H, r) lifts to
+    the top of its nutation (cos θ = u2, a turning point) with the quaternion of the z-x-z angles
+    (0, arccos u2, φ) built independently in Python; both map back to the same slow state."""
+    averaged = g.AveragedModel(g.Body([8.0, 8.0, 4.0]), [])
+    assert np.allclose(averaged._core.full_state([0.5, -1.0], 0.3), [0.5 * np.cos(0.3), 0.5 * np.sin(0.3), -1.0],
+                       rtol=0, atol=1e-16)
+    assert np.allclose(averaged._core.initial_state([0.3, 0.4, 1.0]), [0.5, 1.0], rtol=0, atol=1e-16)
+    top = lagrange.LagrangeAveraged(1.5, 1.0, 0.5, [])
+    full_top = lagrange.LagrangeTop(1.5, 1.0, 0.5, [])
+    x = np.asarray(top._core.initial_state(lagrange.initial_state([0.1, 0.2, 1.7], 0.6)))
+    lifted = np.asarray(top._core.full_state(x, 0.7))
+    assert np.allclose(top._core.initial_state(lifted), x, rtol=1e-14, atol=0)
+    outputs = dict(zip(full_top.output_names, full_top._core.outputs_at(0.0, lifted)))
+    assert outputs["cos_theta"] == pytest.approx(outputs["u2"], abs=1e-14)
+    assert abs(outputs["cos_theta_rate"]) < 1e-14
+    expected = lagrange.initial_state(lifted[:3], np.arccos(outputs["u2"]), 0.7, 0.0)
+    assert np.allclose(lifted[3:], expected[3:], atol=1e-15)
+    with pytest.raises(ValueError, match="not an averaged model"):
+        full_top._core.full_state([1.0, 2.0, 3.0], 0.0)
+    with pytest.raises(ValueError, match="a = sqrt"):
+        averaged._core.full_state([-1.0, 1.0], 0.0)
+
+
+def test_sweep_resolves_auto_once_with_the_ladder():
+    """A sweep of an auto scene solves every member on the rung the ladder chose for the scene
+    as written (here the averaged model of paper 000's exact reduction)."""
+    doc = _doc("p000_A8_C4_M3-0p1")
+    doc["integration"].update(model="auto", accuracy=1e-6)
+    ds = g.sweep(doc, [g.Parameter("M3", ["torques[1].moment[2]"], [-0.01, -0.02])], progress=False)
+    assert ds.attrs["model"] == "averaged"
+    assert set(ds.data_vars) >= {"a", "r"}
+
+
+def test_errors_name_the_value():
+    doc = _doc("p000_A8_C4_M3-0p1")
+    doc["integration"].update(model="auto", accuracy=-1.0)
+    with pytest.raises(SceneError, match="accuracy"):
+        Scene.from_dict(doc)
+    doc = {"kind": "moving_mass", "body": {"moments": [10.0, 10.0, 2.0]},
+           "damper": {"mass": 0.1, "arm": 1.0, "frequency": 5.0, "damping": 1.0},
+           "initial": {"omega": [0.05, 0.0, 2.0]},
+           "integration": {"model": "reduced", "t_span": [0.0, 10.0]}, "outputs": {"plots": ["mass"]}}
+    with pytest.raises(SceneError, match="model = 'reduced'.*mass"):
+        Scene.from_dict(doc)
+
+
+def test_cli_prints_the_choice_and_writes_the_chart(tmp_path):
+    doc = _switching_doc()
+    doc["outputs"]["plots"] = ["xy", "ladder"]
+    path = tmp_path / "switching.toml"
+    lines = []
+    for table in ("body", "initial", "integration", "outputs"):
+        lines.append(f"[{table}]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in doc[table].items()]
+    for torque in doc["torques"]:
+        lines.append("[[torques]]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in torque.items()]
+    path.write_text("\n".join(lines) + "\n")
+    done = subprocess.run([sys.executable, "-m", "gyrostat", "run", str(path), "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "ladder (accuracy 0.05): model averaged (estimated error" in done.stdout
+    assert "-> full (slow rate / fast frequency" in done.stdout
+    report = json.loads((tmp_path / "out" / "switching" / "report.json").read_text())
+    assert report["ladder"]["switches"] and report["ladder"]["estimate"]["basis"].startswith("probe over")
+    assert (tmp_path / "out" / "switching" / "ladder.png").stat().st_size > 10_000
