@@ -141,14 +141,19 @@ def chart(rows: list[dict]) -> None:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(8, 5))
+    floor = 1e-13
     for i, row in enumerate(rows):
-        color = f"C{i % 10}"
-        ax.loglog(row["t_full"], 1e-16, "s", color=color, ms=7, alpha=0.0)  # keeps the axes honest
-        ax.annotate("", xy=(row["t_auto"], max(row["error"], 1e-16)), xytext=(row["t_full"], max(row["error"], 1e-16)),
+        color = plt.cm.tab20(i / max(len(rows) - 1, 1))
+        error = max(row["error"], floor)
+        ax.annotate("", xy=(row["t_auto"], error), xytext=(row["t_full"], error),
                     arrowprops=dict(arrowstyle="->", color=color, lw=1.5))
-        ax.loglog(row["t_auto"], max(row["error"], 1e-16), "o", color=color, ms=8,
+        full = row["chosen"] in ("full", "explicit")
+        ax.loglog(row["t_auto"], error, "x" if full else "o", color=color, ms=8, mew=2,
                   label=f"{row['label']}: {row['chosen']}, {row['t_full'] / row['t_auto']:.3g}x")
-        ax.loglog(row["t_full"], max(row["error"], 1e-16), "|", color=color, ms=12, mew=2)
+        ax.loglog(row["t_full"], error, "|", color=color, ms=12, mew=2)
+    ax.axhline(floor, color="0.6", lw=0.8, ls=":")
+    ax.text(0.99, floor * 1.5, "x: the full model chosen (error 0, drawn here)", transform=ax.get_yaxis_transform(),
+            ha="right", fontsize=8, color="0.4")
     ax.set_xlabel("time for the whole span [s] (| always-full, o auto; the arrow is the saving)")
     ax.set_ylabel("error of auto against the full model [1] (relative)")
     ax.set_title("The model ladder: auto against always-full at t = 100/eps")
