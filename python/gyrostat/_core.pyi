@@ -327,6 +327,11 @@ class Result:
     def method(self) -> str:
         ...
     @property
+    def methods_used(self) -> list[str]:
+        """
+        The integrators that carried the run, in order of first use.
+        """
+    @property
     def output_conserved(self) -> list[bool]:
         ...
     @property
@@ -347,6 +352,11 @@ class Result:
     @property
     def success(self) -> bool:
         ...
+    @property
+    def switches(self) -> list:
+        """
+        Method 'auto': each switch as (t, method switched to, reason).
+        """
     @property
     def t(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
