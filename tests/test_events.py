@@ -18,7 +18,7 @@ from references import euler_poinsot
 
 J = np.array([1.0, 2.0, 3.0])
 W0 = np.array([1.0, 0.5, -0.3])
-INTEGRATORS = ["dop853", "taylor", "cvode_bdf", "cvode_adams", "arkode_fehlberg8"]
+INTEGRATORS = ["dop853", "taylor", "cvode_bdf", "cvode_adams", "arkode_fehlberg8", "auto"]
 
 
 def exact_zeros(component, t1):

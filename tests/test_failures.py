@@ -30,7 +30,7 @@ def test_bdf_solves_the_stiff_problem():
     assert sol.stats["steps"] < 2000
 
 
-@pytest.mark.parametrize("method", ["dop853", "taylor", "cvode_bdf", "arkode_fehlberg8"])
+@pytest.mark.parametrize("method", ["dop853", "taylor", "cvode_bdf", "arkode_fehlberg8", "auto"])
 def test_overflow_gives_non_finite_state(method):
     # spherical body, anti-damping: ω = ω0 exp(100 t) overflows double precision at t ≈ 7.09
     model = g.Model(g.Body([1, 1, 1]), [g.LinearDamping(-100 * np.eye(3))])

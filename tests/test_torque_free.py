@@ -29,6 +29,7 @@ PER_PERIOD_FACTOR = {
     "taylor": 1.5e3,  # measured K ≤ 274 (2000 periods, rtol 1e-12)
     # no tolerance: with no torque the splitting is the exact flow (rounding per step, step 1.0)
     "splitting": 1e2,
+    "auto": 1e3,  # the torque-free body is not stiff: auto is DOP853 step for step
 }
 
 

@@ -195,6 +195,16 @@ void expose_integrate(py::module_& m) {
              },
              py::arg("t"), "The solution at the times t (1-D), from each step's continuous extension.")
         .def_readonly("stats", &Result::stats)
+        .def_readonly("methods_used", &Result::methods_used,
+                      "The integrators that carried the run, in order of first use.")
+        .def_property_readonly(
+            "switches",
+            [](const Result& r) {
+                py::list switches;
+                for (const auto& s : r.switches) switches.append(py::make_tuple(s.t, s.to, s.reason));
+                return switches;
+            },
+            "Method 'auto': each switch as (t, method switched to, reason).")
         .def_property_readonly("status", [](const Result& r) { return integrate::status_name(r.status); })
         .def_readonly("message", &Result::message)
         .def_readonly("t_last", &Result::t_last, "Where the run stopped: the last accepted time.")

@@ -21,6 +21,7 @@ constexpr NamedMethod kMethods[] = {
     {"arkode_fehlberg8", Method::ArkodeFehlberg8},
     {"taylor", Method::Taylor},
     {"splitting", Method::Splitting},
+    {"auto", Method::Auto},
 };
 
 }  // namespace

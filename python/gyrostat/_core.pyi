@@ -331,6 +331,11 @@ class Result:
     def method(self) -> str:
         ...
     @property
+    def methods_used(self) -> list[str]:
+        """
+        The integrators that carried the run, in order of first use.
+        """
+    @property
     def output_conserved(self) -> list[bool]:
         ...
     @property
@@ -351,6 +356,11 @@ class Result:
     @property
     def success(self) -> bool:
         ...
+    @property
+    def switches(self) -> list:
+        """
+        Method 'auto': each switch as (t, method switched to, reason).
+        """
     @property
     def t(self) -> numpy.typing.NDArray[numpy.float64]:
         ...

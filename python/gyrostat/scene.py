@@ -140,7 +140,8 @@ TITLE["sweep"] = Field(Table({
         "numeric entries")
 
 _DEFAULT = _core.Options()  # the engine's defaults: the one place where they live
-METHOD = Field(Choice(*_core.methods()), default=_DEFAULT.method, doc="integrator (gyrostat.METHODS)")
+METHOD = Field(Choice(*_core.methods()), default="auto",
+               doc="integrator (gyrostat.METHODS); auto: DOP853 or CVODE BDF by the stiffness measured along the run")
 RTOL = Field(float, default=_DEFAULT.rtol, doc="relative tolerance", check=positive)
 ATOL = Field(float, default=_DEFAULT.atol, doc="absolute tolerance", check=non_negative)
 N_OUT = Field(int, default=_DEFAULT.n_out, doc="number of evenly spaced output times", check=at_least(2))
@@ -440,7 +441,7 @@ class Averaged(RigidBody):
 class MovingMass(Kind):
     name = "moving_mass"
     doc = ("The explicit moving-mass model (paper 001): a carrier and a point mass on a damped spring, "
-           "9 states, stiff for a strong damper (method cvode_bdf by default).")
+           "9 states, stiff for a strong damper (method auto by default: CVODE BDF where it is stiff).")
     plots = ("omega", "invariants", "mass", "ladder")
 
     @property
@@ -461,8 +462,7 @@ class MovingMass(Kind):
                                                            "averaged: (a, r); reduced: the quasi-static damper torque; "
                                                            "explicit: the mass, spring and damper"),
                                         "accuracy": ACCURACY, "phase": PHASE,
-                                        "method": Field(Choice(*_core.methods()), default="cvode_bdf",
-                                                        doc="integrator (stiff: cvode_bdf)"),
+                                        "method": METHOD,
                                         "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT}),
                                  required=True, doc="the run"),
             "outputs": _outputs(self.plots, ["omega", "invariants", "mass"]),

@@ -30,7 +30,10 @@ class Solution:
     message: the reason in words (empty on success).
     t_last, y_last, h_next: where the run stopped and the step it would have tried next; pass
        the solution as ``y0`` to :func:`gyrostat.solve` to continue the run from there.
-    method: the integrator (or ``"closed_form"``).
+    method: the integrator asked for (``"auto"`` included), or ``"closed_form"``.
+    methods_used, method_switches: the integrators that carried the run, in order of first use;
+       for ``method="auto"``, each switch as (t, method, reason): where the run went from DOP853
+       to CVODE BDF or back, and the measured h·|λ| that decided it.
     notes: remarks added after the run (assumptions checked, paper-specific analysis).
 
     The arrays are views of the engine's memory, made on first access: no copy, no physics
@@ -162,8 +165,8 @@ class Solution:
     def to_xarray(self):
         """The solution as an ``xarray.Dataset``: dimension ``time`` (its coordinate, in s), the
         state components and outputs as variables with their units, each event's crossing
-        times (``t_event_<name>``), and the method, status, message and statistics as
-        attributes; ``to_netcdf`` writes it."""
+        times (``t_event_<name>``), and the method (the methods used and the switches of
+        ``"auto"``), status, message and statistics as attributes; ``to_netcdf`` writes it."""
         import xarray as xr
 
         from gyrostat.output import unit
@@ -175,7 +178,9 @@ class Solution:
             key = _variable(label)
             variables[f"t_event_{key}"] = (f"crossing_{key}", np.asarray(times),
                                            {"units": "s", "long_name": f"crossings of {label}"})
-        attrs = {"method": self.method, "status": self.status, "message": self.message,
+        attrs = {"method": self.method, "methods_used": ", ".join(self.methods_used),
+                 "method_switches": "\n".join(f"t = {t!r}: {to} ({why})" for t, to, why in self.method_switches),
+                 "status": self.status, "message": self.message,
                  **{name: value for name, value in self.stats.items()},
                  "terminal_event": "" if self.terminal_event is None else self.event_names[self.terminal_event]}
         if self.notes:
@@ -218,6 +223,17 @@ class Solution:
     @property
     def method(self) -> str:
         return self._result.method
+
+    @property
+    def methods_used(self) -> tuple[str, ...]:
+        """The integrators that carried the run, in order of first use (one unless ``"auto"``)."""
+        return tuple(self._result.methods_used)
+
+    @property
+    def method_switches(self) -> list[tuple[float, str, str]]:
+        """Method ``"auto"``: each switch as (t, the method switched to, the reason with the
+        measured h·|λ|); empty for the other methods."""
+        return self._result.switches
 
     @property
     def success(self) -> bool:

@@ -22,20 +22,12 @@
 #include "gyrostat/ensemble.hpp"
 #include "gyrostat/model/elliptic.hpp"
 
+#include "check.hpp"
+
 using namespace gyrostat;
 using integrate::Method;
 using integrate::Status;
 
-static int failures = 0, passes = 0;
-#define CHECK(cond, what)                                                                 \
-    do {                                                                                  \
-        if (cond) {                                                                       \
-            ++passes;                                                                     \
-        } else {                                                                          \
-            ++failures;                                                                   \
-            std::printf("FAIL %s:%d: %s  [%s]\n", __FILE__, __LINE__, std::string(what).c_str(), #cond); \
-        }                                                                                 \
-    } while (0)
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 constexpr bool kSanitized = true;  // their shadow memory does not live under RLIMIT_AS
@@ -109,7 +101,7 @@ int main() {
     }
 
     const Method methods[] = {Method::Dop853, Method::Taylor, Method::CvodeBdf, Method::CvodeAdams,
-                              Method::ArkodeFehlberg8};
+                              Method::ArkodeFehlberg8, Method::Auto};
     int counts[4][2] = {};  // [kind][success]
     for (Method method : methods) {
         integrate::Options options;

@@ -21,19 +21,11 @@
 #include "gyrostat/model/orthogonal.hpp"
 #include "gyrostat/model/torque_free.hpp"
 
+#include "check.hpp"
+
 using namespace gyrostat;
 using integrate::Method;
 
-static int failures = 0, passes = 0;
-#define CHECK(cond, what)                                                          \
-    do {                                                                           \
-        if (cond) {                                                                \
-            ++passes;                                                              \
-        } else {                                                                   \
-            ++failures;                                                            \
-            std::printf("FAIL %s:%d: %s  [%s]\n", __FILE__, __LINE__, what, #cond); \
-        }                                                                          \
-    } while (0)
 
 /// The named output `name` of a Result at output row `row`.
 static double output(const integrate::Result& r, const char* name, std::size_t row) {

@@ -88,8 +88,9 @@ template <class System>
 Result arkode_erk(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
                   ARKODE_ERKTableID table, Method method, const Control* control = nullptr) {
     return sundials::run(system, t0, y0, t1, options, method, control,
-                         [&](SUNContext ctx, N_Vector y, sundials::CallbackData<System>& data, sundials::ErrorLog& log) {
-                             return arkode_detail::ErkStepper<System>(table, ctx, y, t0, options, data, log);
+                         [&](double t, SUNContext ctx, N_Vector y, sundials::CallbackData<System>& data,
+                             sundials::ErrorLog& log) {
+                             return arkode_detail::ErkStepper<System>(table, ctx, y, t, options, data, log);
                          });
 }
 

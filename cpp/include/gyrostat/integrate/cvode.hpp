@@ -107,15 +107,22 @@ private:
 
 }  // namespace cvode_detail
 
+/// Makes the CVODE stepper of a segment that starts at t (see sundials::segment).
+template <class System>
+auto cvode_maker(bool bdf, const Options& options) {
+    return [bdf, &options](double t, SUNContext ctx, N_Vector y, sundials::CallbackData<System>& data,
+                           sundials::ErrorLog& log) {
+        return cvode_detail::CvodeStepper<System>(bdf, ctx, y, t, options, data, log);
+    };
+}
+
 /// Integrates with CVODE (bdf = true: BDF + Newton + dense Jacobian, analytic where the system
 /// has one; false: Adams + fixed point). Failing runs return their partial trajectory.
 template <class System>
 Result cvode(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
              bool bdf, const Control* control = nullptr) {
     return sundials::run(system, t0, y0, t1, options, bdf ? Method::CvodeBdf : Method::CvodeAdams, control,
-                         [&](SUNContext ctx, N_Vector y, sundials::CallbackData<System>& data, sundials::ErrorLog& log) {
-                             return cvode_detail::CvodeStepper<System>(bdf, ctx, y, t0, options, data, log);
-                         });
+                         cvode_maker<System>(bdf, options));
 }
 
 }  // namespace gyrostat::integrate

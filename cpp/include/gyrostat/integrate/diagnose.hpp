@@ -39,6 +39,11 @@ std::complex<double> dominant_eigenvalue(const System& system, double t, const t
     return solver.eigenvalues()[k];
 }
 
+/// Whether the eigenvalue λ is mainly decaying (Re λ < −|λ|/2): the mode an implicit method
+/// damps at any step, and an explicit one only below its stability boundary in h·|λ|. (An
+/// oscillatory mode limits BDF too: its orders 3–5 lose stability near the imaginary axis.)
+inline bool decaying(std::complex<double> lambda) { return lambda.real() < -0.5 * std::abs(lambda); }
+
 /// A sentence for the failure message of a non-stiff method whose steps collapsed. The problem
 /// is called stiff when the dominant eigenvalue λ of the Jacobian is mainly decaying
 /// (Re λ < −|λ|/2), the step has shrunk to the order of its time scale (h·|λ| ≥ 0.1: explicit
@@ -53,7 +58,7 @@ std::string stiffness_hint(const System& system, double t, const typename System
     std::string s = " Last step h = " + format_number(h) + "; dominant eigenvalue of the Jacobian λ = " +
                     format_number(lambda.real()) + (lambda.imag() >= 0 ? " + " : " - ") +
                     format_number(std::abs(lambda.imag())) + "i, h·|λ| = " + format_number(h_rho, 3) + ".";
-    if (lambda.real() < -0.5 * rho && h_rho >= 0.1 && rho * span >= 1e3)
+    if (decaying(lambda) && h_rho >= 0.1 && rho * span >= 1e3)
         s += " The step is held by the explicit stability limit, not by accuracy: the problem is stiff; "
              "use method='cvode_bdf'.";
     return s;

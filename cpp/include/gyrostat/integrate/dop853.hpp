@@ -14,7 +14,8 @@
 #include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/dop853_tableau.hpp"
 #include "gyrostat/integrate/options.hpp"
-#include "gyrostat/integrate/recorder.hpp"
+#include "gyrostat/integrate/recording.hpp"
+#include "gyrostat/integrate/stiffness.hpp"
 
 namespace gyrostat::integrate {
 
@@ -66,28 +67,22 @@ void monomials(const std::array<State, 7>& F, const State& y, State* c) {
 }
 }  // namespace dop853_detail
 
-/// Integrates `system` from (t0, y0) to t1. Never throws on a failing run: the result carries the
-/// partial trajectory, the status and the reason. Throws std::invalid_argument on bad options.
+/// One DOP853 segment of `run` from (t0, y0) to run.t1: outputs, events, dense output and
+/// statistics continue those already in run.result (a plain run has one segment, method 'auto'
+/// several). With a `monitor`, Hairer's stiffness test runs after every accepted step and the
+/// segment stops where the monitor asks for BDF: returns true then, with Result::t_last,
+/// y_last, h_next at the hand-over; false when the run ended (at t1, a terminal event, a
+/// failure or an interruption, the Result saying which).
 template <class System>
-Result dop853(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
-              const Control* control = nullptr) {
+bool dop853_segment(const System& system, Recording<System>& run, double t0, const typename System::State& y0,
+                    const Options& options, const Control* control, StiffnessMonitor<System>* monitor = nullptr) {
     using namespace dop853_detail;
     namespace tab = dop853_tableau;
     using State = typename System::State;
     constexpr int n = System::dim;
 
-    validate(options, t0, t1);
-    require_finite(y0, "initial state y0");
-
-    Result result;
-    result.method = method_name(Method::Dop853);
-    const std::vector<double> outputs = output_times(options, t0, t1);
-    Recorder<System> record(system, result, outputs.size());
-    EventLocator<System> events(system, options.events, result);
-    result.dense = make_dense<System>(options);
-
-    const double direction = t1 >= t0 ? 1.0 : -1.0;
-    OutputCursor<System> cursor(record, outputs, direction);
+    Result& result = run.result;
+    const double t1 = run.t1, direction = run.direction;
     const double rtol = options.rtol, atol = options.atol;
     Stats& stats = result.stats;
 
@@ -98,14 +93,11 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     system.rhs(t, y, f);
     ++stats.rhs_evals;
 
-    cursor.start(t0, y);
-    events.start(t0, y);
-    keep_last(result, t, y, 0.0);  // until the first step is accepted
-    if (t0 == t1) return result;
+    if (t0 == t1) return false;
     if (!all_finite(f)) {
         result.status = Status::NonFiniteState;
         result.message = "the right-hand side is not finite at the initial state (t = " + format_number(t0) + ")";
-        return result;
+        return false;
     }
 
     // Initial step (Hairer's algorithm, as in SciPy's select_initial_step).
@@ -128,21 +120,21 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
     }
 
     std::array<State, tab::n_stages_extended> k;
-    State y_new, f_new, err5, err3, scale;
-    Ticker ticker(control, t0, t1);
+    State y_new, f_new, err5, err3, scale, stage;  // stage: the argument of the last stage (c = 1)
+    Ticker ticker(control, run.t0, t1);
 
     while (direction * (t - t1) < 0.0) {
         if (!ticker.keep_going(t)) {
             mark_interrupted(result, t);
             keep_last(result, t, y, h_abs);
-            return result;
+            return false;
         }
         if (stats.steps >= options.max_steps) {
             result.status = Status::MaxStepsReached;
             result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
                              " before t1 = " + format_number(t1) + "." + stiffness_hint(system, t, y, stats.last_step, span);
             keep_last(result, t, y, h_abs);
-            return result;
+            return false;
         }
         const double min_step = 10.0 * std::abs(std::nextafter(t, direction * std::numeric_limits<double>::infinity()) - t);
         h_abs = std::min(h_abs, options.max_step);
@@ -165,7 +157,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
                                      stiffness_hint(system, t, y, stats.last_step, span);
                 }
                 keep_last(result, t, y, stats.last_step);
-                return result;
+                return false;
             }
             h = h_abs * direction;
             t_new = t + h;
@@ -179,7 +171,8 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
                 State dy = tab::a[s][0] * k[0];
                 for (int j = 1; j < s; ++j)
                     if (tab::a[s][j] != 0.0) dy += tab::a[s][j] * k[j];
-                system.rhs(t + tab::c[s] * h, State(y + h * dy), k[s]);
+                stage = y + h * dy;
+                system.rhs(t + tab::c[s] * h, stage, k[s]);
             }
             State incr = tab::b[0] * k[0];
             for (int j = 1; j < tab::n_stages; ++j)
@@ -222,6 +215,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
         }
         ++stats.steps;
         stats.last_step = std::abs(h);
+        const bool stiff = monitor && monitor->explicit_step(t, h, y_new, f_new, stage, k[tab::n_stages - 1]);
 
         // The 7th-order dense output of the step, its three extra stages computed only for steps
         // that contain an output time or an event.
@@ -256,7 +250,7 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
             }
             return State(value + y);
         };
-        const double t_stop = events.step(t, t_new, y_new, dense);
+        const double t_stop = run.events.step(t, t_new, y_new, dense);
         const bool terminated = !std::isnan(t_stop);
         if (result.dense) {
             dense(t);  // the dense coefficients F of this step
@@ -264,9 +258,9 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
             monomials(F, y, c.data());
             result.dense->add(t, terminated ? t_stop : t_new, t, h, 7, c[0].data());
         }
-        if (cursor.inside(t_new, t_stop, dense)) {
+        if (run.cursor.inside(t_new, t_stop, dense)) {
             mark_terminated(result, t_stop);
-            return result;
+            return false;
         }
 
         if constexpr (model::system::has_projection<System>::value) {
@@ -277,9 +271,30 @@ Result dop853(const System& system, double t0, const typename System::State& y0,
         t = t_new;
         y = y_new;
         f = f_new;
-        cursor.at_end(t, y, options.every_step);
+        run.cursor.at_end(t, y, options.every_step);
+        if (stiff && direction * (t - t1) < 0.0) {
+            keep_last(result, t, y, h_abs);
+            return true;
+        }
     }
     keep_last(result, t, y, h_abs);
+    return false;
+}
+
+/// Integrates `system` from (t0, y0) to t1. Never throws on a failing run: the result carries the
+/// partial trajectory, the status and the reason. Throws std::invalid_argument on bad options.
+template <class System>
+Result dop853(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
+              const Control* control = nullptr) {
+    validate(options, t0, t1);
+    require_finite(y0, "initial state y0");
+    Result result;
+    result.method = method_name(Method::Dop853);
+    Recording<System> run(system, options, t0, t1, result);
+    typename System::State y = y0;
+    model::system::project(system, y);
+    run.start(y);
+    dop853_segment(system, run, t0, y, options, control);
     return result;
 }
 

@@ -19,6 +19,7 @@ enum class Method {
     ArkodeFehlberg8, ///< ARKODE ERK, Fehlberg 13-stage 8(7) table ARKODE_FEHLBERG_13_7_8
     Taylor,          ///< Taylor series of adaptive order (polynomial right-hand sides only)
     Splitting,       ///< exact free-body flow composed with the perturbation's flow, fixed step (splitting.hpp)
+    Auto,            ///< DOP853 while the problem is not stiff, CVODE BDF while it is, switching along the run (auto_switch.hpp)
 };
 
 Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names
@@ -84,6 +85,26 @@ struct Stats {
     double last_step = 0.0;    ///< size of the last accepted step (0 when none)
 };
 
+/// The statistics of a run carried by two integrators in turn (`earlier`, then `later`): the
+/// counts summed, the last step the later one's.
+inline Stats operator+(const Stats& earlier, const Stats& later) {
+    Stats s = later;
+    s.steps += earlier.steps;
+    s.rhs_evals += earlier.rhs_evals;
+    s.rejected_steps += earlier.rejected_steps;
+    s.jacobian_evals += earlier.jacobian_evals;
+    s.nonlinear_conv_failures += earlier.nonlinear_conv_failures;
+    return s;
+}
+
+/// Method 'auto' changed integrator at time t, to the method named `to`, for the reason given
+/// (the measured h·|λ| against the explicit stability boundary).
+struct MethodSwitch {
+    double t = 0.0;
+    std::string to;
+    std::string reason;
+};
+
 /// A trajectory: n output times, n×dim states and n×n_outputs named outputs (row-major).
 /// A failed run keeps everything up to the failure and says why in `message`.
 struct Result {
@@ -102,6 +123,10 @@ struct Result {
     int terminal_event = -1;  ///< the event that ended the run (status Success), −1: none
     std::shared_ptr<DenseOutput> dense;  ///< with Options::dense_output: the solution between outputs
     Stats stats;
+    /// The integrators that carried the run, in order of first use (one for every method but
+    /// 'auto'), and where method 'auto' switched between them.
+    std::vector<std::string> methods_used;
+    std::vector<MethodSwitch> switches;
     Status status = Status::Success;
     std::string message;
     /// Where the run stopped, however it ended (t1, a terminal event, max_steps, a failure, an

@@ -92,6 +92,10 @@ public:
     OutputCursor(Recorder<System>& record, std::vector<double> times, double direction)
         : record_(record), times_(std::move(times)), direction_(direction) {}
 
+    /// Whether an output time is still to be recorded, and which.
+    bool pending() const { return next_ < times_.size(); }
+    double next_time() const { return times_[next_]; }
+
     /// Records the outputs at t0 (the initial state).
     void start(double t0, const State& y0) {
         while (next_ < times_.size() && times_[next_] == t0) record_.push(t0, y0), ++next_;

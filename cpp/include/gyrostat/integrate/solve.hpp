@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gyrostat/integrate/arkode.hpp"
+#include "gyrostat/integrate/auto_switch.hpp"
 #include "gyrostat/integrate/cvode.hpp"
 #include "gyrostat/integrate/dop853.hpp"
 #include "gyrostat/integrate/splitting.hpp"
@@ -95,6 +96,7 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
                 case Method::ArkodeFehlberg8:
                     return arkode_erk(system, t0, y0, t1, options, ARKODE_FEHLBERG_13_7_8, options.method, control);
                 case Method::Taylor: return taylor(system, t0, y0, t1, options, control);
+                case Method::Auto: return auto_switch(system, t0, y0, t1, options, control);
                 case Method::Splitting:
                     if constexpr (has_splitting<System>::value)
                         return splitting(system, t0, y0, t1, options, control);
@@ -108,6 +110,7 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
         }
     }();
     complete_last(system, result, t0, y0);
+    if (result.methods_used.empty()) result.methods_used.push_back(result.method);
     return result;
 }
 

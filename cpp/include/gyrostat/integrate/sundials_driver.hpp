@@ -6,7 +6,8 @@
 
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/diagnose.hpp"
-#include "gyrostat/integrate/events.hpp"
+#include "gyrostat/integrate/recording.hpp"
+#include "gyrostat/integrate/stiffness.hpp"
 #include "gyrostat/integrate/sundials.hpp"
 
 namespace gyrostat::integrate::sundials {
@@ -24,25 +25,28 @@ namespace gyrostat::integrate::sundials {
 /// The driver always takes one step per call, so that it can record every step on request and
 /// be stopped between two steps; the step sequence is the one CVODE/ARKODE take in NORMAL mode
 /// towards t1 (with the stop time at t1, or at each output for exact_outputs).
+///
+/// One segment of `run` from t0 (the stepper initialised there with y) to run.t1: outputs,
+/// events, dense output and statistics continue those already in run.result, and max_steps
+/// counts the steps of every segment. With a `monitor`, the segment stops where the monitor
+/// asks for the explicit method (method 'auto'): returns true then, with Result::t_last,
+/// y_last, h_next at the hand-over; false when the run ended (the Result says how).
 template <class System, class Stepper>
-void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double t1, const Options& options,
-           const CallbackData<System>& data, const ErrorLog& log, Result& result, const Control* control) {
+bool drive(const System& system, Stepper& stepper, N_Vector y, double t0, Recording<System>& run, const Options& options,
+           const CallbackData<System>& data, const ErrorLog& log, const Control* control,
+           StiffnessMonitor<System>* monitor = nullptr) {
     using State = typename System::State;
-    const std::vector<double> outputs = output_times(options, t0, t1);
-    Recorder<System> record(system, result, outputs.size());
-    EventLocator<System> events(system, options.events, result);
-    result.dense = make_dense<System>(options);
-    const double direction = t1 >= t0 ? 1.0 : -1.0;
+    Result& result = run.result;
+    OutputCursor<System>& cursor = run.cursor;
+    const double t1 = run.t1, direction = run.direction;
+    const Stats before = result.stats;  // of the earlier segments
     auto state = [&]() { return State(StateMap<System>(N_VGetArrayPointer(y))); };
-
-    std::size_t next = 0;
-    while (next < outputs.size() && outputs[next] == t0) record.push(t0, state()), ++next;
-    events.start(t0, state());
+    auto stats = [&]() { return before + stepper.stats(); };
 
     double t = t0;
     long steps = 0;
     auto finish = [&](int failed_flag) {
-        result.stats = stepper.stats();
+        result.stats = stats();
         result.status = stepper.classify(failed_flag);
         if (data.non_finite && result.status != Status::MaxStepsReached) result.status = Status::NonFiniteState;
         result.message = stepper.flag_name(failed_flag) + " at t = " + format_number(t, 17) + ": ";
@@ -70,32 +74,32 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
             (result.status == Status::MaxStepsReached || result.status == Status::StepSizeUnderflow))
             result.message += stiffness_hint(system, t, state(), result.stats.last_step, std::abs(t1 - t0));
         keep_last(result, t, state(), result.stats.last_step);
+        return false;
     };
-    auto stop_time = [&]() { return Stepper::exact_outputs && next < outputs.size() ? outputs[next] : t1; };
+    auto stop_time = [&]() { return Stepper::exact_outputs && cursor.pending() ? cursor.next_time() : t1; };
 
     double stop = stop_time();
     stepper.set_stop_time(stop);
     Vector interpolated(N_VClone(y));
-    Ticker ticker(control, t0, t1);
+    Ticker ticker(control, run.t0, t1);
     while (direction * (t - t1) < 0.0) {
         if (!ticker.keep_going(t)) {
-            result.stats = stepper.stats();
+            result.stats = stats();
             mark_interrupted(result, t);
             keep_last(result, t, state(), result.stats.last_step);
-            return;
+            return false;
         }
-        if (steps >= options.max_steps) return finish(-1000);
+        if (before.steps + steps >= options.max_steps) return finish(-1000);
         const double t_before = t;
         // tout matters on the first call only (the initial step is sized against it): the first output
-        const int flag = stepper.evolve(next < outputs.size() ? outputs[next] : t1, y, &t);
+        const int flag = stepper.evolve(cursor.pending() ? cursor.next_time() : t1, y, &t);
         if (flag < 0) return finish(flag);
         ++steps;
         auto dense = [&](double time) {
             stepper.interpolate(time, interpolated.get());
             return State(StateMap<System>(N_VGetArrayPointer(interpolated.get())));
         };
-        const double t_stop = events.active() ? events.step(t_before, t, state(), dense)
-                                              : std::numeric_limits<double>::quiet_NaN();
+        const double t_stop = run.events.step(t_before, t, state(), dense);
         if (result.dense && t != t_before) {  // y(t') = Σ y⁽ᵏ⁾(t) (t' − t)ᵏ/k!, in s = (t' − t)/h
             const double h = t - t_before;
             std::vector<double> coefficients;
@@ -109,28 +113,42 @@ void drive(const System& system, Stepper& stepper, N_Vector y, double t0, double
             result.dense->add(t_before, std::isnan(t_stop) ? t : t_stop, t, h,
                               static_cast<int>(coefficients.size()) / System::dim - 1, coefficients.data());
         }
-        if (!std::isnan(t_stop)) {  // a terminal event inside the step: outputs up to it, then stop
-            while (next < outputs.size() && direction * (outputs[next] - t_stop) <= 0.0)
-                record.push(outputs[next], dense(outputs[next])), ++next;
-            result.stats = stepper.stats();
+        if (cursor.inside(t, t_stop, dense)) {  // a terminal event inside the step: outputs up to it, then stop
+            result.stats = stats();
             mark_terminated(result, t_stop);
-            return;
+            return false;
         }
-        while (next < outputs.size() && direction * (outputs[next] - t) < 0.0) {
-            record.push(outputs[next], dense(outputs[next]));
-            ++next;
+        cursor.at_end(t, state(), options.every_step);
+        if (monitor && direction * (t - t1) < 0.0 && monitor->implicit_step(t, state(), stepper.stats().last_step)) {
+            result.stats = stats();
+            keep_last(result, t, state(), result.stats.last_step);
+            return true;
         }
-        bool recorded = false;
-        while (next < outputs.size() && outputs[next] == t) record.push(t, state()), ++next, recorded = true;
-        if (options.every_step && !recorded) record.push(t, state());
         if (stop != stop_time() && direction * (t - t1) < 0.0) stepper.set_stop_time(stop = stop_time());
     }
-    result.stats = stepper.stats();
+    result.stats = stats();
     keep_last(result, t, state(), result.stats.last_step);
+    return false;
 }
 
-/// A CVODE or ARKODE run from (t0, y0) to t1: checks the input, sets up the context and the
-/// state vector, makes the stepper with `make(context, y, data, log)` and drives it.
+/// A segment of `run` with a CVODE or ARKODE stepper from (t0, y0): sets up the context and the
+/// state vector, makes the stepper with `make(t0, context, y, data, log)` and drives it (see drive).
+template <class System, class MakeStepper>
+bool segment(const System& system, Recording<System>& run, double t0, const typename System::State& y0,
+             const Options& options, const Control* control, MakeStepper&& make,
+             StiffnessMonitor<System>* monitor = nullptr) {
+    Context context;
+    Vector y = make_vector(System::dim, context);
+    typename System::State start = y0;
+    model::system::project(system, start);
+    Eigen::Map<typename System::State>(N_VGetArrayPointer(y.get())) = start;
+    CallbackData<System> data{&system};
+    ErrorLog log;
+    auto stepper = make(t0, context, y.get(), data, log);
+    return drive(system, stepper, y.get(), t0, run, options, data, log, control, monitor);
+}
+
+/// A CVODE or ARKODE run from (t0, y0) to t1: checks the input and runs one segment.
 template <class System, class MakeStepper>
 Result run(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
            Method method, const Control* control, MakeStepper&& make) {
@@ -140,18 +158,9 @@ Result run(const System& system, double t0, const typename System::State& y0, do
     result.method = method_name(method);
     typename System::State start = y0;
     model::system::project(system, start);
-    if (t0 == t1) {  // nothing to integrate: every output time is t0
-        Recorder<System> record(system, result, 1);
-        for (double t : output_times(options, t0, t1)) record.push(t, start);
-        return result;
-    }
-    Context context;
-    Vector y = make_vector(System::dim, context);
-    Eigen::Map<typename System::State>(N_VGetArrayPointer(y.get())) = start;
-    CallbackData<System> data{&system};
-    ErrorLog log;
-    auto stepper = make(context, y.get(), data, log);
-    drive(system, stepper, y.get(), t0, t1, options, data, log, result, control);
+    Recording<System> recording(system, options, t0, t1, result);
+    recording.start(start);
+    if (t0 != t1) segment(system, recording, t0, start, options, control, make);  // t0 == t1: every output is t0
     return result;
 }
 

@@ -1,0 +1,17 @@
+// The C++ tests' one assertion: CHECK(condition, what) counts a pass or prints the failure and
+// counts it; each test program reports `passes` and `failures` and exits non-zero on a failure.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+static int failures = 0, passes = 0;
+#define CHECK(cond, what)                                                                                \
+    do {                                                                                                 \
+        if (cond) {                                                                                      \
+            ++passes;                                                                                    \
+        } else {                                                                                         \
+            ++failures;                                                                                  \
+            std::printf("FAIL %s:%d: %s  [%s]\n", __FILE__, __LINE__, std::string(what).c_str(), #cond); \
+        }                                                                                                \
+    } while (0)
