@@ -102,6 +102,7 @@ case $command in
         "$VENV/bin/python" "$ROOT/bench/sweep_throughput.py"
         "$VENV/bin/python" "$ROOT/bench/stiff_radau.py"
         "$VENV/bin/python" "$ROOT/bench/auto_method.py"
+        "$VENV/bin/python" "$ROOT/bench/ladder.py"
         ;;
     docs)
         install_debian_packages

@@ -269,3 +269,23 @@ def test_every_paper_scene_gets_a_justified_model(name):
     else:
         assert report["model"] == "full" and not entry["taken"]
         assert any(word in entry["reason"] for word in ("BROKEN", "estimated error", "fast periods", "c = ")), entry
+
+
+def test_scenes_default_to_method_auto_and_report_its_integrators():
+    """A scene without a method gets method = "auto": on paper 001's stiff explicit damper
+    (Ω = 100, λ = 2e4, as bench/stiff_radau.py) the run starts on DOP853 and moves to CVODE BDF,
+    the report says so with the measured stiffness, and the answer agrees with cvode_bdf alone to
+    the tolerance (rtol 1e-8: both errors are ~1e-7 of |ω| here; 1e-6 allows for either)."""
+    doc = {"kind": "moving_mass", "body": {"moments": [4.0, 4.0, 2.0]},
+           "damper": {"mass": 1.0, "arm": 1.0, "frequency": 100.0, "damping": 2e4},
+           "initial": {"omega": [1.0, 0.0, 1.0]},
+           "integration": {"model": "explicit", "rtol": 1e-8, "atol": 1e-10, "t_span": [0.0, 20.0], "n_out": 201}}
+    scene, solution, report = _solve(doc)
+    assert scene.doc["integration"]["method"] == "auto"
+    run = report["runs"]["full"]
+    assert run["methods_used"] == ["dop853", "cvode_bdf"]
+    assert len(run["method_switches"]) == 1 and run["method_switches"][0]["to"] == "cvode_bdf"
+    assert "λ" in run["method_switches"][0]["reason"] or "stiff" in run["method_switches"][0]["reason"]
+    bdf = g.solve(scene.runs[0].model, scene.runs[0].y0, (0.0, 20.0), method="cvode_bdf", rtol=1e-10, atol=1e-12,
+                  t_eval=solution.t)
+    assert np.max(np.abs(solution.omega - bdf.omega)) <= 1e-6

@@ -35,8 +35,11 @@ def _print_report(report: dict) -> None:
         drift = ", ".join(f"{k} {v['relative_change']:+.3e}" if "relative_change" in v else
                           f"{k} {v['max_abs_change']:.3e} (absolute)" for k, v in run["conserved"].items()
                           if v.get("relative_change", v.get("max_abs_change")) is not None)
-        print(f"  {name}: {run['method']}, {run['status']}; steps {stats['steps']}, rhs evaluations "
+        used = f" ({' then '.join(run['methods_used'])})" if run.get("methods_used") else ""
+        print(f"  {name}: {run['method']}{used}, {run['status']}; steps {stats['steps']}, rhs evaluations "
               f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}" + (f"; change of {drift}" if drift else ""))
+        for switch in run.get("method_switches", [])[:4]:
+            print(f"    t = {switch['t']:.6g}: -> {switch['to']} ({switch['reason']})")
         for event, times in run.get("events", {}).items():
             shown = ", ".join(f"{t:.6g}" for t in times[:5]) + (", ..." if len(times) > 5 else "")
             print(f"    event {event}: {len(times)} crossing(s)" + (f" at t = {shown}" if times else ""))

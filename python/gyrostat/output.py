@@ -87,6 +87,10 @@ def run_report(solution) -> dict:
               "message": solution.message, "stats": solution.stats, "notes": list(solution.notes),
               "t_last": solution.t_last, "y_last": solution.y_last, "h_next": solution.h_next,  # to continue
               "conserved": {}}
+    switches = getattr(solution, "method_switches", [])
+    if switches or solution.method == "auto":  # method 'auto': which integrators, switched where
+        report["methods_used"] = list(getattr(solution, "methods_used", ()))
+        report["method_switches"] = [{"t": t, "to": to, "reason": why} for t, to, why in switches]
     if len(solution):
         outputs = solution.outputs
         for name in solution.conserved:
