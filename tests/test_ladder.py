@@ -289,3 +289,29 @@ def test_scenes_default_to_method_auto_and_report_its_integrators():
     bdf = g.solve(scene.runs[0].model, scene.runs[0].y0, (0.0, 20.0), method="cvode_bdf", rtol=1e-10, atol=1e-12,
                   t_eval=solution.t)
     assert np.max(np.abs(solution.omega - bdf.omega)) <= 1e-6
+
+
+def test_lagrange_top_switches_up_where_the_adiabaticity_reaches_its_fitted_limit():
+    """Paper 003 case 2 at ε = 2e-4 and accuracy 3e-4: the probe measures the constant c of the
+    O(N) error; the averaged top runs until N = rate·T_nut reaches accuracy/(6c), then the full top
+    takes over from (G_z, H, r) lifted to a turning point, and the joined answer stays within the
+    estimate against the full top over the whole span."""
+    doc = _doc("p003_case2_theta0_60deg")
+    doc["torque"]["epsilon"] = 2e-4
+    doc["integration"].update(model="auto", accuracy=3e-4, n_out=2001)
+    doc["outputs"] = {"plots": ["slow", "roots"]}
+    scene, solution, report = _solve(doc)
+    assert report["model"] == "averaged" and isinstance(solution, SwitchedSolution)
+    switch = report["ladder"]["switches"][0]
+    assert switch["to"] == "full" and "N << 1" in switch["reason"]
+    lower = next(r for r in scene.ladder if r.name == "averaged")
+    first = solution.segments[0][1]
+    limit = float(switch["reason"].rsplit("reached ", 1)[1])
+    N = lower.model._core.outputs_at(first.t_last, first.y_last)[list(lower.model.output_names).index("adiabaticity")]
+    assert N == pytest.approx(limit, rel=1e-6)
+    top = scene.ladder[-1]
+    reference = g.solve(top.model, top.y0, scene.runs[0].t_span, t_eval=solution.t, **TIGHT)
+    expected = top.compare(reference)
+    error = float(np.max(np.linalg.norm(lower.compare(solution) - expected, axis=1))
+                  / np.max(np.linalg.norm(expected, axis=1)))
+    assert error <= report["ladder"]["estimate"]["value"] <= 3e-4, error
