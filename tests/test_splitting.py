@@ -91,16 +91,17 @@ def test_both_energy_orderings_are_covered():
 @pytest.mark.parametrize("name", CASES)
 def test_inertial_angular_momentum_is_constant_at_any_horizon(name):
     """Basilisk's convention check: with q rotating body into inertial axes, R(q) J ω is fixed.
-    |G| and T exact to rounding at any t (the closed form's cost does not depend on t)."""
+    |G| and T exact to rounding at any t (the closed form's cost does not depend on t), and so is
+    R(q) J ω (its phases formed in double-double)."""
     moments, w0 = CASES[name]
     moments = np.asarray(moments)
     t = np.array([0.0, 1.0, 1e3, 1e5, 1e7, 1e9])
     sol = exact(moments, w0, t)
     g_in = np.array([rotation(q) @ (moments * w) for w, q in zip(sol.y[:, :3], sol.y[:, 3:])])
     G = np.linalg.norm(moments * np.asarray(w0))
-    # rounding of the rotation's angles, ~ε|ω|t, dominates at t = 1e9 (|ω|t ≈ 1e9: 2e-7)
-    assert np.max(np.abs(g_in[:4] - g_in[0])) < 1e-12 * G * 100
-    assert np.max(np.abs(g_in - g_in[0])) < 1e-6 * G
+    # the phases in double-double: rounding of the double evaluation only, at every horizon
+    # (measured ≤ 9e-16 relative up to t = 1e9; with double phases it was 2e-7 at 1e9)
+    assert np.max(np.abs(g_in - g_in[0])) < 1e-14 * G
     # |G| and T: relative rounding only, at every horizon
     assert np.max(np.abs(sol["angular_momentum_norm"] / G - 1)) < 1e-14
     T = 0.5 * np.sum(moments * np.asarray(w0) ** 2)
@@ -329,3 +330,117 @@ def test_exact_flow_of_a_decayed_rate():
     # the same formulas on the same unit vector: rounding only
     assert np.max(np.abs(tiny.y[:, :3] * 1e160 - ref.y[:, :3])) < 1e-13
     assert np.max(np.abs(tiny.y[:, 3:] - ref.y[:, 3:])) < 1e-12
+
+
+def mp_free_body_largest_axis(t, dps=40):
+    """ω(t), q(t) of the free body I = J, ω0 = W0, q0 = Q0 in mpmath at `dps` digits, written here
+    independently of the library: no relabelling (C = J[2] is the axis the polhode encircles for
+    this ω0, checked), ω = (a cn u, b sn u, ±c dn u), u = ν t + u0 (Landau & Lifshitz §37) by
+    mpmath's ellipfun; R(t) = R_in Rz(φ) Rx(θ) Rz(ψ) with θ, ψ the z-x-z angles of g = Jω/|G| and
+    φ = ∫ φ̇ dt, φ̇ = |G| (2T − C ω3²)/(G² − C² ω3²), by QUADRATURE (mpmath.quad): n times the
+    integral over one period P = 4K/|ν| plus the rest (not the library's Π(N | m) / Carlson R_J)."""
+    import mpmath as mp
+
+    with mp.workdps(dps):
+        A, B, C = (mp.mpf(x) for x in J)
+        w = [mp.mpf(x) for x in W0]
+        G2 = (A * w[0]) ** 2 + (B * w[1]) ** 2 + (C * w[2]) ** 2
+        T2 = A * w[0] ** 2 + B * w[1] ** 2 + C * w[2] ** 2
+        G = mp.sqrt(G2)
+        assert G2 > T2 * B  # the polhode encircles the largest axis C
+        a = mp.sqrt((T2 * C - G2) / (A * (C - A)))
+        b = mp.sqrt((T2 * C - G2) / (B * (C - B)))
+        c = mp.sqrt((G2 - T2 * A) / (C * (C - A)))
+        m = (B - A) * (T2 * C - G2) / ((C - B) * (G2 - T2 * A))
+        sign3 = 1 if w[2] >= 0 else -1
+        nu = (C - B) * b * c * sign3 / (A * a)  # A ω̇1 = (B − C) ω2 ω3 with ω1 = a cn, ω2 = b sn
+        u0 = mp.ellipf(mp.atan2(w[1] / b, w[0] / a), m)
+        period = 4 * mp.ellipk(m) / abs(nu)
+
+        def omega(s):
+            u = nu * s + u0
+            return [a * mp.ellipfun("cn", u, m=m), b * mp.ellipfun("sn", u, m=m), sign3 * c * mp.ellipfun("dn", u, m=m)]
+
+        def phi_rate(s):
+            w3 = omega(s)[2]
+            return G * (T2 - C * w3 ** 2) / (G2 - C ** 2 * w3 ** 2)
+
+        def qmul(p, q):
+            return [p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
+                    p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
+                    p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
+                    p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0]]
+
+        def euler(wv):  # q_x(θ) ⊗ q_z(ψ), g = (sin θ sin ψ, sin θ cos ψ, cos θ)
+            g = [A * wv[0] / G, B * wv[1] / G, C * wv[2] / G]
+            theta, psi = mp.acos(g[2]), mp.atan2(g[0], g[1])
+            return qmul([mp.cos(theta / 2), mp.sin(theta / 2), 0, 0], [mp.cos(psi / 2), 0, 0, mp.sin(psi / 2)])
+
+        e0 = euler(omega(0))
+        q_in = qmul([mp.mpf(x) for x in Q0], [e0[0], -e0[1], -e0[2], -e0[3]])
+        per_period = mp.quad(phi_rate, mp.linspace(0, period, 9))
+        out = []
+        for tk in t:
+            tk = mp.mpf(tk)
+            n = mp.floor(tk / period)
+            rest = tk - n * period
+            dphi = n * per_period + (mp.quad(phi_rate, mp.linspace(0, rest, 9)) if rest > 0 else 0)
+            wv = omega(tk)
+            q = qmul(qmul(q_in, [mp.cos(dphi / 2), 0, 0, mp.sin(dphi / 2)]), euler(wv))
+            out.append([float(x) for x in wv] + [float(x) for x in q])
+        return np.array(out)
+
+
+def test_exact_flow_at_long_horizons_against_mpmath():
+    """Issue 13's target: ω and q within 1e-12 at t = 1e6 and 1e7. The reference (above) keeps
+    40 − 7 = 33 digits in its phases at t = 1e7; the flow forms its phases in double-double and
+    evaluates the reduced arguments in double (~1e-15). 1e-12 is the target; with the constants
+    in double (before) the error was 9e-10 at 1e7, ~1e-16·|ω|·t, and this test failed."""
+    t = np.array([0.0, 12.5, 1e6, 1e7])
+    ref = mp_free_body_largest_axis(t)
+    sol = exact(J, W0, t)
+    assert np.max(np.abs(sol.y[:, :3] - ref[:, :3])) < 1e-12 * np.linalg.norm(W0)
+    assert np.max(np.abs(same_sign(sol.y[:, 3:], ref[:, 3:]) - ref[:, 3:])) < 1e-12
+
+
+def test_symmetric_flow_at_long_horizons_against_mpmath():
+    """The symmetric body with an axial rotor and the spherical gyrostat at t = 1e7 and 1e9, against
+    ω(t) = exp(t [λ]×) ω0, q(t) = q_rot(t G_in/A) ⊗ q0 ⊗ q_rot(−t λ) (λ = ((C − A) ω·e + k·e)/A e,
+    or k/A for the sphere) evaluated here in mpmath at 40 digits. The flow forms the angles |λ| t,
+    |G| t/A in double-double and reduces them modulo 4π: rounding only (1e-12 allowed, the issue's
+    target; with the angles in double the error was ~1e-16·|λ|·t, 1e-7 at t = 1e9)."""
+    import mpmath as mp
+
+    t = np.array([0.0, 1e7, 1e9])
+    for moments, rotor in (([2.0, 2.0, 3.5], [0.0, 0.0, 0.7]), ([2.5, 2.5, 2.5], [0.3, -0.2, 0.5])):
+        sol = exact(moments, W0, t, rotor=rotor)
+        with mp.workdps(40):
+            Jm, k, w0 = ([mp.mpf(x) for x in v] for v in (moments, rotor, W0))
+            A = Jm[0]
+            lam = [x / A for x in k] if moments[2] == moments[0] else [0, 0, ((Jm[2] - A) * w0[2] + k[2]) / A]
+            qw, qx, qy, qz = (x / mp.sqrt(sum(mp.mpf(y) ** 2 for y in Q0)) for x in map(mp.mpf, Q0))
+            R0 = mp.matrix([[1 - 2 * (qy ** 2 + qz ** 2), 2 * (qx * qy - qw * qz), 2 * (qx * qz + qw * qy)],
+                            [2 * (qx * qy + qw * qz), 1 - 2 * (qx ** 2 + qz ** 2), 2 * (qy * qz - qw * qx)],
+                            [2 * (qx * qz - qw * qy), 2 * (qy * qz + qw * qx), 1 - 2 * (qx ** 2 + qy ** 2)]])
+            G_in = R0 * mp.matrix([Jm[i] * w0[i] + k[i] for i in range(3)])  # |G_in| = |G_b| to 40 digits
+
+            def q_rot(v):
+                angle = mp.sqrt(sum(x ** 2 for x in v))
+                s = mp.sin(angle / 2) / angle
+                return [mp.cos(angle / 2)] + [s * x for x in v]
+
+            def qmul(p, q):
+                return [p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
+                        p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
+                        p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
+                        p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0]]
+
+            for tk, y in zip(t[1:], sol.y[1:]):
+                tk = mp.mpf(tk)
+                ql = q_rot([tk * x for x in lam])
+                w = qmul(qmul(ql, [0] + w0), [ql[0], -ql[1], -ql[2], -ql[3]])[1:]
+                q = qmul(qmul(q_rot([tk * x / A for x in G_in]), [mp.mpf(x) for x in Q0]),
+                         [ql[0], -ql[1], -ql[2], -ql[3]])
+                ref_w, ref_q = np.array([float(x) for x in w]), np.array([float(x) for x in q])
+                assert np.max(np.abs(y[:3] - ref_w)) < 1e-12, (moments, rotor, tk)
+                assert np.max(np.abs(y[3:] * np.sign(y[3:] @ ref_q) - ref_q)) < 1e-12, (moments, rotor, tk)

@@ -12,83 +12,112 @@
 namespace gyrostat::model {
 
 
-TorqueFreeSolution::TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0) : omega0_(omega0), t0_(t0) {
-    constant_ = false;
+namespace {
+
+// The closed form's constants (the formulas of TorqueFreeSolution's and FreeBodyFlow's comments)
+// in the scalar Real (DoubleDouble or double) from the exact double inputs J and ω. The ordering
+// G² − 2TB = Σ J_i (J_i − B) ω_i², 2TC − G² = A (C − A) ω1² + B (C − B) ω2² and
+// G² − 2TA = B (B − A) ω2² + C (C − A) ω3² are formed from the components (no cancellation of the
+// two large invariants near a permanent rotation or the separatrix). K = R_F(0, 1 − m, 1),
+// Π(N | m) = K + (N/3) R_J(0, 1 − m, 1, 1 − N) (DLMF 19.25.1–2), Carlson's duplication in Real.
+template <class Real>
+void compute_constants(const Vec3& J, const Vec3& w, bool precession, FreeBodyConstants& k) {
+    using std::sqrt;
+    int order[3] = {0, 1, 2};
+    std::sort(order, order + 3, [&](int i, int j) { return J[i] < J[j]; });
+    const auto sq = [&](int i) { return Real(w[i]) * Real(w[i]); };
+    const Real Jmin(J[order[0]]), Jmid(J[order[1]]), Jmax(J[order[2]]);
+    const Real versus_middle = Jmin * (Jmin - Jmid) * sq(order[0]) + Jmax * (Jmax - Jmid) * sq(order[2]);
+    const bool about_largest = versus_middle >= Real(0.0);
+    for (int i = 0; i < 3; ++i) k.axis[i] = about_largest ? order[i] : order[2 - i];
+    const Real A(J[k.axis[0]]), B(J[k.axis[1]]), C(J[k.axis[2]]);
+    const double w1 = w[k.axis[0]], w3 = w[k.axis[2]];
+    const Real across = A * (C - A) * sq(k.axis[0]) + B * (C - B) * sq(k.axis[1]);
+    const Real along = B * (B - A) * sq(k.axis[1]) + C * (C - A) * sq(k.axis[2]);
+    // Permanent rotation about axis 3' (or about the intermediate axis): ω stays constant.
+    if (across == Real(0.0) || (w1 == 0.0 && w3 == 0.0)) return;
+    k.constant = false;
+    const Real a = sqrt(across / (A * (C - A)));
+    const Real b = B == C ? Real(0.0) : sqrt(across / (B * (C - B)));
+    const Real c = sqrt(along / (C * (C - A)));
+    const Real m_denominator = (C - B) * along;
+    Real m = m_denominator == Real(0.0) ? Real(1.0) : (B - A) * across / m_denominator;
+    if (!(m >= Real(0.0))) m = Real(0.0);
+    if (!(m <= Real(1.0))) m = Real(1.0);
+    k.sign3 = w3 >= 0.0 ? 1.0 : -1.0;
+    // Parity of the relabelling (1', 2', 3'): a cyclic order keeps Euler's equations, an odd
+    // one reverses the sign of their right-hand sides.
+    const double parity = (k.axis[1] - k.axis[0] + 3) % 3 == 1 ? 1.0 : -1.0;
+    const Real nu = Real(parity * k.sign3) * (C - B) * b * c / (A * a);
+    const Real one_minus_m = Real(1.0) - m;
+    const bool bounded = one_minus_m > Real(0.0);
+    const Real K = bounded ? carlson_RF(Real(0.0), one_minus_m, Real(1.0)) : Real(std::numeric_limits<double>::infinity());
+    k.a = double(a), k.b = double(b), k.c = double(c), k.m = double(m);
+    k.nu = DoubleDouble(nu), k.K = DoubleDouble(K);
+    if (!precession) return;
+    Real G2(0.0);
+    for (int i = 0; i < 3; ++i) G2 += (Real(J[i]) * Real(w[i])) * (Real(J[i]) * Real(w[i]));
+    const Real G = sqrt(G2);
+    const Real N = B == C ? Real(0.0) : -(C * (B - A)) / (A * (C - B));
+    k.G = DoubleDouble(G);
+    k.rate = DoubleDouble(G / C);
+    k.coeff = DoubleDouble(G * (C - A) / (C * A * nu));
+    k.N = double(N);
+    k.Pi_complete = DoubleDouble(
+        bounded ? K + N / Real(3.0) * carlson_RJ(Real(0.0), one_minus_m, Real(1.0), Real(1.0) - N) : Real(0.0));
+}
+
+}  // namespace
+
+TorqueFreeSolution::TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0, Phases phases, bool precession)
+    : omega0_(omega0), t0_(t0) {
     if (body.rotor().squaredNorm() != 0.0)
         throw std::invalid_argument("TorqueFreeSolution: the closed form is for a rigid body (rotor k = 0); "
                                     "this body has |k| = " + std::to_string(body.rotor().norm()) +
                                     ": integrate the full model instead");
     require_finite(omega0, "TorqueFreeSolution: omega0");
     if (!std::isfinite(t0)) throw std::invalid_argument("TorqueFreeSolution: t0 is not finite");
-
     const Vec3& J = body.moments();
-    int order[3] = {0, 1, 2};
-    std::sort(order, order + 3, [&](int i, int j) { return J[i] < J[j]; });
     const double tiny = 64.0 * std::numeric_limits<double>::epsilon();
-    if (omega0.squaredNorm() == 0.0 || J[order[2]] - J[order[0]] <= tiny * J[order[2]]) {
-        constant_ = true;  // at rest, or a spherical body
-        return;
-    }
-    // The ordering of 2T D = G² against 2T B (B the middle moment), from the components:
-    // G² − 2TB = Σ J_i (J_i − B) ω_i², no cancellation of the two large invariants.
-    const auto w2 = [&](int i) { return omega0[i] * omega0[i]; };
-    const double Jmin = J[order[0]], Jmid = J[order[1]], Jmax = J[order[2]];
-    const double versus_middle = Jmin * (Jmin - Jmid) * w2(order[0]) + Jmax * (Jmax - Jmid) * w2(order[2]);
-    const bool about_largest = versus_middle >= 0.0;
-    if (about_largest) {
-        axis_[0] = order[0], axis_[1] = order[1], axis_[2] = order[2];
-    } else {
-        axis_[0] = order[2], axis_[1] = order[1], axis_[2] = order[0];
-    }
-    const double A = J[axis_[0]], B = J[axis_[1]], C = J[axis_[2]];
-    const double w1 = omega0[axis_[0]], w2v = omega0[axis_[1]], w3 = omega0[axis_[2]];
-    // 2TC − G² = A (C − A) ω1² + B (C − B) ω2² and G² − 2TA = B (B − A) ω2² + C (C − A) ω3², both
-    // of the sign of C − A, from the components (no cancellation near a permanent rotation).
-    const double across = A * (C - A) * w1 * w1 + B * (C - B) * w2v * w2v;
-    const double along = B * (B - A) * w2v * w2v + C * (C - A) * w3 * w3;
-    // Permanent rotation about axis 3' (or about the intermediate axis): ω stays constant.
-    if (across == 0.0 || (w1 == 0.0 && w3 == 0.0)) {
-        constant_ = true;
-        return;
-    }
-    a_ = std::sqrt(across / (A * (C - A)));
-    b_ = B == C ? 0.0 : std::sqrt(across / (B * (C - B)));
-    c_ = std::sqrt(along / (C * (C - A)));
-    m_ = std::clamp((B - A) * across / ((C - B) * along), 0.0, 1.0);
-    if (!std::isfinite(m_)) m_ = 1.0;
-    sign3_ = w3 >= 0.0 ? 1.0 : -1.0;
-    // Parity of the relabelling (1', 2', 3'): a cyclic order keeps Euler's equations, an odd
-    // one reverses the sign of their right-hand sides.
-    const bool cyclic = (axis_[1] - axis_[0] + 3) % 3 == 1;
-    const double parity = cyclic ? 1.0 : -1.0;
-    nu_ = parity * sign3_ * (C - B) * b_ * c_ / (A * a_);
-    const double phi0 = std::atan2(b_ > 0.0 ? w2v / b_ : 0.0, w1 / a_);
-    u0_ = elliptic_F(phi0, m_);
-    K_ = elliptic_K(m_);
+    if (omega0.squaredNorm() == 0.0 || J.maxCoeff() - J.minCoeff() <= tiny * J.maxCoeff()) return;  // rest, sphere
+    if (phases == Phases::Extended)
+        compute_constants<DoubleDouble>(J, omega0, precession, k_);
+    else
+        compute_constants<double>(J, omega0, precession, k_);
+    if (k_.constant) return;
+    const double w1 = omega0[k_.axis[0]], w2 = omega0[k_.axis[1]];
+    const double phi0 = std::atan2(k_.b > 0.0 ? w2 / k_.b : 0.0, w1 / k_.a);
+    u0_ = elliptic_F(phi0, k_.m);
 }
 
-TorqueFreeSolution::Reduced TorqueFreeSolution::reduced(double t) const {
-    const double u = nu_ * (t - t0_) + u0_;
-    double j = 0.0, r = u;
-    if (std::isfinite(K_)) {
-        j = std::round(u / (2.0 * K_));
-        r = u - 2.0 * K_ * j;
-        // |r| ≤ K up to rounding: clamp so that cn r ≥ 0
-        r = std::clamp(r, -K_, K_);
+// u = ν τ + u0 in double-double, j = nearest integer of u/2K, r = u − 2jK (|r| ≤ K up to
+// rounding: clamped so that cn r ≥ 0), then sn, cn, dn of r in double.
+TorqueFreeSolution::Reduced TorqueFreeSolution::reduced_since(const DoubleDouble& tau) const {
+    const DoubleDouble u = k_.nu * tau + DoubleDouble(u0_);
+    double j = 0.0, r = double(u);
+    if (isfinite(k_.K)) {
+        const Reduction reduction = reduce(u, k_.K + k_.K);
+        j = reduction.n;
+        const double K = double(k_.K);
+        r = std::clamp(double(reduction.r), -K, K);
     }
-    const auto [sn, cn, dn] = jacobi_sn_cn_dn(r, m_);
+    const auto [sn, cn, dn] = jacobi_sn_cn_dn(r, k_.m);
     return {j, sn, std::max(cn, 0.0), dn};
 }
 
-Vec3 TorqueFreeSolution::omega(double t) const {
-    if (constant_) return omega0_;
-    const Reduced z = reduced(t);
+// ω1' = a cn u, ω2' = b sn u, ω3' = ±c dn u with sn, cn of u = 2jK + r equal to (−1)^j those of r.
+Vec3 TorqueFreeSolution::omega(const Reduced& z) const {
     const double sign = std::fmod(std::abs(z.j), 2.0) == 1.0 ? -1.0 : 1.0;
     Vec3 w;
-    w[axis_[0]] = a_ * sign * z.cn;
-    w[axis_[1]] = b_ * sign * z.sn;
-    w[axis_[2]] = sign3_ * c_ * z.dn;
+    w[k_.axis[0]] = k_.a * sign * z.cn;
+    w[k_.axis[1]] = k_.b * sign * z.sn;
+    w[k_.axis[2]] = k_.sign3 * k_.c * z.dn;
     return w;
+}
+
+Vec3 TorqueFreeSolution::omega(double t) const {
+    if (k_.constant) return omega0_;
+    return omega(reduced(t));
 }
 
 std::vector<double> TorqueFreeSolution::omega(const std::vector<double>& times) const {
@@ -101,9 +130,8 @@ std::vector<double> TorqueFreeSolution::omega(const std::vector<double>& times) 
 }
 
 double TorqueFreeSolution::period() const {
-    if (constant_) return std::numeric_limits<double>::infinity();
-    if (m_ >= 1.0) return std::numeric_limits<double>::infinity();
-    return 4.0 * K_ / std::abs(nu_);
+    if (k_.constant || !isfinite(k_.K)) return std::numeric_limits<double>::infinity();
+    return 4.0 * double(k_.K) / std::abs(double(k_.nu));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -158,7 +186,29 @@ void FreeBodyFlow::require_closed_form(const Body& body, const char* who) {
         ") (the Zhukovsky–Volterra gyrostat is not implemented): integrate the full Model instead");
 }
 
-FreeBodyFlow::FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Vector4d& q0, double t0, bool attitude)
+namespace {
+
+/// |v| in double-double from the exact components.
+DoubleDouble norm_dd(const Vec3& v) {
+    DoubleDouble sum;
+    for (int i = 0; i < 3; ++i) sum += DoubleDouble(v[i]) * DoubleDouble(v[i]);
+    return sqrt(sum);
+}
+
+const DoubleDouble four_pi_dd(2.0 * two_pi_dd.hi, 2.0 * two_pi_dd.lo);
+
+}  // namespace
+
+// q_rot(θ a) = (cos θ/2, sin θ/2 a), θ = rate τ − 4πn formed in double-double.
+Eigen::Vector4d FreeBodyFlow::Spin::quaternion(const DoubleDouble& tau) const {
+    if (rate == DoubleDouble(0.0)) return {1.0, 0.0, 0.0, 0.0};
+    const double angle = double(reduce(rate * tau, four_pi_dd).r);
+    const double s = std::sin(0.5 * angle);
+    return {std::cos(0.5 * angle), s * axis[0], s * axis[1], s * axis[2]};
+}
+
+FreeBodyFlow::FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Vector4d& q0, double t0, bool attitude,
+                           Phases phases)
     : t0_(t0), omega0_(omega0), q0_(attitude ? unit_quaternion(q0) : Eigen::Vector4d(1, 0, 0, 0)) {
     require_closed_form(body, "FreeBodyFlow");
     require_finite(omega0, "FreeBodyFlow: omega0");
@@ -166,100 +216,134 @@ FreeBodyFlow::FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Ve
     const Vec3& J = body.moments();
     const Vec3& k = body.rotor();
     const int axis = symmetry_axis(J);
-    const Vec3 Gb = body.angular_momentum(omega0);
+    // Constant ω (at rest, a permanent rotation): R(t) = R0 exp(Δt [ω0]×).
+    const DoubleDouble w_norm = norm_dd(omega0);
+    if (w_norm.hi > 0.0) spin_ = {omega0 / w_norm.hi, w_norm};
     if (axis >= 0) {  // symmetric or spherical, any axial rotor
         kind_ = Kind::Symmetric;
         const int transverse = axis == 3 ? 0 : (axis + 1) % 3;
-        const double A = J[transverse];
+        const DoubleDouble A(J[transverse]);
+        // λ = k/A (sphere) or ((C − A) ω·e + k·e)/A e
+        Spin lambda;
         if (axis == 3) {
-            lambda_ = k / A;
+            const DoubleDouble k_norm = norm_dd(k);
+            if (k_norm.hi > 0.0) lambda = {k / k_norm.hi, k_norm / A};
         } else {
-            const double C = J[axis];
-            lambda_ = Vec3::Zero();
-            lambda_[axis] = ((C - A) * omega0[axis] + k[axis]) / A;
+            const DoubleDouble C(J[axis]);
+            const DoubleDouble along = ((C - A) * DoubleDouble(omega0[axis]) + DoubleDouble(k[axis])) / A;
+            lambda.axis = Vec3::Unit(axis) * (along.hi < 0.0 ? -1.0 : 1.0);
+            lambda.rate = abs(along);
         }
-        if (lambda_.squaredNorm() == 0.0) kind_ = Kind::Constant;
-        precession_ = attitude ? Vec3(rotation_matrix(q0_) * Gb / A) : Vec3::Zero();
+        if (lambda.rate == DoubleDouble(0.0)) {
+            kind_ = Kind::Constant;
+            return;
+        }
+        spin_ = lambda;
+        if (attitude) {  // about G_in = R(q0) G_b at |G|/A, G_b = J ω0 + k
+            DoubleDouble G2;
+            for (int i = 0; i < 3; ++i) {
+                const DoubleDouble Gi = DoubleDouble(J[i]) * DoubleDouble(omega0[i]) + DoubleDouble(k[i]);
+                G2 += Gi * Gi;
+            }
+            const Vec3 G_in = rotation_matrix(q0_) * body.angular_momentum(omega0);
+            if (G2.hi > 0.0) precession_ = {G_in.normalized(), sqrt(G2) / A};
+        }
         return;
     }
     // Scale invariance of the free rigid body: ω(t; s ω̂0) = s ω(s t; ω̂0), and the attitude is a
-    // function of s t. Working with ω̂0 = ω0/s, s = max|ω0_i|, keeps every square in the formulas
-    // away from underflow (a decayed ω of 1e-160 would otherwise lose all its digits in ω²).
-    scale_ = omega0.cwiseAbs().maxCoeff();
-    if (scale_ == 0.0) {  // at rest
+    // function of s t. Working with ω̂0 = ω0/s, s the power of two at or above max|ω0_i| (so that
+    // ω0/s and s t are exact), keeps every square in the formulas away from underflow (a decayed
+    // ω of 1e-160 would otherwise lose all its digits in ω²).
+    const double largest = omega0.cwiseAbs().maxCoeff();
+    if (largest == 0.0) {  // at rest
         kind_ = Kind::Constant;
         return;
     }
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    scale_ = std::ldexp(1.0, exponent);
     const Vec3 unit = omega0 / scale_;
-    elliptic_ = TorqueFreeSolution(body, unit, 0.0);
+    elliptic_ = TorqueFreeSolution(body, unit, 0.0, phases, attitude);
     if (elliptic_.is_constant()) {
         kind_ = Kind::Constant;
         return;
     }
     kind_ = Kind::Elliptic;
-    const int* ax = elliptic_.axes();
+    const FreeBodyConstants& c = elliptic_.constants();
+    const int* ax = c.axis;
     A_ = J[ax[0]], B_ = J[ax[1]], C_ = J[ax[2]];
     G_ = J.cwiseProduct(unit).norm();
-    const double m = elliptic_.modulus_squared();
-    N_ = -C_ * (B_ - A_) / (A_ * (C_ - B_));
-    if (!std::isfinite(N_)) N_ = 0.0;  // B = C cannot reach here (symmetric)
     const bool cyclic = (ax[1] - ax[0] + 3) % 3 == 1;
     s_ = cyclic ? 1.0 : -1.0;
     S_.setZero();
     S_(0, ax[0]) = 1.0, S_(1, ax[1]) = s_, S_(2, ax[2]) = 1.0;
     if (!attitude) return;
-    rate_ = G_ / C_;
-    coeff_ = G_ * (C_ - A_) / (C_ * A_ * elliptic_.frequency());
-    Pi_complete_ = m < 1.0 ? elliptic_Pi(N_, m) : 0.0;
-    const TorqueFreeSolution::Reduced z0 = elliptic_.reduced(0.0);
-    Pi0_ = 2.0 * z0.j * Pi_complete_ + elliptic_Pi_jacobi(z0.sn, z0.cn, z0.dn, N_, m);
+    rate_ = c.rate;
+    coeff_ = double(c.coeff);
+    drift_ = DoubleDouble(2.0) * c.coeff * c.Pi_complete;
+    const TorqueFreeSolution::Reduced z0 = elliptic_.reduced_since(DoubleDouble(0.0));
+    j0_ = z0.j;
+    Pi_r0_ = elliptic_Pi_jacobi(z0.sn, z0.cn, z0.dn, c.N, c.m);
     q_s_ = quaternion_from_matrix(S_);
     // q_in = q0 ⊗ q_S* ⊗ (q_x(θ0) ⊗ q_z(ψ0))*
     const Vec3 g = S_ * J.cwiseProduct(unit) / G_;
     const double sin_theta = std::hypot(g[0], g[1]);
     const double theta0 = std::atan2(sin_theta, g[2]);
-    const double psi0 = std::atan2(A_ * elliptic_.a() * z0.cn, s_ * B_ * elliptic_.b() * z0.sn) - s_ * z0.j * M_PI;
+    const double psi0 = std::atan2(A_ * c.a * z0.cn, s_ * B_ * c.b * z0.sn) - s_ * std::fmod(z0.j, 4.0) * M_PI;
     const Eigen::Vector4d qw0 = quaternion_product(q_x(theta0), q_z(psi0));
     q_in_ = quaternion_product(quaternion_product(q0_, conjugate(q_s_)), conjugate(qw0));
 }
 
 Vec3 FreeBodyFlow::omega(double t) const {
+    const DoubleDouble dt = two_diff(t, t0_);
     switch (kind_) {
         case Kind::Constant: return omega0_;
-        case Kind::Symmetric: return rotation_matrix(rotation_quaternion(lambda_ * (t - t0_))) * omega0_;
+        case Kind::Symmetric: return rotation_matrix(spin_.quaternion(dt)) * omega0_;
         case Kind::Elliptic: break;
     }
-    return scale_ * elliptic_.omega(scale_ * (t - t0_));
+    return scale_ * elliptic_.omega(elliptic_.reduced_since(dt * DoubleDouble(scale_)));
 }
 
-Eigen::Vector4d FreeBodyFlow::quaternion(double t) const {
-    const double dt = t - t0_;
-    switch (kind_) {
-        case Kind::Constant: return quaternion_product(q0_, rotation_quaternion(omega0_ * dt));
-        case Kind::Symmetric:
-            return quaternion_product(quaternion_product(rotation_quaternion(precession_ * dt), q0_),
-                                      rotation_quaternion(-lambda_ * dt));
-        case Kind::Elliptic: break;
-    }
-    const double m = elliptic_.modulus_squared();
-    const TorqueFreeSolution::Reduced z = elliptic_.reduced(scale_ * dt);
-    const double Pi = 2.0 * z.j * Pi_complete_ + elliptic_Pi_jacobi(z.sn, z.cn, z.dn, N_, m);
-    const double dphi = rate_ * (scale_ * dt) + coeff_ * (Pi - Pi0_);
-    // θ and ψ from ω(t) in primed axes (the same reduced sn, cn, dn)
+// φ(τ) − φ(0) = rate τ + drift (j − j0) [double-double, reduced modulo 4π] + coeff (Π̃(r) − Π̃(r0)),
+// θ and ψ from ω(τ) in primed axes (the same reduced sn, cn, dn), ψ's shift j π taken modulo 4π.
+Eigen::Vector4d FreeBodyFlow::elliptic_quaternion(const DoubleDouble& tau, const TorqueFreeSolution::Reduced& z) const {
+    const FreeBodyConstants& c = elliptic_.constants();
+    const DoubleDouble secular = rate_ * tau + drift_ * DoubleDouble(z.j - j0_);
+    const double Pi_r = elliptic_Pi_jacobi(z.sn, z.cn, z.dn, c.N, c.m);
+    const double dphi = double(reduce(secular, four_pi_dd).r) + coeff_ * (Pi_r - Pi_r0_);
     const double sign = std::fmod(std::abs(z.j), 2.0) == 1.0 ? -1.0 : 1.0;
-    const double w1 = elliptic_.a() * sign * z.cn, w2 = s_ * elliptic_.b() * sign * z.sn;
-    const double w3 = elliptic_.sign3() * elliptic_.c() * z.dn;
+    const double w1 = c.a * sign * z.cn, w2 = s_ * c.b * sign * z.sn;
+    const double w3 = c.sign3 * c.c * z.dn;
     const double sin_theta = std::hypot(A_ * w1, B_ * w2) / G_;
     const double theta = std::atan2(sin_theta, C_ * w3 / G_);
-    const double psi = std::atan2(A_ * elliptic_.a() * z.cn, s_ * B_ * elliptic_.b() * z.sn) - s_ * z.j * M_PI;
+    const double psi = std::atan2(A_ * c.a * z.cn, s_ * B_ * c.b * z.sn) - s_ * std::fmod(z.j, 4.0) * M_PI;
     Eigen::Vector4d q = quaternion_product(q_in_, q_z(dphi));
     q = quaternion_product(q, q_x(theta));
     q = quaternion_product(q, q_z(psi));
     return quaternion_product(q, q_s_);
 }
 
+Eigen::Vector4d FreeBodyFlow::quaternion(double t) const {
+    const DoubleDouble dt = two_diff(t, t0_);
+    switch (kind_) {
+        case Kind::Constant: return quaternion_product(q0_, spin_.quaternion(dt));
+        case Kind::Symmetric:
+            return quaternion_product(quaternion_product(precession_.quaternion(dt), q0_), conjugate(spin_.quaternion(dt)));
+        case Kind::Elliptic: break;
+    }
+    const DoubleDouble tau = dt * DoubleDouble(scale_);
+    return elliptic_quaternion(tau, elliptic_.reduced_since(tau));
+}
+
 FreeBodyFlow::State FreeBodyFlow::at(double t) const {
     State y;
+    if (kind_ == Kind::Elliptic) {  // one reduction for ω and q
+        const DoubleDouble tau = two_diff(t, t0_) * DoubleDouble(scale_);
+        const TorqueFreeSolution::Reduced z = elliptic_.reduced_since(tau);
+        y.head<3>() = scale_ * elliptic_.omega(z);
+        y.tail<4>() = elliptic_quaternion(tau, z);
+        return y;
+    }
     y.head<3>() = omega(t);
     y.tail<4>() = quaternion(t);
     return y;
@@ -268,7 +352,7 @@ FreeBodyFlow::State FreeBodyFlow::at(double t) const {
 double FreeBodyFlow::period() const {
     switch (kind_) {
         case Kind::Constant: return std::numeric_limits<double>::infinity();
-        case Kind::Symmetric: return 2.0 * M_PI / std::max(lambda_.norm(), precession_.norm());
+        case Kind::Symmetric: return 2.0 * M_PI / std::max(double(spin_.rate), double(precession_.rate));
         case Kind::Elliptic: break;
     }
     return elliptic_.period() / scale_;

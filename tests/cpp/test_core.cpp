@@ -15,6 +15,7 @@
 #include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/solve.hpp"
 #include "gyrostat/model/averaged.hpp"
+#include "gyrostat/model/elliptic.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/lagrange_top.hpp"
 #include "gyrostat/model/moving_mass.hpp"
@@ -403,7 +404,7 @@ int main() {
     }
 
     // The exact flow with attitude against DOP853 at rtol 1e-13 on the gyrostat model with
-    // attitude (both energy orderings); R(q) J ω constant at t = 1e8; splitting with no torque is
+    // attitude (both energy orderings); R(q) J ω constant at t = 1e8 to rounding; splitting with no torque is
     // the exact flow; splitting refused without a step and for a model that does not split.
     {
         const Body b(Vec3(2.0, 3.0, 4.0));
@@ -425,8 +426,8 @@ int main() {
             const Vec3 G0 = rotation_matrix(q0) * b.angular_momentum(w);
             const auto far = flow.at(1e8);
             const Vec3 G1 = rotation_matrix(far.tail<4>()) * b.angular_momentum(far.head<3>());
-            // rounding of angles of size |ω| t ≈ 1e8: ~1e-8 relative
-            CHECK((G1 - G0).norm() < 1e-7 * G0.norm(), "inertial angular momentum constant at t = 1e8");
+            // the phases (|ω| t ≈ 1e8) in double-double: rounding only (before, in double: ~1e-8)
+            CHECK((G1 - G0).norm() < 1e-14 * G0.norm(), "inertial angular momentum constant at t = 1e8");
             integrate::Options s;
             s.method = Method::Splitting;
             s.step = 0.7;
@@ -444,6 +445,47 @@ int main() {
         const AnyModel top = model::LagrangeTop(Body(Vec3(2.0, 2.0, 1.0)), 0.5, TorqueSet{});
         CHECK(throws_invalid([&] { solve(top, 0.0, Eigen::VectorXd::Constant(dim(top), 0.1), 1.0, s); }),
               "splitting for the Lagrange top names it");
+    }
+
+    // Carlson's R_F, R_C, R_J by duplication in double-double (model/elliptic.hpp) against values
+    // to 32 digits: R_C(0, 1/4) = π and R_C(9/4, 2) = ln 2 exactly (Carlson 1995, §3; DLMF 19.2.19);
+    // R_F(1, 2, 0) = 1.3110287771460599052…, R_F(2, 3, 4) = 0.58408284167715170669…,
+    // R_J(0, 1, 2, 3) = 0.77688623778582332014…, R_J(2, 3, 4, 5) = 0.14297579667156753833… (the
+    // values of Carlson 1995 §3 and DLMF 19.36, the further digits from mpmath's elliprf/elliprj
+    // at 50 digits), K(m) and Π(−2 | m) at m = fl(0.9) (mpmath's ellipk, ellippi at 50 digits).
+    // Relative tolerance 1e-30: the double-double unit is 4.9e-32 and the duplication's truncation
+    // error is below it (Carlson's bound); the roundings of the iterations and of the R_C sums
+    // accumulate to a few units (measured 2e-32 to 7e-32). A double result would miss by ~1e-17.
+    {
+        using DD = model::DoubleDouble;
+        const auto rel = [](const DD& value, const DD& ref) { return std::abs(double((value - ref) / ref)); };
+        const DD pi(3.1415926535897931, 1.2246467991473532e-16), ln2(0.69314718055994529, 2.3190468138462996e-17);
+        const DD quarter(0.25);
+        CHECK(rel(model::carlson_RC(DD(0.0), quarter), pi) < 1e-30, "R_C(0, 1/4) = pi in double-double");
+        CHECK(rel(model::carlson_RC(DD(2.25), DD(2.0)), ln2) < 1e-30, "R_C(9/4, 2) = ln 2 in double-double");
+        CHECK(rel(model::carlson_RF(DD(1.0), DD(2.0), DD(0.0)), DD(1.3110287771460598, 9.5821547973489897e-17)) < 1e-30,
+              "R_F(1, 2, 0) in double-double");
+        CHECK(rel(model::carlson_RF(DD(2.0), DD(3.0), DD(4.0)), DD(0.58408284167715174, -3.6150116917829376e-17)) < 1e-30,
+              "R_F(2, 3, 4) in double-double");
+        CHECK(rel(model::carlson_RJ(DD(0.0), DD(1.0), DD(2.0), DD(3.0)), DD(0.77688623778582333, -1.0206575239892958e-17)) <
+                  1e-30,
+              "R_J(0, 1, 2, 3) in double-double");
+        CHECK(rel(model::carlson_RJ(DD(2.0), DD(3.0), DD(4.0), DD(5.0)), DD(0.14297579667156754, -1.5759708466304902e-18)) <
+                  1e-30,
+              "R_J(2, 3, 4, 5) in double-double");
+        const DD y = DD(1.0) - DD(0.9);  // 1 − fl(0.9), exact
+        const DD K = model::carlson_RF(DD(0.0), y, DD(1.0));
+        CHECK(rel(K, DD(2.5780921133481733, -4.9364080809104914e-17)) < 1e-30, "K(0.9) in double-double");
+        const DD Pi = K + DD(-2.0) / DD(3.0) * model::carlson_RJ(DD(0.0), y, DD(1.0), DD(3.0));
+        CHECK(rel(Pi, DD(1.2935438634279695, -5.1288853337107177e-17)) < 1e-30, "Pi(-2 | 0.9) in double-double");
+        // the double instantiation: the same algorithm at double's tolerance (a few ulps)
+        CHECK(std::abs(model::carlson_RJ(2.0, 3.0, 4.0, 5.0) / 0.14297579667156753833 - 1.0) < 1e-15, "R_J(2, 3, 4, 5) in double");
+        CHECK(std::abs(model::carlson_RF(1.0, 2.0, 0.0) / 1.3110287771460599052 - 1.0) < 1e-15, "R_F(1, 2, 0) in double");
+        std::printf("carlson (double-double) relative errors: RC %.1e %.1e RF %.1e RJ %.1e K %.1e Pi %.1e\n",
+                    rel(model::carlson_RC(DD(0.0), quarter), pi), rel(model::carlson_RC(DD(2.25), DD(2.0)), ln2),
+                    rel(model::carlson_RF(DD(1.0), DD(2.0), DD(0.0)), DD(1.3110287771460598, 9.5821547973489897e-17)),
+                    rel(model::carlson_RJ(DD(2.0), DD(3.0), DD(4.0), DD(5.0)), DD(0.14297579667156754, -1.5759708466304902e-18)),
+                    rel(K, DD(2.5780921133481733, -4.9364080809104914e-17)), rel(Pi, DD(1.2935438634279695, -5.1288853337107177e-17)));
     }
 
     std::printf("%d passed, %d failed\n", passes, failures);

@@ -7,9 +7,30 @@
 #include <vector>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/model/double_double.hpp"
 #include "gyrostat/model/system.hpp"
 
 namespace gyrostat::model {
+
+/// How the constants that multiply t are computed (see "Precision" in FreeBodyFlow's comment).
+enum class Phases {
+    Extended,  ///< double-double (the default): error ~1e-15 at any t up to ~1e15/|ω|
+    Double     ///< double: ~1e-16·|ω|·t, for the short sub-steps of a splitting (|ω| h ~ 1)
+};
+
+/// The constants of the closed form, computed once from the exact double inputs (moments, ω0)
+/// in double-double (or double, Phases::Double); those that multiply t are kept as double-double,
+/// the others (used on a bounded argument only) are rounded to double. One place for
+/// TorqueFreeSolution (ω) and FreeBodyFlow (the precession).
+struct FreeBodyConstants {
+    bool constant = true;                  ///< at rest, spherical, or a permanent rotation
+    int axis[3] = {0, 1, 2};               ///< body index of axes 1', 2', 3' (3': the polhode's axis)
+    double a = 0, b = 0, c = 0, m = 0, sign3 = 1;
+    DoubleDouble nu, K;                    ///< ν and K(m) (K = ∞ on the separatrix m = 1)
+    // with the precession (FreeBodyFlow): |G|, |G|/C, |G|(C − A)/(C A ν), Π(N | m), N
+    DoubleDouble G, rate, coeff, Pi_complete;
+    double N = 0;
+};
 
 /// ω(t) of a free rigid body (rotor k = 0) from ω(t0) = ω0.
 ///
@@ -23,45 +44,53 @@ namespace gyrostat::model {
 /// φ0 = atan2(ω2'(t0)/b, ω1'(t0)/a) (Landau & Lifshitz, Mechanics §37).
 /// Permanent rotations (a = b = 0) and the spherical body give a constant ω. The argument u is
 /// reduced to r ∈ [−K, K] (u = 2jK + r; sn, cn change sign with j, dn does not) so that the
-/// cost does not depend on t. The attitude is FreeBodyFlow's (below).
+/// cost does not depend on t. ν and K (FreeBodyConstants) are computed in double-double from the
+/// exact inputs, and u = ν (t − t0) + u0 − 2jK is formed in double-double (t − t0 exactly) before
+/// sn, cn, dn are evaluated in double on r: the phase keeps ~1e-16 absolute accuracy at any t
+/// (see "Precision" in FreeBodyFlow's comment). The attitude is FreeBodyFlow's (below).
 class TorqueFreeSolution {
 public:
     /// Throws std::invalid_argument when the body has a rotor (k ≠ 0: the Zhukovsky–Volterra
-    /// gyrostat has no such closed form here) or ω0 is not finite.
-    TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0 = 0.0);
+    /// gyrostat has no such closed form here) or ω0 is not finite. `precession` also computes
+    /// FreeBodyFlow's constants (G, rate, coeff, Π(N | m)).
+    TorqueFreeSolution(const Body& body, const Vec3& omega0, double t0 = 0.0, Phases phases = Phases::Extended,
+                       bool precession = false);
     TorqueFreeSolution() = default;  ///< at rest (a placeholder)
 
     Vec3 omega(double t) const;
     Vec3 at(double t) const { return omega(t); }                          ///< the flow's state at t
     std::vector<double> omega(const std::vector<double>& times) const;  ///< n×3, row-major
 
-    double modulus_squared() const { return m_; }            ///< m = k² (0 for permanent rotation)
-    double frequency() const { return nu_; }                  ///< ν (rad/s of the argument u)
+    double modulus_squared() const { return k_.m; }           ///< m = k² (0 for permanent rotation)
+    double frequency() const { return double(k_.nu); }        ///< ν (rad/s of the argument u)
     double period() const;                                     ///< of ω(t): 4K(m)/|ν| (∞ when constant)
     /// The longest piece over which an event search may assume at most one crossing of a smooth
     /// function of ω: 1/32 of the period (∞ when ω is constant).
     double event_step() const { return period() / 32.0; }
-    bool is_constant() const { return constant_; }
+    bool is_constant() const { return k_.constant; }
 
     /// u(t) = 2jK + r, |r| ≤ K: (j, sn r, cn r, dn r) (j = 0 and r = u on the separatrix m = 1).
     struct Reduced {
         double j, sn, cn, dn;
     };
-    Reduced reduced(double t) const;
+    Reduced reduced(double t) const { return reduced_since(two_diff(t, t0_)); }
+    /// The same at t = t0 + τ, τ given in double-double (FreeBodyFlow's scaled time).
+    Reduced reduced_since(const DoubleDouble& tau) const;
+    /// ω at t = t0 + τ from the reduced argument (one place for the signs of the pieces).
+    Vec3 omega(const Reduced& z) const;
+    const FreeBodyConstants& constants() const { return k_; }
     /// The relabelling: body index of axes 1', 2', 3' (3' is the axis the polhode encircles).
-    const int* axes() const { return axis_; }
-    double a() const { return a_; }
-    double b() const { return b_; }
-    double c() const { return c_; }
-    double sign3() const { return sign3_; }
+    const int* axes() const { return k_.axis; }
+    double a() const { return k_.a; }
+    double b() const { return k_.b; }
+    double c() const { return k_.c; }
+    double sign3() const { return k_.sign3; }
     double argument0() const { return u0_; }  ///< u0 = u(t0)
 
 private:
     Vec3 omega0_ = Vec3::Zero();
-    double t0_ = 0.0;
-    bool constant_ = true;
-    int axis_[3] = {0, 1, 2};   // body axis index of 1', 2', 3'
-    double a_ = 0, b_ = 0, c_ = 0, m_ = 0, nu_ = 0, u0_ = 0, sign3_ = 1, K_ = 0;
+    double t0_ = 0.0, u0_ = 0.0;
+    FreeBodyConstants k_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -110,9 +139,24 @@ private:
 // Any other gyrostat (an asymmetric body or a rotor off the symmetry axis) has no closed form
 // here: the constructor throws std::invalid_argument naming the body.
 //
-// Accuracy: |G| and T are those of ω(t) from the elliptic functions, exact to rounding at any t;
-// the phases carry the rounding of ν (t − t0) and |G| (t − t0)/C, about ε |ω| t (the condition
-// of the problem in double precision), and the cost of one evaluation does not depend on t.
+// Precision. |G| and T are those of ω(t) from the elliptic functions, exact to rounding at any t.
+// The phases grow with t: u = ν (t − t0) + u0, the secular part of φ, |G| (t − t0)/C + |G| (C − A)
+// /(C A ν) · 2j Π(N | m), and in the symmetric and constant cases the angles |λ| t, |G| t/A, |ω0| t.
+// In double, each carries the relative rounding (~1e-16) of its constant (ν, K, |G|/C, Π, computed
+// through T, G², m, …) and of the product with t: an error ~1e-16·|ω|·t (9e-10 at t = 1e7 for
+// I = (2, 3, 4), |ω0| ≈ 1). Here (Phases::Extended, the default) every constant that multiplies t,
+// and everything it is derived from, is computed in double-double (double_double.hpp: 106 bits,
+// portable, unlike long double) from the exact double inputs J and ω0 (scaled by a power of two:
+// exact), K and Π by Carlson's R_F, R_J at that precision (elliptic.hpp); t − t0 is formed
+// exactly; the phases are reduced in double-double (u modulo 2K, φ modulo 4π, j π modulo 4π: 4π
+// keeps q continuous, q_z(φ + 2π) = −q_z(φ)), and only the reduced arguments are rounded to double
+// for sn, cn, dn, Π(N; am r | m) and the quaternion's sines. The phase error is then ~1e-30·|ω| t
+// (+ rounding ~1e-16 of the bounded parts): ≤ 1.1e-15 measured up to t = 1e9 (bench/long_horizon.py),
+// i.e. the error of a double evaluation at any t up to ~1e15/|ω|, where t itself stops being
+// resolved. The cost of one evaluation does not depend on t (0.7 µs at t = 1e3, 1e7, 1e9); the
+// constructor's double-double constants cost once 12 µs with attitude (the R_J of Π), 2.3 µs
+// without (measured; 2.0 and 0.65 µs in double). Phases::Double keeps them in double for the
+// splitting's sub-steps, where |ω| h ~ 1 keeps the double error at rounding.
 class FreeBodyFlow {
 public:
     using State = Eigen::Matrix<double, 7, 1>;
@@ -120,7 +164,8 @@ public:
     /// returns the identity quaternion's flow only in ω: use omega()). Throws
     /// std::invalid_argument for a gyrostat without a closed form here (see above) or a
     /// non-finite input.
-    FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Vector4d& q0, double t0 = 0.0, bool attitude = true);
+    FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Vector4d& q0, double t0 = 0.0, bool attitude = true,
+                 Phases phases = Phases::Extended);
 
     /// Throws std::invalid_argument naming the body when its free flow has no closed form here.
     static void require_closed_form(const Body& body, const char* who);
@@ -132,18 +177,28 @@ public:
     double event_step() const;
 
 private:
+    /// The rotation by rate·τ about a fixed unit axis, the angle formed and reduced modulo 4π in
+    /// double-double (q_rot(θ + 4π) = q_rot(θ)).
+    struct Spin {
+        Vec3 axis = Vec3::UnitZ();
+        DoubleDouble rate;
+        Eigen::Vector4d quaternion(const DoubleDouble& tau) const;
+    };
+    Eigen::Vector4d elliptic_quaternion(const DoubleDouble& tau, const TorqueFreeSolution::Reduced& z) const;
     enum class Kind { Constant, Symmetric, Elliptic };
     Kind kind_ = Kind::Constant;
     double t0_;
     Vec3 omega0_;
     Eigen::Vector4d q0_;
     TorqueFreeSolution elliptic_;
-    // Symmetric: ω̇ = λ × ω and the precession rate vector G_in/A.
-    Vec3 lambda_ = Vec3::Zero(), precession_ = Vec3::Zero();
-    // Elliptic: the constants of the derivation, for ω0/scale_ and the time scale_ (t − t0).
+    // Constant: ω0 t; symmetric: ω̇ = λ × ω and the precession about G_in at |G|/A.
+    Spin spin_, precession_;
+    // Elliptic: the constants of the derivation, for ω0/scale_ and the time scale_ (t − t0)
+    // (scale_ a power of two: exact). φ(τ) − φ(0) = rate τ + drift (j − j0) + coeff (Π̃(r) − Π̃(r0)).
     Eigen::Vector4d q_in_ = Eigen::Vector4d(1, 0, 0, 0), q_s_ = Eigen::Vector4d(1, 0, 0, 0);
     Mat3 S_ = Mat3::Identity();
-    double scale_ = 1, s_ = 1, G_ = 0, A_ = 0, B_ = 0, C_ = 0, N_ = 0, Pi_complete_ = 0, Pi0_ = 0, rate_ = 0, coeff_ = 0;
+    double scale_ = 1, s_ = 1, G_ = 0, A_ = 0, B_ = 0, C_ = 0, coeff_ = 0, j0_ = 0, Pi_r0_ = 0;
+    DoubleDouble rate_, drift_;
 };
 
 /// q0 ⊗ q_rot(v), q_rot(v) = (cos |v|/2, sin(|v|/2) v/|v|): the rotation by the vector v.
