@@ -13,6 +13,7 @@
 #include "gyrostat/model/moving_mass.hpp"
 
 #include "check.hpp"
+#include "families.hpp"
 
 using namespace gyrostat;
 using integrate::Method;
@@ -242,21 +243,7 @@ int main(int argc, char**) {
     // 7. Every family accepts method 'auto' (the closed form stays closed form); on these
     // non-stiff cases it is DOP853 step for step.
     {
-        const Body body(Vec3(1.0, 2.0, 3.0)), sym(Vec3(1.5, 1.5, 1.0));
-        const TorqueSet damping({torque::LinearDamping(0.01 * Mat3::Identity())});
-        const std::vector<AnyModel> models{model::Gyrostat<false>(body, damping),
-                                           model::Gyrostat<true>(body, damping),
-                                           model::AveragedSymmetric(Body(Vec3(8.0, 8.0, 4.0)),
-                                                                    TorqueSet({torque::ViscousCavity(1260.0, 1000.0, 0.48)})),
-                                           model::LagrangeTop(sym, 0.5, damping),
-                                           model::LagrangeAveraged(sym, 0.5, damping),
-                                           model::OrthogonalTorque<false>(Body(Vec3(2.0, 3.0, 4.0)), model::MagnitudeLaw::constant(0.1)),
-                                           model::OrthogonalTorque<true>(Body(Vec3(2.0, 3.0, 4.0)), model::MagnitudeLaw::constant(0.1)),
-                                           model::TorqueFree(body)};
-        Eigen::VectorXd top0(7);
-        top0 << 0.1, 0.0, 1.7, std::cos(0.25), std::sin(0.25), 0.0, 0.0;
-        const std::vector<Eigen::VectorXd> starts{Eigen::Vector3d(w0), Eigen::Vector3d(w0), Eigen::Vector2d(1.0, 1.0), top0,
-                                                  top0, Eigen::Vector3d(w0), Eigen::Vector3d(w0), Eigen::Vector3d(w0)};
+        const auto [models, starts] = every_family();
         Options o = with(Method::Auto, 1e-9, 1e-12);
         o.n_out = 21;
         Options d = o;

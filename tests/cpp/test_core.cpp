@@ -23,6 +23,7 @@
 #include "gyrostat/model/torque_free.hpp"
 
 #include "check.hpp"
+#include "families.hpp"
 
 using namespace gyrostat;
 using integrate::Method;
@@ -277,24 +278,7 @@ int main() {
 
     // The engine: every family through one variant, one solve, one ensemble (mixed families).
     {
-        const Body sym(Vec3(1.5, 1.5, 1.0));
-        const TorqueSet damping({torque::LinearDamping(0.01 * Mat3::Identity())});
-        std::vector<AnyModel> models{model::Gyrostat<false>(body, damping),
-                                     model::Gyrostat<true>(body, damping),
-                                     model::AveragedSymmetric(Body(Vec3(8.0, 8.0, 4.0)),
-                                                              TorqueSet({torque::ViscousCavity(1260.0, 1000.0, 0.48)})),
-                                     model::MovingMass(Body(Vec3(4.0, 4.0, 2.0)), 1.0, 1.0, 10.0, 98.0, TorqueSet{}),
-                                     model::LagrangeTop(sym, 0.5, damping),
-                                     model::LagrangeAveraged(sym, 0.5, damping),
-                                     model::OrthogonalTorque<false>(Body(Vec3(2.0, 3.0, 4.0)), model::MagnitudeLaw::constant(0.1)),
-                                     model::OrthogonalTorque<true>(Body(Vec3(2.0, 3.0, 4.0)), model::MagnitudeLaw::constant(0.1)),
-                                     model::TorqueFree(body)};
-        Eigen::VectorXd top0(7);
-        top0 << 0.1, 0.0, 1.7, std::cos(0.25), std::sin(0.25), 0.0, 0.0;
-        std::vector<Eigen::VectorXd> starts{Eigen::Vector3d(w0), Eigen::Vector3d(w0), Eigen::Vector2d(1.0, 1.0),
-                                            Eigen::VectorXd::Zero(9), top0, top0, Eigen::Vector3d(w0),
-                                            Eigen::Vector3d(w0), Eigen::Vector3d(w0)};
-        starts[3].head<3>() = Vec3(1.0, 0.0, 1.0);
+        const auto [models, starts] = every_family();
         integrate::Options o;
         o.method = Method::CvodeBdf;  // works for every family (the closed form ignores it)
         o.n_out = 11;
