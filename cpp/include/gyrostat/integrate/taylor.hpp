@@ -42,6 +42,13 @@ inline double step_size(double scale, double c_low, double c_high, int order, do
     return safety * std::exp2(std::min(low, high));
 }
 
+/// The order for a local error target ε (the rule in the comment at the top), within [2, max].
+inline int order_for(double eps, int max_order) {
+    return std::clamp(static_cast<int>(std::ceil(-0.5 * std::log(eps))) + 3, 2, max_order);
+}
+/// The factor ε^{1/p}·exp(−0.7/(p − 1)) that multiplies min(ρ_{p−1}, ρ_p).
+inline double safety_for(double eps, int order) { return std::exp(-0.7 / (order - 1)) * std::exp(std::log(eps) / order); }
+
 /// One step of fixed order: coefficients, step size, events and outputs inside the step, the new
 /// state. Returns false when the coefficients are not finite (h then holds NaN); `t_stop` is the
 /// time of a terminal event inside the step (NaN when none: the step goes to its end).
@@ -149,8 +156,8 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
             const bool relative = options.rtol * norm > options.atol;
             const double eps = std::max(relative ? options.rtol : options.atol, 1e-300);
             if (eps != eps_of_order) {  // changes only when the mode (absolute/relative) switches
-                order = std::clamp(static_cast<int>(std::ceil(-0.5 * std::log(eps))) + 3, 2, max_order);
-                safety = std::exp(-0.7 / (order - 1)) * std::exp(std::log(eps) / order);
+                order = taylor_detail::order_for(eps, max_order);
+                safety = taylor_detail::safety_for(eps, order);
                 eps_of_order = eps;
             }
             const double t_before = t;

@@ -7,15 +7,146 @@
 #include <utility>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
+#include "gyrostat/lanes.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/model/torque_free.hpp"
 #include "gyrostat/integrate/dop853_tableau.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
+
+/// Euler's equations with torques affine in ω (M = M0 − D ω), in the form the Taylor recursion
+/// and the SIMD batches use:
+///   ω̇_i = J_i⁻¹ ((A_j − A_k) ω_j ω_k − (ω × k)_i − (D ω)_i + M0_i),   (i, j, k) cyclic.
+/// T = double for one body; T = lanes::Lanes for one body per SIMD lane (integrate/batch.hpp).
+template <class T>
+struct AffineEuler {
+    T inverse_moments[3];
+    T differences[3];  ///< A2 − A3, A3 − A1, A1 − A2
+    T rotor[3];
+    T damping[9];      ///< D, row-major
+    T constant[3];     ///< M0
+    bool has_rotor = false, damped = false;
+
+    /// The coefficients of a body under a torque set (its affine part: the constant and linear
+    /// torques folded by TorqueSet).
+    static AffineEuler of(const Body& body, const TorqueSet& torques) {
+        static_assert(std::is_same_v<T, double>, "gather lanes from AffineEuler<double>");
+        AffineEuler e;
+        const Vec3& J = body.moments();
+        for (int i = 0; i < 3; ++i) {
+            e.inverse_moments[i] = body.inverse_moments()[i];
+            e.differences[i] = J[(i + 1) % 3] - J[(i + 2) % 3];
+            e.rotor[i] = body.rotor()[i];
+            e.constant[i] = torques.constant_part()[i];
+            for (int j = 0; j < 3; ++j) e.damping[3 * i + j] = torques.damping_part()(i, j);
+        }
+        e.has_rotor = body.rotor().squaredNorm() != 0.0;
+        e.damped = torques.has_damping();
+        return e;
+    }
+};
+
+/// ω̇ of the affine Euler equations above, and with the attitude q̇ = ½ q ⊗ (0, ω):
+///   q̇_w = −½(q_x p + q_y q + q_z r),  q̇_x = ½(q_w p + q_y r − q_z q),
+///   q̇_y = ½(q_w q + q_z p − q_x r),   q̇_z = ½(q_w r + q_x q − q_y p).
+template <bool WithAttitude, class T>
+void affine_euler_rhs(const AffineEuler<T>& e, const T* y, T* dy) {
+    T r[3] = {e.differences[0] * y[1] * y[2], e.differences[1] * y[2] * y[0], e.differences[2] * y[0] * y[1]};
+    if (e.has_rotor) {
+        r[0] -= y[1] * e.rotor[2] - y[2] * e.rotor[1];
+        r[1] -= y[2] * e.rotor[0] - y[0] * e.rotor[2];
+        r[2] -= y[0] * e.rotor[1] - y[1] * e.rotor[0];
+    }
+    if (e.damped)
+        for (int i = 0; i < 3; ++i) r[i] -= e.damping[3 * i] * y[0] + e.damping[3 * i + 1] * y[1] + e.damping[3 * i + 2] * y[2];
+    for (int i = 0; i < 3; ++i) dy[i] = (r[i] + e.constant[i]) * e.inverse_moments[i];
+    if constexpr (WithAttitude) {
+        const T &qw = y[3], &qx = y[4], &qy = y[5], &qz = y[6];
+        dy[3] = -0.5 * (qx * y[0] + qy * y[1] + qz * y[2]);
+        dy[4] = 0.5 * (qw * y[0] + qy * y[2] - qz * y[1]);
+        dy[5] = 0.5 * (qw * y[1] + qz * y[0] - qx * y[2]);
+        dy[6] = 0.5 * (qw * y[2] + qx * y[1] - qy * y[0]);
+    }
+}
+
+/// Taylor coefficients c(n, ·), n = 1..order, of the affine Euler equations (and the attitude)
+/// from c(0, ·) = y: y(t + h) = Σ c(n, ·) hⁿ. The right-hand side is quadratic, so each order is
+/// a Cauchy product of earlier ones; with P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m]:
+///   ω_i[n+1] = J_i⁻¹ ((A_j − A_k) P_jk[n] − (ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}) / (n + 1),
+///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
+/// `c(n, i)` returns a reference to coefficient n of component i. The order is a compile-time
+/// constant, so the short nested loops unroll completely; T = double or lanes::Lanes.
+template <int order, bool WithAttitude, class T, class Coefficient>
+void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
+    T w1[order + 1], w2[order + 1], w3[order + 1];
+    w1[0] = c(0, 0), w2[0] = c(0, 1), w3[0] = c(0, 2);
+#pragma GCC unroll 32
+    for (int n = 0; n < order; ++n) {
+        // Products j·k summed in pairs from both ends (terms m and n − m share their factors'
+        // loads), with two partial sums to shorten the chain of dependent additions.
+        T p23 = lanes::splat<T>(0.0), p31 = p23, p12 = p23, q23 = p23, q31 = p23, q12 = p23;
+#pragma GCC unroll 16
+        for (int m = 0; m < (n + 1) / 2; ++m) {
+            const int r = n - m;
+            p23 += w2[m] * w3[r];
+            q23 += w2[r] * w3[m];
+            p31 += w3[m] * w1[r];
+            q31 += w3[r] * w1[m];
+            p12 += w1[m] * w2[r];
+            q12 += w1[r] * w2[m];
+        }
+        if (n % 2 == 0) {  // the middle term m = n/2
+            const int m = n / 2;
+            p23 += w2[m] * w3[m];
+            p31 += w3[m] * w1[m];
+            p12 += w1[m] * w2[m];
+        }
+        p23 += q23;
+        p31 += q31;
+        p12 += q12;
+        // Plain locals, not Eigen 3-vectors: temporaries here cost store-forwarding stalls.
+        T r1 = e.differences[0] * p23, r2 = e.differences[1] * p31, r3 = e.differences[2] * p12;
+        if (e.has_rotor) {  // − ω[n] × k
+            r1 -= w2[n] * e.rotor[2] - w3[n] * e.rotor[1];
+            r2 -= w3[n] * e.rotor[0] - w1[n] * e.rotor[2];
+            r3 -= w1[n] * e.rotor[1] - w2[n] * e.rotor[0];
+        }
+        if (e.damped) {  // − D ω[n]
+            r1 -= e.damping[0] * w1[n] + e.damping[1] * w2[n] + e.damping[2] * w3[n];
+            r2 -= e.damping[3] * w1[n] + e.damping[4] * w2[n] + e.damping[5] * w3[n];
+            r3 -= e.damping[6] * w1[n] + e.damping[7] * w2[n] + e.damping[8] * w3[n];
+        }
+        if (n == 0) r1 += e.constant[0], r2 += e.constant[1], r3 += e.constant[2];
+        const double inv = 1.0 / (n + 1);
+        w1[n + 1] = r1 * e.inverse_moments[0] * inv;
+        w2[n + 1] = r2 * e.inverse_moments[1] * inv;
+        w3[n + 1] = r3 * e.inverse_moments[2] * inv;
+        c(n + 1, 0) = w1[n + 1];
+        c(n + 1, 1) = w2[n + 1];
+        c(n + 1, 2) = w3[n + 1];
+        if constexpr (WithAttitude) {
+            T s0 = lanes::splat<T>(0.0), s1 = s0, s2 = s0, s3 = s0;
+            for (int m = 0; m <= n; ++m) {
+                const T &qw = c(m, 3), &qx = c(m, 4), &qy = c(m, 5), &qz = c(m, 6);
+                const T &p = c(n - m, 0), &q = c(n - m, 1), &r = c(n - m, 2);
+                s0 -= qx * p + qy * q + qz * r;
+                s1 += qw * p + qy * r - qz * q;
+                s2 += qw * q + qz * p - qx * r;
+                s3 += qw * r + qx * q - qy * p;
+            }
+            const double half = 0.5 * inv;
+            c(n + 1, 3) = half * s0;
+            c(n + 1, 4) = half * s1;
+            c(n + 1, 5) = half * s2;
+            c(n + 1, 6) = half * s3;
+        }
+    }
+}
 
 /// Gyrostat (body + constant rotor momentum k) under a set of torques.
 ///
@@ -37,7 +168,8 @@ public:
     using Jacobian = Eigen::Matrix<double, dim, dim>;
     static constexpr auto state_names = rate_state_names<WithAttitude>();
 
-    Gyrostat(Body body, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)) {}
+    Gyrostat(Body body, TorqueSet torques)
+        : body_(std::move(body)), torques_(std::move(torques)), affine_(AffineEuler<double>::of(body_, torques_)) {}
 
     const Body& body() const { return body_; }
     /// The Taylor recursion covers constant and linear torques (a quadratic right-hand side).
@@ -67,95 +199,18 @@ public:
         if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
     }
 
-    /// Taylor coefficients y[0..order] of the solution through y(t): y(t + h) = Σ y[n] hⁿ.
-    /// The right-hand side is quadratic, so each order is a Cauchy product of earlier ones.
-    /// In Euler's form, with (i, j, k) cyclic and P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m]:
-    ///   A_i ω_i[n+1] = ((A_j − A_k) P_jk[n] − (ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}) / (n + 1)
-    ///   (torques affine in ω: M = M0 − D ω),
-    ///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
-    /// `coefficients` has room for order + 1 states; coefficients[0] = y. The order is a
-    /// compile-time constant, so the short nested loops unroll completely.
+    /// Taylor coefficients y[0..order] of the solution through y(t): y(t + h) = Σ y[n] hⁿ, from
+    /// the recursion euler_taylor_recursion (above) for constant and linear torques.
     static constexpr int max_taylor_order = 30;
 
     template <int order>
     void taylor_coefficients(double /*t*/, const State& y, State* coefficients) const {
-        const Vec3& J = body_.moments();
-        const Vec3& J_inv = body_.inverse_moments();
-        const Vec3& k = body_.rotor();
-        const bool damped = torques_.has_damping();
-        const Mat3& D = torques_.damping_part();
-        const Vec3& M0 = torques_.constant_part();
-        const double a1 = J[1] - J[2], a2 = J[2] - J[0], a3 = J[0] - J[1];
-        const bool has_rotor = k.squaredNorm() != 0.0;
-        double w1[order + 1], w2[order + 1], w3[order + 1];
-        w1[0] = y[0], w2[0] = y[1], w3[0] = y[2];
-        coefficients[0] = y;
-#pragma GCC unroll 32
-        for (int n = 0; n < order; ++n) {
-            // Products j·k summed in pairs from both ends (terms m and n − m share their
-            // factors' loads), with two partial sums to shorten the chain of dependent additions.
-            double p23 = 0.0, p31 = 0.0, p12 = 0.0, q23 = 0.0, q31 = 0.0, q12 = 0.0;
-#pragma GCC unroll 16
-            for (int m = 0; m < (n + 1) / 2; ++m) {
-                const int r = n - m;
-                p23 += w2[m] * w3[r];
-                q23 += w2[r] * w3[m];
-                p31 += w3[m] * w1[r];
-                q31 += w3[r] * w1[m];
-                p12 += w1[m] * w2[r];
-                q12 += w1[r] * w2[m];
-            }
-            if (n % 2 == 0) {  // the middle term m = n/2
-                const int m = n / 2;
-                p23 += w2[m] * w3[m];
-                p31 += w3[m] * w1[m];
-                p12 += w1[m] * w2[m];
-            }
-            p23 += q23;
-            p31 += q31;
-            p12 += q12;
-            // Scalar code: Eigen temporaries here cost store-forwarding stalls in this hot loop.
-            const double w_n[3] = {w1[n], w2[n], w3[n]};
-            double r1 = a1 * p23, r2 = a2 * p31, r3 = a3 * p12;
-            if (has_rotor) {  // − ω[n] × k
-                r1 -= w_n[1] * k[2] - w_n[2] * k[1];
-                r2 -= w_n[2] * k[0] - w_n[0] * k[2];
-                r3 -= w_n[0] * k[1] - w_n[1] * k[0];
-            }
-            if (damped) {  // − D ω[n]
-                r1 -= D(0, 0) * w_n[0] + D(0, 1) * w_n[1] + D(0, 2) * w_n[2];
-                r2 -= D(1, 0) * w_n[0] + D(1, 1) * w_n[1] + D(1, 2) * w_n[2];
-                r3 -= D(2, 0) * w_n[0] + D(2, 1) * w_n[1] + D(2, 2) * w_n[2];
-            }
-            if (n == 0) r1 += M0[0], r2 += M0[1], r3 += M0[2];
-            const double inv = 1.0 / (n + 1);
-            w1[n + 1] = r1 * J_inv[0] * inv;
-            w2[n + 1] = r2 * J_inv[1] * inv;
-            w3[n + 1] = r3 * J_inv[2] * inv;
-            State& next = coefficients[n + 1];
-            next[0] = w1[n + 1];
-            next[1] = w2[n + 1];
-            next[2] = w3[n + 1];
-            if constexpr (WithAttitude) {
-                double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-                for (int m = 0; m <= n; ++m) {
-                    const State& qm = coefficients[m];
-                    const State& wm = coefficients[n - m];
-                    const double qw = qm[3], qx = qm[4], qy = qm[5], qz = qm[6];
-                    const double p = wm[0], q = wm[1], r = wm[2];
-                    s0 += -qx * p - qy * q - qz * r;
-                    s1 += qw * p + qy * r - qz * q;
-                    s2 += qw * q + qz * p - qx * r;
-                    s3 += qw * r + qx * q - qy * p;
-                }
-                const double half = 0.5 * inv;
-                coefficients[n + 1][3] = half * s0;
-                coefficients[n + 1][4] = half * s1;
-                coefficients[n + 1][5] = half * s2;
-                coefficients[n + 1][6] = half * s3;
-            }
-        }
+        for (int i = 0; i < dim; ++i) coefficients[0][i] = y[i];
+        euler_taylor_recursion<order, WithAttitude>(affine_, [&](int n, int i) -> double& { return coefficients[n][i]; });
     }
+
+    /// The affine Euler equations' coefficients (constant and linear torques folded).
+    const AffineEuler<double>& affine_euler() const { return affine_; }
 
     // --- Splitting (integrate/splitting.hpp) ---------------------------------------------------
     // f = f_free + f_pert with
@@ -268,6 +323,7 @@ public:
 private:
     Body body_;
     TorqueSet torques_;
+    AffineEuler<double> affine_;  // the constant and linear torques' part, for the Taylor recursion
 };
 
 }  // namespace gyrostat::model
