@@ -9,6 +9,7 @@
 #include "expose.hpp"
 #include "gyrostat/engine.hpp"
 #include "gyrostat/integrate/dense.hpp"
+#include "gyrostat/lanes.hpp"
 
 namespace gyrostat::bindings {
 
@@ -233,7 +234,7 @@ void expose_integrate(py::module_& m) {
     m.def(
         "solve_ensemble",
         [](const std::vector<const BoundModel*>& bound, const py::object& y0s, double t0, double t1, const Options& options,
-           int threads, py::object progress, double interval) {
+           int threads, py::object progress, double interval, bool batch) {
             const auto starts = initial_states(y0s);
             std::vector<const AnyModel*> models;
             models.reserve(bound.size());
@@ -242,15 +243,17 @@ void expose_integrate(py::module_& m) {
             std::vector<Result> results;
             {
                 py::gil_scoped_release release;
-                results = solve_ensemble(models, starts, t0, t1, options, threads, control.get());
+                results = solve_ensemble(models, starts, t0, t1, options, threads, control.get(), batch);
             }
             control.rethrow();
             return results;
         },
         py::arg("models"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("threads") = 0,
-        py::arg("progress") = py::none(), py::arg("interval") = 0.1);
+        py::arg("progress") = py::none(), py::arg("interval") = 0.1, py::arg("batch") = true);
 
     m.def("methods", &integrate::method_names);
+    m.attr("simd_lanes") = lanes::width;
+    m.attr("simd_instruction_set") = lanes::instruction_set;
 }
 
 }  // namespace gyrostat::bindings

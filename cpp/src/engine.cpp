@@ -2,6 +2,7 @@
 #include "gyrostat/engine.hpp"
 
 #include "gyrostat/ensemble.hpp"
+#include "ensemble_batch.hpp"
 #include "gyrostat/integrate/splitting.hpp"
 
 namespace gyrostat {
@@ -130,22 +131,56 @@ integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const
     });
 }
 
+namespace {
+/// "member <task>: …" from run_ensemble, where the task is not the member's index (batches and
+/// single members are tasks of their own): the message names the member.
+void name_member(integrate::Result& r, std::size_t task, std::size_t member) {
+    const std::string prefix = "member " + std::to_string(task) + ": ";
+    if (r.message.rfind(prefix, 0) == 0) r.message = "member " + std::to_string(member) + ": " + r.message.substr(prefix.size());
+}
+}  // namespace
+
 std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>& models,
                                               const std::vector<Eigen::VectorXd>& y0s, double t0, double t1,
                                               const integrate::Options& options, int threads,
-                                              const integrate::Control* control) {
+                                              const integrate::Control* control, bool batch) {
     const std::size_t n = y0s.size();
     if (models.empty()) throw std::invalid_argument("solve_ensemble: no model given");
     if (models.size() != 1 && models.size() != n)
         throw std::invalid_argument("solve_ensemble: " + std::to_string(models.size()) + " models for " +
                                     std::to_string(n) + " initial states (give 1 or " + std::to_string(n) + ")");
     integrate::validate(options, t0, t1);
-    auto results = run_ensemble(
-        n,
-        [&](std::size_t i, const integrate::Control* member) {
+    ensemble_batch::Plan plan;
+    if (batch)
+        plan = ensemble_batch::plan(models, y0s, options);
+    else
+        for (std::size_t i = 0; i < n; ++i) plan.single.push_back(i);
+    // Tasks: the batches first, then the members that run alone; each task on one thread.
+    std::vector<integrate::Result> results(n);
+    const std::size_t n_batches = plan.batches.size();
+    auto tasks = run_ensemble(
+        n_batches + plan.single.size(),
+        [&](std::size_t task, const integrate::Control* member) {
+            if (task < n_batches) {
+                ensemble_batch::solve(plan.batches[task], models, y0s, t0, t1, options, member, results);
+                return integrate::Result{};
+            }
+            const std::size_t i = plan.single[task - n_batches];
             return solve(*(models.size() == 1 ? models[0] : models[i]), t0, y0s[i], t1, options, member);
         },
         threads, control);
+    for (std::size_t task = 0; task < tasks.size(); ++task) {
+        if (task >= n_batches) {
+            const std::size_t i = plan.single[task - n_batches];
+            results[i] = std::move(tasks[task]);
+            name_member(results[i], task, i);
+        } else if (!tasks[task].success()) {  // the batch threw or never started: each member says so
+            for (std::size_t i : plan.batches[task]) {
+                results[i] = tasks[task];
+                name_member(results[i], task, i);
+            }
+        }
+    }
     for (std::size_t i = 0; i < n; ++i) {  // members that never ran still say what they would hold
         auto& r = results[i];
         if (!r.state_names.empty()) continue;

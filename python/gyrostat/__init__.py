@@ -52,5 +52,12 @@ __all__ = [
     "scene",
     "sweeps",
     "validity",
+    "simd_lanes",
+    "simd_instruction_set",
 ]
 __version__ = _core.__version__
+#: Members one SIMD batch of :func:`solve_ensemble` integrates at once (8 with AVX-512, 4 with
+#: AVX2 in the native build; 4 in the portable default build, two SSE2 registers per operation).
+simd_lanes: int = _core.simd_lanes
+#: The instruction set the C++ core was compiled for ("sse2" in the portable default build).
+simd_instruction_set: str = _core.simd_instruction_set

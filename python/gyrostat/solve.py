@@ -280,13 +280,21 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
                    first_step: float | None = None, max_step: float | None = None, step: float | None = None,
                    splitting_order: int | None = None, options: Options | None = None,
                    events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
-                   check_validity: bool = True) -> list[Solution]:
+                   check_validity: bool = True, batch: bool = True) -> list[Solution]:
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
 
     ``models`` is one model for every member or a sequence of N (different parameters, or
     different families, per member); ``y0s`` is (N, dim), or a sequence of N states (of each
-    member's own size, short states completed as in :func:`solve`). Results come in index order
-    and equal single :func:`solve` runs bit for bit. A member with bad input gets
+    member's own size, short states completed as in :func:`solve`). Results come in index order.
+
+    With ``batch=True`` (the default), members that a SIMD batch covers run
+    :data:`gyrostat.simd_lanes` at a time, one per lane, each lane with its own parameters,
+    time, step size and status: the gyrostat :class:`Model` with constant and linear torques
+    (with or without attitude) under ``taylor`` or ``dop853``, and the averaged symmetric model
+    under ``dop853``, without events, dense output or ``every_step``. They equal single
+    :func:`solve` runs to the tolerance, not bit for bit (vectorised rounding; a Taylor batch
+    uses the highest order any lane needs). Every other member, and every member with
+    ``batch=False``, equals its single run bit for bit. A member with bad input gets
     ``status == "invalid_input"`` and its message; the others are unaffected. ``threads`` ≤ 0
     uses every hardware thread. ``progress`` is called with the fraction of members finished;
     Ctrl-C stops the members running (status ``"interrupted"``, partial trajectories kept) and
@@ -323,7 +331,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
     report = _bars.resolve(progress, total=count, unit="member")
     try:
-        results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report)
+        results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report, batch=bool(batch))
     finally:
         _bars.close(report)
     solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]

@@ -796,7 +796,9 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
         See the module's documentation. Ctrl-C stops the sweep: the members finished are kept,
         the others have status ``"interrupted"`` (``attrs["interrupted"] = 1``) and a warning
         says how many. Results equal the members solved one by one with :func:`gyrostat.solve`
-        bit for bit.
+        bit for bit, except members that :func:`gyrostat.solve_ensemble` integrates in SIMD
+        batches (``taylor`` or ``dop853`` on the gyrostat with constant and linear torques, the
+        averaged model under ``dop853``), which equal them to the tolerance.
     """
     plan = Plan(scene, vary, samples=samples, seed=seed, run=run)
     if trajectories and getattr(plan, "varies_n_out", False):

@@ -49,12 +49,17 @@ integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const
                         const integrate::Options& options, const integrate::Control* control = nullptr);
 
 /// Member i solves models[i] (or models[0] for all when one is given) from (t0, y0s[i]) to t1;
-/// models may differ in parameters and in family. Results in index order, each equal to its
-/// single run; a member with bad input gets status InvalidInput without touching the others.
+/// models may differ in parameters and in family. Results in index order; a member with bad
+/// input gets status InvalidInput without touching the others.
+/// With `batch` (the default), members that a SIMD batch covers (integrate/batch.hpp: the
+/// gyrostat with constant and linear torques under taylor or dop853, the averaged symmetric
+/// system under dop853; no events, dense output or every_step) run lanes::width at a time, and
+/// equal their single runs to the tolerance, not bit for bit; every other member, and every
+/// member with batch = false, equals its single run bit for bit.
 std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>& models,
                                               const std::vector<Eigen::VectorXd>& y0s, double t0, double t1,
                                               const integrate::Options& options, int threads = 0,
-                                              const integrate::Control* control = nullptr);
+                                              const integrate::Control* control = nullptr, bool batch = true);
 
 // One overload per model type, each compiled in its own translation unit (src/solve_*.cpp).
 #define GYROSTAT_DECLARE_SOLVE(Model)                                                                        \

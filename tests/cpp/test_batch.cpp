@@ -1,0 +1,188 @@
+// SIMD batches (integrate/batch.hpp) against the scalar path: ensembles with mixed lanes (other
+// bodies, rotors and torques per lane; lanes that need very different numbers of steps; a lane
+// that overflows while the others finish; a lane that runs out of steps), for taylor and dop853,
+// the gyrostat with and without attitude and the averaged symmetric system.
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "check.hpp"
+#include "gyrostat/engine.hpp"
+#include "gyrostat/lanes.hpp"
+
+using namespace gyrostat;
+using integrate::Method;
+using integrate::Options;
+using integrate::Result;
+using integrate::Status;
+
+namespace {
+
+/// max over outputs and components of |a − b| / max(1, |b|).
+double difference(const Result& a, const Result& b) {
+    if (a.y.size() != b.y.size() || a.t.size() != b.t.size()) return INFINITY;
+    double d = 0.0;
+    for (std::size_t i = 0; i < a.t.size(); ++i) d = std::max(d, std::abs(a.t[i] - b.t[i]));
+    for (std::size_t i = 0; i < a.y.size(); ++i) d = std::max(d, std::abs(a.y[i] - b.y[i]) / std::max(1.0, std::abs(b.y[i])));
+    for (std::size_t i = 0; i < a.outputs.size() && i < b.outputs.size(); ++i)
+        if (std::isfinite(b.outputs[i]))
+            d = std::max(d, std::abs(a.outputs[i] - b.outputs[i]) / std::max(1.0, std::abs(b.outputs[i])));
+    return d;
+}
+
+/// 13 members (not a multiple of any lane width): bodies, rotors, damping and constant torques
+/// vary per member; |ω0| spans 0.05 … 20, so lanes need from a few to thousands of steps.
+template <bool A>
+std::vector<AnyModel> mixed_gyrostats() {
+    std::vector<AnyModel> models;
+    for (int i = 0; i < 13; ++i) {
+        const Vec3 moments(1.0 + 0.1 * i, 2.0 + 0.05 * i, 3.0 - 0.07 * i);
+        const Vec3 rotor = (i % 3 == 0) ? Vec3(0.1, -0.2, 0.05 * i) : Vec3::Zero();
+        std::vector<AnyTorque> torques;
+        if (i % 2 == 0) torques.push_back(torque::LinearDamping(0.01 * (1 + i) * Mat3::Identity() + 0.001 * Mat3::Ones()));
+        if (i % 4 == 1) torques.push_back(torque::Constant(Vec3(0.01, -0.02, 0.03 * i)));
+        models.emplace_back(model::Gyrostat<A>(Body(moments, rotor), TorqueSet(torques)));
+    }
+    return models;
+}
+
+std::vector<Eigen::VectorXd> mixed_starts(int n) {
+    std::vector<Eigen::VectorXd> starts;
+    for (int i = 0; i < n; ++i) {
+        const double scale = 0.05 * std::pow(1.6, i);  // 0.05 … 14
+        starts.push_back(Eigen::Vector3d(scale * std::cos(i), scale * 0.5, -scale * std::sin(0.7 * i)));
+    }
+    return starts;
+}
+
+std::vector<const AnyModel*> pointers(const std::vector<AnyModel>& models) {
+    std::vector<const AnyModel*> p;
+    for (const auto& m : models) p.push_back(&m);
+    return p;
+}
+
+template <bool A>
+void batch_equals_scalar(Method method) {
+    const std::string label = std::string(A ? "gyrostat with attitude" : "gyrostat") + ", " + integrate::method_name(method);
+    const auto models = mixed_gyrostats<A>();
+    const auto starts = mixed_starts(static_cast<int>(models.size()));
+    Options o;
+    o.method = method;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    o.n_out = 41;
+    const auto batched = solve_ensemble(pointers(models), starts, 0.0, 30.0, o, 2, nullptr, true);
+    const auto single = solve_ensemble(pointers(models), starts, 0.0, 30.0, o, 2, nullptr, false);
+    long fewest = 1L << 60, most = 0;
+    for (std::size_t i = 0; i < models.size(); ++i) {
+        const std::string what = label + ": member " + std::to_string(i);
+        CHECK(batched[i].success() && single[i].success(), what + " succeeds: " + batched[i].message);
+        // Both follow the same rules per lane at rtol 1e-10: they differ by rounding (and, for
+        // taylor, by the common order of the batch), well inside 100 rtol over the outputs.
+        CHECK(difference(batched[i], single[i]) < 100 * o.rtol, what + ": batch vs scalar " +
+                                                                     std::to_string(difference(batched[i], single[i])));
+        CHECK(batched[i].t_last == 30.0 && batched[i].y_last.size() == static_cast<std::size_t>(A ? 7 : 3), what + ": t_last");
+        CHECK(batched[i].method == integrate::method_name(method), what + ": method named");
+        // the step counts follow each lane's own step size (within 5 % of the scalar run's)
+        CHECK(std::abs(batched[i].stats.steps - single[i].stats.steps) <= 1 + single[i].stats.steps / 20,
+              what + ": steps " + std::to_string(batched[i].stats.steps) + " vs " + std::to_string(single[i].stats.steps));
+        const auto alone = solve(models[i], 0.0, starts[i], 30.0, o);
+        CHECK(single[i].y == alone.y && single[i].t == alone.t, what + ": batch = false is the single run bit for bit");
+        fewest = std::min(fewest, single[i].stats.steps);
+        most = std::max(most, single[i].stats.steps);
+    }
+    CHECK(most > 10 * fewest, label + ": lanes finish at very different step counts (" + std::to_string(fewest) + " … " +
+                                  std::to_string(most) + ")");
+    if constexpr (A) {  // |q| = 1 at every output of the batch
+        double worst = 0.0;
+        for (const auto& r : batched)
+            for (std::size_t k = 0; k < r.t.size(); ++k)
+                worst = std::max(worst, std::abs(Eigen::Map<const Eigen::Vector4d>(&r.y[7 * k + 3]).norm() - 1.0));
+        CHECK(worst < 1e-14, label + ": |q| = 1 to rounding");
+    }
+}
+
+/// A lane that overflows (ω0 = 1e150: the quadratic terms exceed the doubles at once) and a lane
+/// that runs out of steps, beside lanes that finish: the others equal their single runs.
+void failing_lanes(Method method) {
+    const std::string label = std::string("failing lanes, ") + integrate::method_name(method);
+    const Body body(Vec3(1.0, 2.0, 3.0));
+    std::vector<AnyModel> models(5, AnyModel(model::Gyrostat<false>(body, TorqueSet{})));
+    std::vector<Eigen::VectorXd> starts(5, Eigen::Vector3d(1.0, 0.5, -0.3));
+    starts[1] = Eigen::Vector3d(1e150, 2e150, -1e150);
+    starts[3] = Eigen::Vector3d(400.0, 300.0, -200.0);  // fast: needs far more steps than the others
+    Options o;
+    o.method = method;
+    o.rtol = 1e-9;
+    o.atol = 1e-12;
+    o.n_out = 11;
+    // a budget the slow lanes meet and the fast one does not
+    Options probe = o;
+    const auto slow = solve(models[0], 0.0, starts[0], 10.0, probe);
+    o.max_steps = 3 * slow.stats.steps;
+    const auto batched = solve_ensemble(pointers(models), starts, 0.0, 10.0, o, 1, nullptr, true);
+    const auto single = solve_ensemble(pointers(models), starts, 0.0, 10.0, o, 1, nullptr, false);
+    CHECK(batched[1].status == Status::NonFiniteState, label + ": the overflowing lane fails: " + batched[1].message);
+    CHECK(batched[1].status == single[1].status, label + ": as its single run");
+    CHECK(batched[3].status == Status::MaxStepsReached && batched[3].stats.steps == o.max_steps,
+          label + ": the fast lane runs out of steps: " + batched[3].message);
+    CHECK(batched[3].t.size() == single[3].t.size(), label + ": and keeps the outputs up to there");
+    for (int i : {0, 2, 4}) {
+        CHECK(batched[i].success(), label + ": lane " + std::to_string(i) + " finishes");
+        CHECK(difference(batched[i], single[i]) < 100 * o.rtol, label + ": lane " + std::to_string(i) + " equals its single run");
+    }
+}
+
+void averaged_batch() {
+    std::vector<AnyModel> models;
+    std::vector<Eigen::VectorXd> starts;
+    for (int i = 0; i < 9; ++i) {
+        std::vector<AnyTorque> torques{torque::ViscousCavity(1260.0, 1000.0 * (1 + 0.1 * i), 0.48)};
+        if (i % 2) torques.push_back(torque::LinearDamping(0.01 * Mat3::Identity()));
+        models.emplace_back(model::AveragedSymmetric(Body(Vec3(8.0, 8.0, 4.0 + 0.2 * i)), TorqueSet(torques)));
+        starts.push_back(Eigen::Vector2d(1.0 + 0.1 * i, 0.5 - 0.1 * i));
+    }
+    Options o;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    o.n_out = 21;
+    const auto batched = solve_ensemble(pointers(models), starts, 0.0, 50.0, o, 2, nullptr, true);
+    const auto single = solve_ensemble(pointers(models), starts, 0.0, 50.0, o, 2, nullptr, false);
+    for (std::size_t i = 0; i < models.size(); ++i) {
+        CHECK(batched[i].success(), "averaged member " + std::to_string(i) + ": " + batched[i].message);
+        CHECK(difference(batched[i], single[i]) < 100 * o.rtol, "averaged member " + std::to_string(i) + " equals its single run");
+    }
+}
+
+/// A stop flag set before the run: every lane ends Interrupted with its start recorded.
+void interrupted_batch() {
+    const auto models = mixed_gyrostats<false>();
+    const auto starts = mixed_starts(static_cast<int>(models.size()));
+    Options o;
+    o.method = Method::Taylor;
+    std::atomic<bool> stop{true};
+    integrate::Control control;
+    control.stop = &stop;
+    const auto r = solve_ensemble(pointers(models), starts, 0.0, 30.0, o, 1, &control, true);
+    bool all = true;
+    for (const auto& x : r) all = all && x.status == Status::Interrupted;
+    CHECK(all, "a stopped batch ensemble: every member interrupted");
+}
+
+}  // namespace
+
+int main() {
+    std::printf("SIMD lanes: %d (%s)\n", lanes::width, lanes::instruction_set);
+    batch_equals_scalar<false>(Method::Taylor);
+    batch_equals_scalar<true>(Method::Taylor);
+    batch_equals_scalar<false>(Method::Dop853);
+    batch_equals_scalar<true>(Method::Dop853);
+    failing_lanes(Method::Taylor);
+    failing_lanes(Method::Dop853);
+    averaged_batch();
+    interrupted_batch();
+    std::printf("%d passed, %d failed\n", passes, failures);
+    return failures == 0 ? 0 : 1;
+}
