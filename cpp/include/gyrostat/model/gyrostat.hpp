@@ -93,10 +93,12 @@ public:
 #pragma GCC unroll 32
         for (int n = 0; n < order; ++n) {
             // Products j·k summed in pairs from both ends (terms m and n − m share their
-            // factors' loads), with two partial sums to shorten the chain of dependent additions.
+            // factors' loads), with two partial sums to shorten the chain of dependent additions;
+            // m runs down so that the newest coefficient (m = 0, r = n) is added last: the step is
+            // a chain of dependent operations, and the older terms' sums can then start early.
             double p23 = 0.0, p31 = 0.0, p12 = 0.0, q23 = 0.0, q31 = 0.0, q12 = 0.0;
 #pragma GCC unroll 16
-            for (int m = 0; m < (n + 1) / 2; ++m) {
+            for (int m = (n + 1) / 2 - 1; m >= 0; --m) {
                 const int r = n - m;
                 p23 += w2[m] * w3[r];
                 q23 += w2[r] * w3[m];
@@ -128,10 +130,10 @@ public:
                 r3 -= D(2, 0) * w_n[0] + D(2, 1) * w_n[1] + D(2, 2) * w_n[2];
             }
             if (n == 0) r1 += M0[0], r2 += M0[1], r3 += M0[2];
-            const double inv = 1.0 / (n + 1);
-            w1[n + 1] = r1 * J_inv[0] * inv;
-            w2[n + 1] = r2 * J_inv[1] * inv;
-            w3[n + 1] = r3 * J_inv[2] * inv;
+            const double inv = 1.0 / (n + 1);  // J⁻¹/(n + 1) first: one multiplication after the sum
+            w1[n + 1] = r1 * (J_inv[0] * inv);
+            w2[n + 1] = r2 * (J_inv[1] * inv);
+            w3[n + 1] = r3 * (J_inv[2] * inv);
             State& next = coefficients[n + 1];
             next[0] = w1[n + 1];
             next[1] = w2[n + 1];
