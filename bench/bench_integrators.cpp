@@ -3,9 +3,10 @@
 //   problem,method,rtol,error,steps,rhs_evals,seconds
 // error is the max-norm error of the final state against the problem's reference; seconds is the
 // best of several repetitions of one whole trajectory (the machine is shared and noisy).
-// Usage: gyrostat_bench [--quick] [--help]  (--help describes the options and the output)
+// Usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile] [--help]  (--help describes them)
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "gyrostat/ensemble.hpp"
 #include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/integrate/taylor.hpp"
 #include "gyrostat/model/averaged.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/moving_mass.hpp"
@@ -64,10 +66,91 @@ void sweep(const char* problem, const System& system, const typename System::Sta
     }
 }
 
+// The Taylor integrator against heyoka (bench/taylor_vs_heyoka.py): the torque-free body
+// I = (2, 3, 4), omega0 = (0.4, 0.9, -0.3) (the long-horizon problem, bench/long_horizon.py), omega only,
+// t = 0 -> 2000 with the final state as the only output; reference: the closed form.
+const Body free_body(Vec3(2.0, 3.0, 4.0));
+const Vec3 free_w0(0.4, 0.9, -0.3);
+constexpr double free_t1 = 2000.0;
+
+void taylor_rows(const std::vector<double>& tolerances) {
+    const model::TorqueFreeSolution exact(free_body, free_w0);
+    std::printf("problem,method,rtol,error,steps,rhs_evals,seconds\n");
+    std::printf("# free_2000: I = (2, 3, 4), omega0 = (0.4, 0.9, -0.3), t1 = 2000, reference = closed form\n");
+    std::printf("# reference_state free_2000 %.17g %.17g %.17g\n", exact.omega(free_t1)[0], exact.omega(free_t1)[1],
+                exact.omega(free_t1)[2]);
+    sweep("free_2000", model::Gyrostat<false>(free_body, TorqueSet{}), free_w0, free_t1, exact.omega(free_t1),
+          {Method::Taylor}, tolerances);
+}
+
+/// The parts of one Taylor step of order P on free_2000, as chains of dependent steps (each step
+/// starts from the previous step's result, as in the integrator, where the step is bound by the
+/// latency of that chain, not by throughput): (a) the coefficient recursion alone (the next state
+/// y + 0·c_P), (b) recursion and the new state at a fixed h (Estrin), (c) recursion, step size
+/// and new state. Parts: recursion = (a), new state = (b) − (a), step size = (c) − (b), the rest
+/// of the integrator's loop (bookkeeping, checks, outputs) = the whole step − (c), the whole step
+/// being a trajectory's time / steps.
+template <int P>
+void taylor_profile_row(const model::Gyrostat<false>& system, double safety, double rtol, double step_ns, long steps) {
+    constexpr int chain = 2000;
+    auto per_step = [&](auto&& advance) {
+        Vec3 y = free_w0;
+        const double s = seconds_of([&] {
+            y = free_w0;
+            for (int i = 0; i < chain; ++i) y = advance(y);
+        });
+        if (!std::isfinite(y[0])) std::printf("# (non-finite chain)\n");
+        return 1e9 * s / chain;
+    };
+    const double h_fixed = 0.8;
+    const double recursion = per_step([&](const Vec3& y) {
+        Vec3 c[P + 1];
+        system.taylor_coefficients<P>(0.0, y, c);
+        return Vec3(y + 0.0 * c[P]);
+    });
+    const double with_state = per_step([&](const Vec3& y) {
+        Vec3 c[P + 1];
+        system.taylor_coefficients<P>(0.0, y, c);
+        return integrate::taylor_detail::evaluate_polynomial<P>(c, h_fixed);
+    });
+    const double with_step_size = per_step([&](const Vec3& y) {
+        Vec3 c[P + 1];
+        system.taylor_coefficients<P>(0.0, y, c);
+        const double h = integrate::taylor_detail::step_size(y.cwiseAbs().maxCoeff(), c[P - 1].cwiseAbs().maxCoeff(),
+                                                            c[P].cwiseAbs().maxCoeff(), P, safety);
+        return integrate::taylor_detail::evaluate_polynomial<P>(c, h);
+    });
+    std::printf("# taylor_profile rtol=%.0e order=%d steps=%ld step_ns=%.1f recursion_ns=%.1f new_state_ns=%.1f "
+                "step_size_ns=%.1f rest_ns=%.1f\n",
+                rtol, P, steps, step_ns, recursion, with_state - recursion, with_step_size - with_state,
+                step_ns - with_step_size);
+}
+
+template <int... Orders>
+void taylor_profile(std::integer_sequence<int, Orders...>) {
+    const model::Gyrostat<false> system(free_body, TorqueSet{});
+    integrate::Options o;
+    o.n_out = 0;
+    o.method = Method::Taylor;
+    o.max_steps = 100'000'000;
+    for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
+        o.rtol = rtol;
+        o.atol = rtol * 1e-3;
+        integrate::Result result;
+        const double s = seconds_of([&] { result = integrate::solve(system, 0.0, free_w0, free_t1, o); });
+        const int order = integrate::taylor_detail::order_for(rtol, model::Gyrostat<false>::max_taylor_order);
+        const double safety = integrate::taylor_detail::safety_for(rtol, order);
+        const double step_ns = 1e9 * s / result.stats.steps;
+        ((Orders == order ? taylor_profile_row<(Orders < 2 ? 2 : Orders)>(system, safety, rtol, step_ns, result.stats.steps)
+                          : void()),
+         ...);
+    }
+}
+
 }  // namespace
 
 constexpr const char* usage =
-    "usage: gyrostat_bench [--quick] [--help]\n"
+    "usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile] [--help]\n"
     "\n"
     "Times every integrator on the standard problems (torque_free, forced, stiff, moving_mass)\n"
     "across tolerances and prints one CSV row per run to stdout:\n"
@@ -78,6 +161,11 @@ constexpr const char* usage =
     "\n"
     "options:\n"
     "  --quick   two tolerances only (1e-6, 1e-10): a smoke run\n"
+    "  --taylor [RTOLS]  only the Taylor integrator on the torque-free body I = (2, 3, 4),\n"
+    "            omega0 = (0.4, 0.9, -0.3), t = 0 -> 2000 (problem free_2000; bench/taylor_vs_heyoka.py),\n"
+    "            at the comma-separated RTOLS (default 1e-6,...,1e-14); atol = rtol * 1e-3\n"
+    "  --taylor-profile  the parts of one Taylor step on free_2000 (recursion, step size, Horner,\n"
+    "            the rest: loop, checks, outputs) in ns, as '# taylor_profile' lines\n"
     "  --help    print this help and exit\n";
 
 int main(int argc, char** argv) {
@@ -89,6 +177,17 @@ int main(int argc, char** argv) {
         }
         if (std::strcmp(argv[i], "--quick") == 0) {
             quick = true;
+        } else if (std::strcmp(argv[i], "--taylor") == 0) {
+            std::vector<double> tolerances;
+            if (i + 1 < argc && argv[i + 1][0] != '-')
+                for (char* p = argv[i + 1]; *p != '\0'; p += (*p == ',')) tolerances.push_back(std::strtod(p, &p));
+            else
+                tolerances = {1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14};
+            taylor_rows(tolerances);
+            return 0;
+        } else if (std::strcmp(argv[i], "--taylor-profile") == 0) {
+            taylor_profile(std::make_integer_sequence<int, model::Gyrostat<false>::max_taylor_order + 1>{});
+            return 0;
         } else {
             std::fprintf(stderr, "gyrostat_bench: unknown option '%s'\n%s", argv[i], usage);
             return 2;

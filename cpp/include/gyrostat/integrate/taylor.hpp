@@ -4,14 +4,24 @@
 // integration of ODEs by means of high-order Taylor methods", §3.2:
 //   ρ_m = (1/‖y[m]‖∞)^{1/m}       (absolute mode, rtol·‖y‖∞ ≤ atol, ε = atol),
 //   ρ_m = (‖y‖∞/‖y[m]‖∞)^{1/m}    (relative mode, ε = rtol),
-//   h = min(ρ_{p−1}, ρ_p) · ε^{1/p} · exp(−0.7/(p − 1)),
-// so that the truncation term (h/ρ)^p ≈ ε·e^{−0.7} per step. Jorba & Zou (and heyoka) take
-// p = ⌈−½ ln ε⌉ + 1 and h = ρ/e², a local error of about e^{−2p} ≪ ε; here the order is two
-// higher, p = ⌈−½ ln ε⌉ + 3, with the step for a local error of ε: fewer, larger steps, whose
-// fixed cost per step (step-size logic, Horner evaluation) weighs more than the O(p²) recursion
-// for small systems. Measured on the torque-free body: 40 % fewer steps, the same work-precision
-// front shifted by about −25 % in time (bench/README.md).
-// No step is rejected; outputs inside a step evaluate the Taylor polynomial (Horner).
+//   p = ⌈−½ ln ε⌉ + 6,
+//   h = min(ρ_{p−1}, ρ_p) · (ε/10)^{1/p} · exp(−0.7/(p − 1)),
+// so that the truncation term (h/ρ)^p ≈ (ε/10)·e^{−0.7} per step.
+// Why this order: the global error is about (number of steps N) × (local error δ), and
+// N ∝ 1/h ∝ δ^{−1/p}; with a cost per step a + b·p² (a: step size, new state, bookkeeping; b·p²:
+// the recursion) the cost at equal global error is least near p ≈ ½ ln(1/δ)·(1 + a/(b p²)),
+// above Jorba & Zou's p = ⌈−½ ln ε⌉ + 1 with h = ρ/e² (the optimum when the recursion is the whole
+// cost). Measured on the torque-free body (bench/taylor_vs_heyoka.py), orders +3 … +8 lie on the
+// same work-precision front within the machine's noise; +6 is at its fast end for rtol ≥ 1e-10.
+// Why ε/10: heyoka (Jorba & Zou's rule) makes a local error of e^{−2p}·e^{−0.7p/(p−1)} ≈ ε/15 …
+// ε/110 (p rounded up) over ~1.7× as many steps; ε/10 over our fewer steps gives the same
+// global error as heyoka at tol = rtol within a factor ~2, so rtol means what it says there
+// (I = (2, 3, 4), t = 2000, rtol 1e-12: 1.4e-10 here, 8.7e-11 heyoka; it was 9.3e-10 with the
+// previous rule, order +3 and local error ε·e^{−0.7}).
+// The step is one dependent chain (recursion → step size → new state → next recursion), so its
+// latency counts: the step size uses cheap log2/exp2 (fast_log2, fast_exp2) and the new state
+// Estrin's scheme (evaluate_polynomial). No step is rejected; outputs inside a step evaluate the
+// step's Taylor polynomial.
 // A system opts in with `max_taylor_order`, `supports_taylor()` and
 //   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
 // (model/system.hpp).
@@ -20,6 +30,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -32,22 +44,78 @@ namespace gyrostat::integrate {
 
 namespace taylor_detail {
 
-/// min(ρ_{p−1}, ρ_p)·safety with ρ_m = (s/c_m)^{1/m}, in base-2 logarithms (log2 and exp2 are
-/// several times cheaper than pow, which otherwise dominates a step of a small system).
-inline double step_size(double scale, double c_low, double c_high, int order, double safety) {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    const double log_scale = std::log2(scale);
-    const double low = c_low == 0.0 ? inf : (log_scale - std::log2(c_low)) / (order - 1);
-    const double high = c_high == 0.0 ? inf : (log_scale - std::log2(c_high)) / order;
-    return safety * std::exp2(std::min(low, high));
+/// log2 of a positive x to 1.4e-3 (the exponent's bits plus a cubic fit of log2 on the mantissa in
+/// [1, 2), Chebyshev nodes). The step size needs ρ to a few digits only: this error moves h by
+/// ≤ 1e-4 (it is divided by the order), while libm's log2 on the step's critical path (recursion →
+/// step size → new state → next recursion) would cost more than the rest of the step-size logic.
+/// Subnormal x, read as 2^−1023·(1 + mantissa), are overestimated: a smaller step (the safe side).
+inline double fast_log2(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const double exponent = static_cast<double>(static_cast<int>(bits >> 52) - 1023);
+    bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
+    double mantissa;
+    std::memcpy(&mantissa, &bits, sizeof mantissa);
+    const double u = mantissa - 1.0;
+    return exponent + ((1.33453924e-03 + 1.41348539 * u) + u * u * (-5.67752150e-01 + 1.53913535e-01 * u));
 }
 
-/// The order for a local error target ε (the rule in the comment at the top), within [2, max].
-inline int order_for(double eps, int max_order) {
-    return std::clamp(static_cast<int>(std::ceil(-0.5 * std::log(eps))) + 3, 2, max_order);
+/// 2^y to 1.9e-4 relative (a cubic fit of 2^f on f ∈ [0, 1), scaled by 2^⌊y⌋ in the exponent's
+/// bits); +∞ for y ≥ 1023 (NaN for NaN), 0 below −1022.
+inline double fast_exp2(double y) {
+    if (!(y < 1023.0)) return y + std::numeric_limits<double>::infinity();
+    if (y < -1022.0) return 0.0;
+    int n = static_cast<int>(y);
+    n -= (n > y);  // ⌊y⌋
+    const double f = y - n;
+    const double fraction = (0.99981196 + 0.69683858 * f) + f * f * (0.22412644 + 0.07901994 * f);
+    const std::uint64_t bits = static_cast<std::uint64_t>(n + 1023) << 52;
+    double scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return fraction * scale;
 }
-/// The factor ε^{1/p}·exp(−0.7/(p − 1)) that multiplies min(ρ_{p−1}, ρ_p).
-inline double safety_for(double eps, int order) { return std::exp(-0.7 / (order - 1)) * std::exp(std::log(eps) / order); }
+
+/// min(ρ_{p−1}, ρ_p)·safety with ρ_m = (s/c_m)^{1/m}, in base-2 logarithms to ~2e-4 (fast_log2,
+/// fast_exp2; multiplications by 1/m, which fold to constants when the order is one).
+inline double step_size(double scale, double c_low, double c_high, int order, double safety) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const double log_scale = fast_log2(scale);
+    const double low = c_low == 0.0 ? inf : (log_scale - fast_log2(c_low)) * (1.0 / (order - 1));
+    const double high = c_high == 0.0 ? inf : (log_scale - fast_log2(c_high)) * (1.0 / order);
+    return safety * fast_exp2(std::min(low, high));
+}
+
+/// Σ c_n dtⁿ, n = 0 … Order, by Estrin's scheme: pairs c_{2i} + c_{2i+1} dt, then pairs of those
+/// with dt², dt⁴, …: about log2(Order) dependent multiply-adds instead of Horner's Order. The new
+/// state is on the critical path from one step's coefficients to the next step's.
+template <int Order, class State>
+State evaluate_polynomial(const State* c, double dt) {
+    constexpr int terms = Order + 1;
+    State a[(terms + 1) / 2];
+#pragma GCC unroll 32
+    for (int i = 0; 2 * i + 1 < terms; ++i) a[i] = c[2 * i] + c[2 * i + 1] * dt;
+    if constexpr (terms % 2 == 1) a[terms / 2] = c[terms - 1];
+    double x = dt * dt;
+#pragma GCC unroll 8
+    for (int n = (terms + 1) / 2; n > 1; n = (n + 1) / 2, x *= x) {
+#pragma GCC unroll 16
+        for (int i = 0; 2 * i + 1 < n; ++i) a[i] = a[2 * i] + a[2 * i + 1] * x;
+        if (n % 2 == 1) a[n / 2] = a[n - 1];
+    }
+    return a[0];
+}
+
+/// The order for a local error target ε (rtol in relative mode, atol in absolute mode):
+/// p = ⌈−½ ln ε⌉ + 6, five above Jorba & Zou's (see the comment at the top of this file).
+inline int order_for(double eps, int max_order) {
+    return std::clamp(static_cast<int>(std::ceil(-0.5 * std::log(eps))) + 6, 2, max_order);
+}
+
+/// The factor of min(ρ_{p−1}, ρ_p) in the step size: (ε/10)^{1/p}·e^{−0.7/(p−1)}, for a local
+/// truncation error of about ε/10 per step (see the comment at the top of this file).
+inline double safety_for(double eps, int order) {
+    return std::exp(-0.7 / (order - 1)) * std::exp(std::log(0.1 * eps) / order);
+}
 
 /// One step of fixed order: coefficients, step size, events and outputs inside the step, the new
 /// state. Returns false when the coefficients are not finite (h then holds NaN); `t_stop` is the
@@ -66,12 +134,7 @@ struct Step {
             return false;
         }
         h = std::min({h, max_step, std::abs(t1 - t)});
-        auto evaluate = [&](double dt) {
-            State value = c[Order];
-#pragma GCC unroll 32
-            for (int n = Order - 1; n >= 0; --n) value = value * dt + c[n];
-            return value;
-        };
+        auto evaluate = [&](double dt) { return evaluate_polynomial<Order>(c, dt); };
         double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
         State y_new = evaluate(t_new - t);
         t_stop = events.active() ? events.step(t, t_new, y_new, [&](double time) { return evaluate(time - t); })
@@ -179,7 +242,9 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 mark_terminated(result, t_stop);
                 return result;
             }
-            const double min_step = 10.0 * std::abs(std::nextafter(t, direction * std::numeric_limits<double>::infinity()) - t);
+            // 10 to 20 units in the last place of t (no nextafter call on every step)
+            const double min_step = 10.0 * (std::numeric_limits<double>::epsilon() * std::abs(t) +
+                                            std::numeric_limits<double>::denorm_min());
             if (std::abs(h) < min_step && t + h != t1) {
                 y = y_before;
                 result.status = Status::StepSizeUnderflow;

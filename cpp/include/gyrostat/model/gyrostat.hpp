@@ -88,10 +88,12 @@ void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
 #pragma GCC unroll 32
     for (int n = 0; n < order; ++n) {
         // Products j·k summed in pairs from both ends (terms m and n − m share their factors'
-        // loads), with two partial sums to shorten the chain of dependent additions.
+        // loads), with two partial sums to shorten the chain of dependent additions; m runs down
+        // so that the newest coefficient (m = 0, r = n) is added last: the step is a chain of
+        // dependent operations, and the older terms' sums can then start early.
         T p23 = lanes::splat<T>(0.0), p31 = p23, p12 = p23, q23 = p23, q31 = p23, q12 = p23;
 #pragma GCC unroll 16
-        for (int m = 0; m < (n + 1) / 2; ++m) {
+        for (int m = (n + 1) / 2 - 1; m >= 0; --m) {
             const int r = n - m;
             p23 += w2[m] * w3[r];
             q23 += w2[r] * w3[m];
@@ -122,10 +124,10 @@ void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
             r3 -= e.damping[6] * w1[n] + e.damping[7] * w2[n] + e.damping[8] * w3[n];
         }
         if (n == 0) r1 += e.constant[0], r2 += e.constant[1], r3 += e.constant[2];
-        const double inv = 1.0 / (n + 1);
-        w1[n + 1] = r1 * e.inverse_moments[0] * inv;
-        w2[n + 1] = r2 * e.inverse_moments[1] * inv;
-        w3[n + 1] = r3 * e.inverse_moments[2] * inv;
+        const double inv = 1.0 / (n + 1);  // J⁻¹/(n + 1) first: one multiplication after the sum
+        w1[n + 1] = r1 * (e.inverse_moments[0] * inv);
+        w2[n + 1] = r2 * (e.inverse_moments[1] * inv);
+        w3[n + 1] = r3 * (e.inverse_moments[2] * inv);
         c(n + 1, 0) = w1[n + 1];
         c(n + 1, 1) = w2[n + 1];
         c(n + 1, 2) = w3[n + 1];
