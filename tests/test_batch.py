@@ -20,7 +20,7 @@ def euler_rhs(J, k, D, M0):
 
 def members(n=11):
     """n gyrostats with other moments, rotors, damping and torques per member (not a multiple of
-    any lane width), and ω0 from 0.1 to ~6 in size, so that lanes need very different step counts."""
+    any lane width), and ω0 from 0.05 to ~50 in size, so that lanes need very different step counts."""
     out = []
     for i in range(n):
         J = np.array([1.0 + 0.1 * i, 2.0 + 0.05 * i, 3.0 - 0.07 * i])
@@ -32,7 +32,7 @@ def members(n=11):
             torques.append(g.LinearDamping(D))
         if i % 4 == 1:
             torques.append(g.ConstantTorque(M0))
-        w0 = 0.1 * 1.5 ** i * np.array([np.cos(i), 0.5, -np.sin(0.7 * i)])
+        w0 = 0.05 * 2.0 ** i * np.array([np.cos(i), 0.5, -np.sin(0.7 * i)])
         out.append((g.Model(g.Body(J, k), torques), w0, euler_rhs(J, k, D, M0)))
     return out
 
@@ -41,23 +41,23 @@ def members(n=11):
 def test_batched_members_against_scipy_and_their_single_runs(method):
     cases = members()
     models, y0s = [c[0] for c in cases], [c[1] for c in cases]
-    t_eval = np.linspace(0.0, 20.0, 21)
-    batched = g.solve_ensemble(models, y0s, (0.0, 20.0), method=method, rtol=1e-10, atol=1e-12, t_eval=t_eval,
+    t_eval = np.linspace(0.0, 10.0, 21)
+    batched = g.solve_ensemble(models, y0s, (0.0, 10.0), method=method, rtol=1e-10, atol=1e-12, t_eval=t_eval,
                                threads=2)
-    single = g.solve_ensemble(models, y0s, (0.0, 20.0), method=method, rtol=1e-10, atol=1e-12, t_eval=t_eval,
+    single = g.solve_ensemble(models, y0s, (0.0, 10.0), method=method, rtol=1e-10, atol=1e-12, t_eval=t_eval,
                               threads=2, batch=False)
     steps = []
     for (model, w0, rhs), b, s in zip(cases, batched, single):
         assert b.success and s.success
-        ref = solve_ivp(rhs, (0.0, 20.0), w0, method="DOP853", rtol=1e-13, atol=1e-15, t_eval=t_eval).y.T
+        ref = solve_ivp(rhs, (0.0, 10.0), w0, method="DOP853", rtol=1e-13, atol=1e-15, t_eval=t_eval).y.T
         scale = np.abs(ref).max()
-        # rtol 1e-10 over ~20 periods: the global error stays below 1e-7 of |ω| (measured ~1e-9)
+        # rtol 1e-10 over up to ~100 periods: the global error stays below 1e-7 of |ω|
         assert np.abs(b.y - ref).max() <= 1e-7 * scale, "batch vs SciPy"
         # the batch and the scalar run follow the same rules per lane: they differ by rounding
         # (and for taylor by the batch's common order), within 100 rtol
         assert np.abs(b.y - s.y).max() <= 100 * 1e-10 * scale, "batch vs its single run"
-        assert abs(b.stats.steps - s.stats.steps) <= 1 + s.stats.steps // 20
-        steps.append(s.stats.steps)
+        assert abs(b.stats["steps"] - s.stats["steps"]) <= 1 + s.stats["steps"] // 20
+        steps.append(s.stats["steps"])
     assert max(steps) > 10 * min(steps), "the lanes need very different numbers of steps"
 
 
@@ -93,8 +93,12 @@ def test_averaged_members_batch_against_single_runs():
     models = [g.AveragedModel(g.Body(m), [g.ViscousCavity(1260.0, 1000.0 * (1 + 0.1 * i), 0.48)])
               for i, m in enumerate(body_moments)]
     y0s = [[1.0 + 0.1 * i, 0.5 - 0.1 * i] for i in range(6)]
-    batched = g.solve_ensemble(models, y0s, (0.0, 50.0), rtol=1e-10, atol=1e-12, n_out=11, method="dop853")
-    single = g.solve_ensemble(models, y0s, (0.0, 50.0), rtol=1e-10, atol=1e-12, n_out=11, method="dop853", batch=False)
+    # batch against scalar integration of the same equations: whether the averaging holds for
+    # these cavities is not under test here (check_validity=False)
+    batched = g.solve_ensemble(models, y0s, (0.0, 50.0), rtol=1e-10, atol=1e-12, n_out=11, method="dop853",
+                               check_validity=False)
+    single = g.solve_ensemble(models, y0s, (0.0, 50.0), rtol=1e-10, atol=1e-12, n_out=11, method="dop853", batch=False,
+                              check_validity=False)
     for b, s in zip(batched, single):
         assert b.success
         assert np.abs(b.y - s.y).max() <= 100 * 1e-10 * np.abs(s.y).max()

@@ -94,17 +94,21 @@ def test_every_family_solves_and_ensembles(name, model, y0, reference):
     y0s = [np.asarray(y0, float) * s for s in (1.0, 0.9, 1.1)] if name != "lagrange_averaged" else [y0] * 3
     if "q_w" in model.state_names or name == "lagrange_averaged":  # keep the quaternion a rotation
         y0s = [y0, y0, y0]
-    members = g.solve_ensemble(model, y0s, (0.0, 5.0), threads=2, **options)
-    for y, member in zip(y0s, members):
+    # (batch=False: SIMD batches equal single runs to the tolerance only; tests/test_batch.py)
+    members = g.solve_ensemble(model, y0s, (0.0, 5.0), threads=2, batch=False, **options)
+    batched = g.solve_ensemble(model, y0s, (0.0, 5.0), threads=2, **options)
+    for y, member, in_batch in zip(y0s, members, batched):
         single = g.solve(model, y, (0.0, 5.0), **options)
         assert np.array_equal(member.y, single.y) and np.array_equal(member.outputs[sol.output_names[0]],
                                                                      single.outputs[sol.output_names[0]])
+        # batched or not, at rtol 1e-10 the member agrees with its single run well within 1e-7
+        np.testing.assert_allclose(in_batch.y, single.y, rtol=0, atol=1e-7 * max(1.0, np.abs(single.y).max()))
 
 
 def test_ensemble_mixes_families():
     models = [f[1] for f in FAMILIES if f[2] is not None]
     y0s = [f[2] for f in FAMILIES if f[2] is not None]
-    runs = g.solve_ensemble(models, y0s, (0.0, 2.0), n_out=5, rtol=1e-9, check_validity=False)
+    runs = g.solve_ensemble(models, y0s, (0.0, 2.0), n_out=5, rtol=1e-9, check_validity=False, batch=False)
     for model, y0, run in zip(models, y0s, runs):
         single = g.solve(model, y0, (0.0, 2.0), n_out=5, rtol=1e-9, check_validity=False)
         assert run.state_names == model.state_names and np.array_equal(run.y, single.y)

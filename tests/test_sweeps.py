@@ -32,10 +32,12 @@ def scene(name: str, **integration) -> dict:
 
 
 def single(plan: sweeps.Plan, i: int) -> g.Solution:
-    """Member i solved alone, from its own validated scene, with gyrostat.solve."""
+    """Member i solved alone, from its own validated scene, as an ensemble of one (where SIMD
+    batches apply, a batch of one: a lane's numbers do not depend on its neighbours, so the
+    sweep's chunking must not change them)."""
     member = plan.scene(i)
     run = next(r for r in member.runs if r.name == plan.run)
-    return g.solve(run.model, run.y0, run.t_span, **run.options, check_validity=False, progress=False)
+    return g.solve_ensemble(run.model, [run.y0], run.t_span, **run.options, check_validity=False, progress=False)[0]
 
 
 def assert_member_is_single_run(ds: xr.Dataset, plan: sweeps.Plan, i: int, index: dict) -> None:

@@ -67,10 +67,8 @@ Plan plan(const std::vector<const AnyModel*>& models, const std::vector<Eigen::V
         open[kind].push_back(i);
         if (open[kind].size() == W) p.batches.push_back(std::move(open[kind])), open[kind].clear();
     }
-    for (auto& rest : open) {  // a last, partial batch; a lone member runs alone
-        if (rest.size() >= 2) p.batches.push_back(std::move(rest));
-        else p.single.insert(p.single.end(), rest.begin(), rest.end());
-    }
+    for (auto& rest : open)  // a last, partial batch (a member alone is a batch of one: the same numbers)
+        if (!rest.empty()) p.batches.push_back(std::move(rest));
     return p;
 }
 

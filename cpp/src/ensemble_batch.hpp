@@ -9,9 +9,10 @@
 
 namespace gyrostat::ensemble_batch {
 
-/// The ensemble split into batches of at most lanes::width members of one model type, and the
-/// members that run one by one (their model or options have no batch, or their initial state is
-/// invalid: the scalar path then reports it).
+/// The ensemble split into batches of at most lanes::width members of one model type (the last
+/// one of a type may be partial, down to one member), and the members that run one by one (their
+/// model or options have no batch, or their initial state is invalid: the scalar path then
+/// reports it).
 struct Plan {
     std::vector<std::vector<std::size_t>> batches;
     std::vector<std::size_t> single;

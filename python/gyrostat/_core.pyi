@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'solve', 'solve_ensemble', 'torque_free_model']
+__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'solve', 'solve_ensemble', 'torque_free_model']
 class Body:
     def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
@@ -504,8 +504,10 @@ def rotation_matrix(q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) 
     """
 def solve(model: Model, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> Result:
     ...
-def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> list[Result]:
+def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1, batch: bool = True) -> list[Result]:
     ...
 def torque_free_model(body: Body, attitude: bool = False) -> Model:
     ...
 __version__: str = '0.1.0'
+simd_instruction_set: str = 'sse2'
+simd_lanes: int = 4

@@ -156,6 +156,34 @@ void averaged_batch() {
     }
 }
 
+/// A member's batched result does not depend on the members beside it (nor on being alone):
+/// ensembles and sweeps give the same numbers however they are chunked.
+void independent_of_neighbours(Method method) {
+    const std::string label = std::string("neighbours, ") + integrate::method_name(method);
+    const auto models = mixed_gyrostats<true>();
+    const auto starts = mixed_starts(static_cast<int>(models.size()));
+    Options o;
+    o.method = method;
+    o.rtol = 1e-9;
+    o.atol = 1e-12;
+    o.n_out = 11;
+    const auto all = solve_ensemble(pointers(models), starts, 0.0, 10.0, o, 1, nullptr, true);
+    for (std::size_t i : {0, 4, 12}) {  // first, middle and last of the ensemble, now alone
+        const std::vector<const AnyModel*> one{&models[i]};
+        const auto alone = solve_ensemble(one, {starts[i]}, 0.0, 10.0, o, 1, nullptr, true);
+        CHECK(alone[0].y == all[i].y && alone[0].stats.steps == all[i].stats.steps,
+              label + ": member " + std::to_string(i) + " alone = in the ensemble, bit for bit");
+    }
+    // the members in reverse order: other neighbours, other lanes
+    std::vector<const AnyModel*> reversed;
+    std::vector<Eigen::VectorXd> reversed_starts;
+    for (std::size_t i = models.size(); i-- > 0;) reversed.push_back(&models[i]), reversed_starts.push_back(starts[i]);
+    const auto back = solve_ensemble(reversed, reversed_starts, 0.0, 10.0, o, 2, nullptr, true);
+    bool same = true;
+    for (std::size_t i = 0; i < models.size(); ++i) same = same && back[models.size() - 1 - i].y == all[i].y;
+    CHECK(same, label + ": members in reverse order (other lanes, other neighbours): the same bits");
+}
+
 /// A stop flag set before the run: every lane ends Interrupted with its start recorded.
 void interrupted_batch() {
     const auto models = mixed_gyrostats<false>();
@@ -182,6 +210,8 @@ int main() {
     failing_lanes(Method::Taylor);
     failing_lanes(Method::Dop853);
     averaged_batch();
+    independent_of_neighbours(Method::Taylor);
+    independent_of_neighbours(Method::Dop853);
     interrupted_batch();
     std::printf("%d passed, %d failed\n", passes, failures);
     return failures == 0 ? 0 : 1;

@@ -6,9 +6,12 @@
 //
 // A lane follows the same rules as the scalar integrator (taylor.hpp, dop853.hpp): the same step
 // size formula, controller and error norm, per lane. Results agree with the scalar path to the
-// tolerance, not bit for bit: the batch Taylor method uses the highest order any lane needs (a
-// lane in absolute mode next to one in relative mode gets the higher of the two orders), and
-// vectorised arithmetic may round differently (fused multiply-adds, exp and log).
+// tolerance, not bit for bit: the batch's right-hand side is the affine form of Euler's equations
+// (model/gyrostat.hpp: affine_euler_rhs), the batch Taylor method keeps the order of rtol in
+// absolute mode too, and vectorised arithmetic may round differently (exp, log, fused
+// multiply-adds). A lane's arithmetic never depends on the other lanes, so a member's result is
+// the same, bit for bit, whichever members share its batch (and a member alone runs as a batch
+// of one): ensembles and sweeps give the same numbers however they are chunked.
 //
 // What a batch covers (solve_ensemble falls back to the scalar path for everything else): no
 // events, no dense output, no every_step; the gyrostat with constant and linear torques (with and
@@ -150,7 +153,7 @@ public:
     static constexpr int dim = LaneModel::dim;
 
     LaneRecords(const System* const* systems, int count, Result* results, const Options& options, double t0, double t1)
-        : count_(count), results_(results), outputs_(output_times(options, t0, t1)),
+        : systems_(systems), count_(count), results_(results), outputs_(output_times(options, t0, t1)),
           direction_(t1 >= t0 ? 1.0 : -1.0), t1_(t1) {
         for (int l = 0; l < count; ++l) {
             results[l] = Result{};
@@ -169,6 +172,7 @@ public:
         return false;
     }
     Result& result(int l) { return results_[l]; }
+    const System& system(int l) const { return *systems_[l]; }
     Stats& stats(int l) { return results_[l].stats; }
 
     static State lane_state(const Lanes* y, int l) {
@@ -244,6 +248,7 @@ public:
     }
 
 private:
+    const System* const* systems_;
     int count_;
     Result* results_;
     std::vector<double> outputs_;
@@ -305,38 +310,27 @@ void taylor(const LaneModel& model, const typename LaneModel::System* const* sys
     for (int l = 0; l < count; ++l)
         if (t0 == t1) record.finish(l, t0, Records::lane_state(y, l), 0.0);
 
+    // One order for every lane and every step, from rtol (atol when rtol = 0), so that a lane's
+    // arithmetic never depends on its neighbours: a member's result is the same in any batch.
+    // A lane in absolute mode (rtol·‖y‖ ≤ atol) sizes its steps for atol at that order.
     const double rtol = options.rtol, atol = std::max(options.atol, 0.0);
-    const int order_relative = taylor_detail::order_for(std::max(rtol, 1e-300), max_order);
-    const int order_absolute = taylor_detail::order_for(std::max(atol, 1e-300), max_order);
+    const int order = taylor_detail::order_for(std::max(rtol > 0.0 ? rtol : atol, 1e-300), max_order);
+    const double safety_relative = taylor_detail::safety_for(std::max(rtol, 1e-300), order);
+    const double safety_absolute = taylor_detail::safety_for(std::max(atol, 1e-300), order);
     constexpr double ln2 = 0.69314718055994530942;
     Ticker ticker(control, t0, t1);
     Lanes c[max_order + 1][dim];
-    int order_of_safety = 0;
-    double safety_relative = 0.0, safety_absolute = 0.0;
 
     while (record.any_active()) {
         if (!record.keep_going(ticker, t, y, Lanes::Zero())) return;
-        // The mode of each lane (relative when rtol·‖y‖ > atol) and one order for all: the highest.
         const Lanes norm = max_abs<dim>(y);
-        bool any_relative = false, any_absolute = false;
-        for (int l = 0; l < count; ++l) {
-            if (!record.active(l)) continue;
-            if (record.stats(l).steps >= options.max_steps) {
+        for (int l = 0; l < count; ++l)
+            if (record.active(l) && record.stats(l).steps >= options.max_steps)
                 record.fail(l, Status::MaxStepsReached,
-                           "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t[l]) +
-                               " before t1 = " + format_number(t1) + ".",
-                           t[l], Records::lane_state(y, l), 0.0);
-                continue;
-            }
-            (rtol * norm[l] > atol ? any_relative : any_absolute) = true;
-        }
+                            "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t[l]) +
+                                " before t1 = " + format_number(t1) + ".",
+                            t[l], Records::lane_state(y, l), 0.0);
         if (!record.any_active()) break;
-        const int order = std::max(any_relative ? order_relative : 2, any_absolute ? order_absolute : 2);
-        if (order != order_of_safety) {  // the two factors of this order (relative, absolute mode)
-            safety_relative = taylor_detail::safety_for(std::max(rtol, 1e-300), order);
-            safety_absolute = taylor_detail::safety_for(std::max(atol, 1e-300), order);
-            order_of_safety = order;
-        }
         const auto relative = rtol * norm > atol;
         const Lanes log2_scale = relative.select(norm.log() / ln2, Lanes::Zero());
         const Lanes safety = relative.select(Lanes::Constant(safety_relative), Lanes::Constant(safety_absolute));
@@ -496,9 +490,10 @@ void dop853(const LaneModel& model, const typename LaneModel::System* const* sys
             Stats& stats = record.stats(l);
             if (stats.steps >= options.max_steps) {
                 record.fail(l, Status::MaxStepsReached,
-                           "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t[l]) +
-                               " before t1 = " + format_number(t1) + ".",
-                           t[l], here, h_abs[l]);
+                            "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t[l]) +
+                                " before t1 = " + format_number(t1) + "." +
+                                stiffness_hint(record.system(l), t[l], here, stats.last_step, span),
+                            t[l], here, h_abs[l]);
                 continue;
             }
             const double smallest = min_step(t[l], direction);
@@ -513,7 +508,8 @@ void dop853(const LaneModel& model, const typename LaneModel::System* const* sys
                 else
                     record.fail(l, Status::StepSizeUnderflow,
                                "step size underflow at t = " + format_number(t[l], 17) + ": the step needed (< " +
-                                   format_number(smallest) + ") is below the resolution of t.",
+                                   format_number(smallest) + ") is below the resolution of t." +
+                                   stiffness_hint(record.system(l), t[l], here, stats.last_step, span),
                                t[l], here, stats.last_step);
                 continue;
             }
