@@ -63,16 +63,21 @@ std::vector<const AnyModel*> pointers(const std::vector<AnyModel>& models) {
     return p;
 }
 
+Options options(Method method, double rtol, long n_out) {
+    Options o;
+    o.method = method;
+    o.rtol = rtol;
+    o.atol = 1e-12;
+    o.n_out = n_out;
+    return o;
+}
+
 template <bool A>
 void batch_equals_scalar(Method method) {
     const std::string label = std::string(A ? "gyrostat with attitude" : "gyrostat") + ", " + integrate::method_name(method);
     const auto models = mixed_gyrostats<A>();
     const auto starts = mixed_starts(static_cast<int>(models.size()));
-    Options o;
-    o.method = method;
-    o.rtol = 1e-10;
-    o.atol = 1e-12;
-    o.n_out = 41;
+    const Options o = options(method, 1e-10, 41);
     const auto batched = solve_ensemble(pointers(models), starts, 0.0, 30.0, o, 2, nullptr, true);
     const auto single = solve_ensemble(pointers(models), starts, 0.0, 30.0, o, 2, nullptr, false);
     long fewest = 1L << 60, most = 0;
@@ -162,11 +167,7 @@ void independent_of_neighbours(Method method) {
     const std::string label = std::string("neighbours, ") + integrate::method_name(method);
     const auto models = mixed_gyrostats<true>();
     const auto starts = mixed_starts(static_cast<int>(models.size()));
-    Options o;
-    o.method = method;
-    o.rtol = 1e-9;
-    o.atol = 1e-12;
-    o.n_out = 11;
+    const Options o = options(method, 1e-9, 11);
     const auto all = solve_ensemble(pointers(models), starts, 0.0, 10.0, o, 1, nullptr, true);
     for (std::size_t i : {0, 4, 12}) {  // first, middle and last of the ensemble, now alone
         const std::vector<const AnyModel*> one{&models[i]};
