@@ -53,7 +53,7 @@ run_cpp_tests() {
     say "C++ tests"
     cmake -S "$ROOT" -B "$ROOT/build/cpp-tests" -G Ninja -DGYROSTAT_TESTS=ON -DGYROSTAT_BENCH=ON \
         -DCMAKE_BUILD_TYPE=Release >/dev/null
-    cmake --build "$ROOT/build/cpp-tests" --target gyrostat_cpp_tests gyrostat_auto_tests gyrostat_stress gyrostat_bench
+    cmake --build "$ROOT/build/cpp-tests" --target gyrostat_cpp_tests gyrostat_auto_tests gyrostat_batch_tests gyrostat_stress gyrostat_bench
     (cd "$ROOT/build/cpp-tests" && ctest --output-on-failure)
 }
 
@@ -64,10 +64,11 @@ run_sanitizer_tests() {
     local flags=(-G Ninja -DGYROSTAT_TESTS=ON -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O0 -g1")
     say "C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer"
     cmake -S "$ROOT" -B "$ROOT/build/asan" "${flags[@]}" -DGYROSTAT_SANITIZE=address,undefined >/dev/null
-    cmake --build "$ROOT/build/asan" --target gyrostat_cpp_tests gyrostat_auto_tests gyrostat_stress
+    cmake --build "$ROOT/build/asan" --target gyrostat_cpp_tests gyrostat_auto_tests gyrostat_batch_tests gyrostat_stress
     (cd "$ROOT/build/asan" &&
         export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 &&
-        ./gyrostat_cpp_tests >/dev/null && ./gyrostat_auto_tests >/dev/null && ./gyrostat_stress)
+        ./gyrostat_cpp_tests >/dev/null && ./gyrostat_auto_tests >/dev/null && ./gyrostat_batch_tests >/dev/null &&
+        ./gyrostat_stress)
     say "the ensemble stress test under ThreadSanitizer"
     cmake -S "$ROOT" -B "$ROOT/build/tsan" "${flags[@]}" -DGYROSTAT_SANITIZE=thread >/dev/null
     cmake --build "$ROOT/build/tsan" --target gyrostat_stress
