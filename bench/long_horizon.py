@@ -1,8 +1,9 @@
 """Long horizons: error against t up to 1e7 for the exact free flow / splitting, Taylor and DOP853.
 
-    PYTHONPATH=python python bench/long_horizon.py [--out bench/results] [--quick] [--torque-free-only]
+    PYTHONPATH=python python bench/long_horizon.py [--out bench/results] [--quick]
+                                                   [--only torque-free|damped|forced|cavity ...]
 
-Two problems, body I = (2, 3, 4), ω0 = (0.4, 0.9, −0.3), q0 = (0.8, 0.1, −0.5, 0.3)/|·|:
+Four problems, body I = (2, 3, 4), ω0 = (0.4, 0.9, −0.3), q0 = (0.8, 0.1, −0.5, 0.3)/|·|:
 
 1. torque-free with attitude, t ≤ 1e9 for the exact flow (1e7 for the integrators). Reference:
    the closed form evaluated independently here in mpmath at 32 digits (Jacobi functions, Π by
@@ -12,6 +13,12 @@ Two problems, body I = (2, 3, 4), ω0 = (0.4, 0.9, −0.3), q0 = (0.8, 0.1, −0
 2. weakly damped, ε = 1e-4: linear damping D = ε [[1, .1, 0], [0, 2, 0], [0, 0, 1.5]] (affine:
    Taylor applies). Reference: SciPy's DOP853 at rtol 1e-13 with the right-hand side written here
    (its own error, measured against rtol 1e-12, is printed as the reference's floor).
+3. forced spin, ε = 1e-4: the same damping against a constant torque D ω*, ω* = (0, 0, 1): the
+   body settles into a steady spin and keeps turning (Taylor's steps do not grow as in 2).
+   Work-precision at t = 1e5 (1e4 with --quick) for splitting (orders 4 and 6, several steps),
+   Taylor and DOP853; reference SciPy's DOP853 at rtol 1e-13, right-hand side written here.
+4. the viscous cavity, κ = ε = 1e-4 (|G| conserved, energy dissipated): the drift of |G| over
+   t = 1e6 (1e5 with --quick), splitting against DOP853.
 
 Errors: max over ω (relative to |ω0|) and the quaternion (q and −q are one rotation). Prints the target ratios of issue 13 (measured in this one run) and writes
 bench/results/long_horizon_*.svg and .png.
@@ -219,19 +226,23 @@ def run(model, times, **options):
     return sol.y, elapsed, sol.status, n
 
 
-def chart(path: Path, title: str, curves: dict, floor=None):
+def _axes():
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for label, (t, e) in curves.items():
-        ax.loglog(t[: len(e)], np.maximum(e, 1e-17), marker="o", ms=3, label=label)
+    return plt.subplots(figsize=(6.4, 4.2))
+
+
+def _finish(fig, ax, path: Path, title: str, xlabel: str, ylabel: str, floor=None):
+    """Labels, the reference's floor, the legend; writes path.svg and path.png."""
+    import matplotlib.pyplot as plt
+
     if floor is not None:
         ax.axhline(floor, color="grey", ls=":", lw=1, label="reference's own error")
-    ax.set_xlabel("t")
-    ax.set_ylabel("error (|Δω|/|ω0|, |Δq|)")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize=8)
@@ -241,12 +252,34 @@ def chart(path: Path, title: str, curves: dict, floor=None):
     plt.close(fig)
 
 
+def work_precision_chart(path: Path, rows, floor):
+    """Error against time, one line per method (rows: (method, setting, error, seconds))."""
+    fig, ax = _axes()
+    for method in dict.fromkeys(r[0] for r in rows):
+        mine = [r for r in rows if r[0] == method]
+        ax.loglog([r[3] for r in mine], [max(r[2], 1e-17) for r in mine], marker="o", ms=4, label=method)
+        for r in mine:
+            ax.annotate(r[1], (r[3], max(r[2], 1e-17)), fontsize=6, xytext=(3, 3), textcoords="offset points")
+    _finish(fig, ax, path, f"forced spin (ε = {EPS:g}), I = (2, 3, 4), with attitude: work-precision",
+            "time [s] (one solve, Python included)", "error at the horizon (|Δω|/|ω0|, |Δq|)", floor)
+
+
+def chart(path: Path, title: str, curves: dict, floor=None, ylabel="error (|Δω|/|ω0|, |Δq|)"):
+    fig, ax = _axes()
+    for label, (t, e) in curves.items():
+        ax.loglog(t[: len(e)], np.maximum(e, 1e-17), marker="o", ms=3, label=label)
+    _finish(fig, ax, path, title, "t", ylabel, floor)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--out", default="bench/results")
     parser.add_argument("--quick", action="store_true", help="horizons to 1e5 only (a smoke run)")
-    parser.add_argument("--torque-free-only", action="store_true", help="only problem 1 (problem 2 takes minutes)")
+    parser.add_argument("--only", nargs="+", choices=PROBLEMS, default=list(PROBLEMS),
+                        help="run these problems only (all by default; 'damped' takes minutes)")
+    parser.add_argument("--torque-free-only", action="store_true", help="the same as --only torque-free")
     args = parser.parse_args(argv)
+    chosen = {"torque-free"} if args.torque_free_only else set(args.only)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     horizon = 1e5 if args.quick else 1e7
@@ -258,7 +291,32 @@ def main(argv=None):
     times, times_far = grid(horizon), grid(far)
     print(f"# {' '.join(['python'] + sys.argv)}")
 
-    # ---- 1. torque-free with attitude
+    if "torque-free" in chosen:
+        torque_free(out, times, times_far, horizon, far)
+    if "damped" in chosen:
+        damped(out, times, horizon)
+    if "forced" in chosen:
+        rows, floor = forced_spin(1e4 if args.quick else 1e5)
+        work_precision_chart(out / "long_horizon_forced_spin", rows, floor)
+        taylor = [r for r in rows if r[0] == "taylor" and r[1] == "rtol 1e-14"][0]
+        best = min((r for r in rows if r[0].startswith("splitting")), key=lambda r: r[2])
+        print(f"TARGET forced spin: splitting's smallest error {best[2]:.2e} ({best[0]}, {best[1]}, {best[3]:.3f} s) "
+              f"vs taylor rtol 1e-14 {taylor[2]:.2e} (bounded by the reference's {floor:.1e}) in {taylor[3]:.3f} s: "
+              f"time ratio {best[3] / taylor[3]:.1f} (target <= 0.33) at >= {best[2] / taylor[2]:.0f}x the error (target <= 1)")
+    if "cavity" in chosen:
+        drift = cavity_G_drift(1e5 if args.quick else 1e6)
+        chart(out / "long_horizon_cavity_G", f"viscous cavity (κ = ε = {EPS:g}): relative drift of |G|", drift,
+              ylabel="|ΔG|/G (zero drawn at 1e-17)")
+        print("TARGET cavity: no secular drift of |G| under splitting: max |ΔG|/G "
+              f"{np.max(drift['splitting order 4, h = 0.5'][1]):.1e} (DOP853 rtol 1e-12: "
+              f"{np.max(drift['dop853 rtol 1e-12'][1]):.1e})")
+
+
+PROBLEMS = ("torque-free", "damped", "forced", "cavity")
+
+
+def torque_free(out: Path, times, times_far, horizon: float, far: float):
+    """Problem 1: the torque-free body, the exact flow against Taylor and DOP853."""
     check_t = 20.0
     ref_check = mp_taylor_check(check_t)
     ref_far = mp_closed_form(np.concatenate([times_far, [check_t]]))
@@ -302,10 +360,10 @@ def main(argv=None):
           f"(ratio {per_output[horizon] / per_output[1e3]:.2f})")
     print(f"  exact flow beyond: max error over t <= {far:g}: {np.max(e_far):.2e}; "
           + ", ".join(f"t = {t:.0e}: {e:.1e}" for t, e in zip(times_far, e_far) if t > horizon))
-    if args.torque_free_only:
-        return
 
-    # ---- 2. weakly damped, ε = 1e-4
+
+def damped(out: Path, times, horizon: float):
+    """Problem 2: weakly damped (linear damping, ε = 1e-4); ω decays by e^{-50} over 1e6."""
     damped = g.Model(g.Body(J), [g.LinearDamping(D)], attitude=True)
     t_ref = times[times <= min(horizon, 1e7)]
     ref2 = scipy_reference(t_ref, 1e-13)
@@ -339,6 +397,70 @@ def main(argv=None):
         _, el_t, _, _ = run(damped, np.array([0.0, t6]), method="taylor", rtol=1e-14, atol=1e-300)
         print(f"TARGET damped ({label}): time to t = {t6:g}: {el_s:.3f} s vs taylor 1e-14 {el_t:.3f} s "
               f"(ratio {el_s / el_t:.2f}, target <= 0.33)")
+
+
+# ------------------------------------------------------------------ 3. forced spin, 4. cavity
+
+def forced_spin_rhs(t, y):
+    """Problem 3 written here: J ω̇ = ε D'(ω* − ω) − ω × Jω, q̇ = ½ q ⊗ (0, ω)."""
+    w, q = y[:3], y[3:]
+    dw = (D @ (W_SPIN - w) - np.cross(w, J * w)) / J
+    qw, qx, qy, qz = q
+    p, qq, r = w
+    dq = 0.5 * np.array([-qx * p - qy * qq - qz * r, qw * p + qy * r - qz * qq, qw * qq + qz * p - qx * r,
+                         qw * r + qx * qq - qy * p])
+    return np.concatenate([dw, dq])
+
+
+W_SPIN = np.array([0.0, 0.0, 1.0])  # problem 3's steady spin ω* (about the largest axis)
+
+
+def forced_spin(t_end: float):
+    """Problem 3: the weakly damped body driven by a constant torque ε D'ω* (a spin-up motor
+    against friction): it settles into a steady spin ω* about its largest axis and keeps turning,
+    so Taylor must follow the rotation over the whole horizon (in problem 2 ω decays and Taylor's
+    steps grow). Work-precision at t = t_end, reference SciPy DOP853 at rtol 1e-13."""
+    from scipy.integrate import solve_ivp
+
+    model = g.Model(g.Body(J), [g.ConstantTorque(D @ W_SPIN), g.LinearDamping(D)], attitude=True)
+    y0 = np.concatenate([W0, Q0])
+    refs = []
+    for rtol in (1e-13, 1e-12):
+        sol = solve_ivp(forced_spin_rhs, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=1e-300)
+        refs.append(sol.y[:, -1] / np.r_[1.0, 1.0, 1.0, [np.linalg.norm(sol.y[3:, -1])] * 4])
+    ref, floor = refs[0], errors(refs[1][None, :], refs[0][None, :])[0]
+    print(f"forced spin (ε = {EPS:g}, t = {t_end:g}) reference: SciPy DOP853 rtol 1e-13; "
+          f"|rtol 1e-12 − rtol 1e-13| = {floor:.1e}")
+    rows = []
+    configs = [("taylor", dict(method="taylor", rtol=r, atol=1e-300), f"rtol {r:g}") for r in (1e-10, 1e-12, 1e-14)]
+    configs += [("dop853", dict(method="dop853", rtol=r, atol=1e-300), f"rtol {r:g}") for r in (1e-10, 1e-12)]
+    configs += [(f"splitting order {o}", dict(method="splitting", step=h, splitting_order=o), f"h = {h:g}")
+                for o, hs in ((4, (1.0, 0.5, 0.25)), (6, (2.0, 1.0, 0.5))) for h in hs]
+    for name, opts, setting in configs:
+        y, el, status, _ = run(model, np.array([0.0, t_end]), **opts)
+        e = errors(y[-1:], ref[None, :])[0]
+        rows.append((name, setting, e, el))
+        print(f"  {name:20s} {setting:12s} {el:8.3f} s  error {e:.2e}  ({status})")
+    return rows, floor
+
+
+def cavity_G_drift(t_end: float):
+    """Problem 4: the viscous cavity (κ = ε), an internal torque: |G| is conserved exactly while
+    the energy decays. The relative drift of |G| over t_end: splitting against DOP853 (Taylor does
+    not apply: the cavity's torque is cubic in ω)."""
+    model = g.Model(g.Body(J), [g.ViscousCavity(EPS, 1.0, 1.0)])
+    out = {}
+    for label, opts in (("splitting order 4, h = 0.5", dict(method="splitting", step=0.5, splitting_order=4)),
+                        ("dop853 rtol 1e-12", dict(method="dop853", rtol=1e-12, atol=1e-300))):
+        start = time.perf_counter()
+        sol = g.solve(model, W0, (0.0, t_end), n_out=101, max_steps=10**9, **opts)
+        el = time.perf_counter() - start
+        G = sol["angular_momentum_norm"]
+        T = sol["kinetic_energy"]
+        out[label] = (sol.t, np.abs(G / G[0] - 1))
+        print(f"  cavity {label:28s} {el:7.2f} s  max |ΔG|/G {np.max(out[label][1]):.1e}  "
+              f"T(t_end)/T(0) = {T[-1] / T[0]:.6f}  ({sol.status})")
+    return out
 
 
 if __name__ == "__main__":

@@ -59,8 +59,8 @@ def test_invariants_every_integrator_long_run(method):
         with pytest.raises(ValueError, match="taylor"):
             solve(m, W0, (0, 500), method=method)
         return
-    if method == "splitting":
-        with pytest.raises(ValueError, match="'orthogonal_torque' model does not split"):
+    if method == "splitting":  # this gyrostat's rotor is off any symmetry axis: no exact free flow
+        with pytest.raises(ValueError, match="closed form here only for a rigid body"):
             solve(m, W0, (0, 500), method=method, step=0.1)
         return
     context = pytest.warns(UserWarning, match="verner") if method == "arkode_verner6" else contextlib.nullcontext()

@@ -124,7 +124,7 @@ integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const
             if (options.method == integrate::Method::Splitting)
                 throw std::invalid_argument(std::string("method 'splitting': the '") + Family<S>::name +
                                             "' model does not split into the exact free-body flow and a perturbation "
-                                            "(splitting is offered for the gyrostat Model, with any of its torques); "
+                                            "(splitting is offered for the gyrostat Model, the Lagrange top and the orthogonal-torque model); "
                                             "choose another method");
         }
         return solve_system(m, t0, start, t1, options, control);

@@ -248,13 +248,18 @@ class Kind:
         return None
 
 
-def _integration(doc: dict, **extra) -> dict:
+SPLITS = ("rigid_body", "lagrange_top", "orthogonal_torque")  # the kinds whose models split
+
+
+def _integration(doc: dict, kind: str = "rigid_body", **extra) -> dict:
     integ = doc["integration"]
     options = {"method": integ["method"], "rtol": integ["rtol"], "atol": integ["atol"], "n_out": integ["n_out"]}
     if integ["method"] == "splitting":
+        if kind not in SPLITS:
+            raise SceneError(f"[integration] method = 'splitting' is not offered for {kind} scenes (their models do "
+                             f"not split into the free-body flow and a perturbation; it is for {', '.join(SPLITS)})")
         if "step" not in integ:
-            raise SceneError("[integration] method = 'splitting' needs step = h > 0 (its fixed step; splitting is "
-                             "offered for rigid_body scenes)")
+            raise SceneError("[integration] method = 'splitting' needs step = h > 0 (its fixed step)")
         options.update(step=integ["step"], splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
     options.update(extra)
     return options
@@ -297,6 +302,13 @@ def averaged_rung(doc: dict, body, torques, omega, drawable: tuple[str, ...], at
                         else "")
 
 
+SPLITTING_FIELDS = {
+    "step": Field(float, doc="fixed step of method 'splitting' (required there)", unit="s", check=positive),
+    "splitting_order": Field(int, default=_DEFAULT.splitting_order, doc="order of the splitting composition: 2, 4 or 6",
+                             check=_splitting_order),
+}
+
+
 class RigidBody(Kind):
     name = "rigid_body"
     doc = ("A rigid body or gyrostat under perturbation torques: the full model, its closed form when nothing "
@@ -322,10 +334,7 @@ class RigidBody(Kind):
                                    "full and averaged side by side"),
                 "accuracy": ACCURACY, "phase": PHASE,
                 "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
-                "step": Field(float, doc="fixed step of method 'splitting' (required there)", unit="s",
-                              check=positive),
-                "splitting_order": Field(int, default=_DEFAULT.splitting_order,
-                                         doc="order of the splitting composition: 2, 4 or 6", check=_splitting_order),
+                **SPLITTING_FIELDS,
             }), required=True, doc="the run"),
             "outputs": _outputs(self.plots, ["omega", "invariants"],
                                 reference=Field(Choice("closed_form"), doc="draw and measure against the closed form")),
@@ -434,7 +443,7 @@ class Averaged(RigidBody):
         else:
             raise SceneError("[initial] needs omega, or both a and r")
         model = _build("torques", AveragedModel, body, torques)
-        return ([Run("averaged", model, y0, tuple(doc["integration"]["t_span"]), _integration(doc))], "averaged",
+        return ([Run("averaged", model, y0, tuple(doc["integration"]["t_span"]), _integration(doc, "averaged"))], "averaged",
                 "asked for by the scene kind")
 
 
@@ -504,7 +513,7 @@ class MovingMass(Kind):
         reason = {"explicit": "the explicit mass, spring and damper", "reduced": "the quasi-static damper torque",
                   "averaged": "the averaged (a, r) system with the damper's torque"}[rung.name]
         return ([Run("averaged" if rung.name == "averaged" else "full", rung.model, rung.y0,
-                     tuple(doc["integration"]["t_span"]), _integration(doc))], rung.name,
+                     tuple(doc["integration"]["t_span"]), _integration(doc, "moving_mass"))], rung.name,
                 f"asked for by the scene: {reason}" if choice != "auto" else "the scene's own model (the ladder "
                 "chooses when it is solved)")
 
@@ -550,7 +559,8 @@ class LagrangeTopKind(Kind):
                                         "tau_end": Field(float, required=True, doc="end of the slow time tau = eps t",
                                                          unit="s", check=positive),
                                         "n_out": Field(int, default=4001, doc="number of output times",
-                                                       check=at_least(2))}),
+                                                       check=at_least(2)),
+                                        **SPLITTING_FIELDS}),
                                  required=True, doc="the run"),
             "outputs": _outputs(self.plots, ["slow", "roots", "nutation", "validity"]),
         })
@@ -563,8 +573,11 @@ class LagrangeTopKind(Kind):
         y0 = lagrange.initial_state(ini["omega"], math.radians(ini["theta_deg"]), math.radians(ini["phi_deg"]),
                                     math.radians(ini["psi_deg"]))
         span = (0.0, doc["integration"]["tau_end"] / tq["epsilon"])
-        options = _integration(doc)
+        options = _integration(doc, "lagrange_top")
         choice = doc["integration"]["model"]
+        if options["method"] == "splitting" and choice != "full":
+            raise SceneError(f"[integration] method = 'splitting' splits the full top only (the averaged top has no "
+                             f"free rotation to split on): set model = 'full' (got model = '{choice}')")
         if choice in ("full", "averaged"):
             return ([Run(choice, full if choice == "full" else averaged, y0, span, options)], choice,
                     "asked for by the scene")
@@ -651,7 +664,8 @@ class OrthogonalTorqueKind(Kind):
                                         "n_out": Field(int, default=1201, doc="number of output times",
                                                        check=at_least(2)),
                                         "eta": Field(float, default=orthogonal.ETA,
-                                                     doc="regularisation: delta = eta |omega| |G|", check=positive)}),
+                                                     doc="regularisation: delta = eta |omega| |G|", check=positive),
+                                        **SPLITTING_FIELDS}),
                                  default={}, doc="the runs' integration"),
             "outputs": _outputs(self.plots, list(self.plots)),
         })
@@ -689,7 +703,7 @@ class OrthogonalTorqueKind(Kind):
             law = _build(f"runs[{i}].law", orthogonal.law_from_spec, spec["law"])
             model = _build(f"runs[{i}]", orthogonal.OrthogonalModel, body, law, (), True, integ["eta"])
             runs.append(Run(spec["name"], model, np.concatenate([omega0, q0, [0.0]]), tuple(integ["t_span"]),
-                            _integration(doc, events=orthogonal.g_zero())))
+                            _integration(doc, "orthogonal_torque", events=orthogonal.g_zero())))
         names = [r.name for r in runs]
         if len(set(names)) != len(names):
             raise SceneError(f"[runs] names must differ; got {names}")

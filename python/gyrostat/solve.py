@@ -19,7 +19,8 @@ METHODS: tuple[str, ...] = tuple(_core.methods())
 with constant and linear torques: the fastest at tight tolerances), ``cvode_bdf`` (stiff),
 ``cvode_adams``, ``arkode_fehlberg8``, ``arkode_verner6``, ``splitting`` (the exact free-body
 flow composed with the torques' flow at a fixed ``step``, order ``splitting_order`` = 2, 4 or 6:
-for long horizons of weakly perturbed bodies; see docs/integrators.md). A model
+for long horizons of weakly perturbed bodies; the gyrostat ``Model``, the Lagrange top and the
+orthogonal-torque model, when their free part has a closed form; see docs/integrators.md). A model
 that needs no integration (:class:`gyrostat.TorqueFreeModel`) is evaluated in closed form
 whatever the method."""
 

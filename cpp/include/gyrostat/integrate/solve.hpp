@@ -103,7 +103,7 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
                     else
                         throw std::invalid_argument(
                             "method 'splitting' needs a model that splits into the exact free-body flow and a "
-                            "perturbation (the gyrostat Model); this model (state " +
+                            "perturbation (the gyrostat Model, the Lagrange top, the orthogonal-torque model); this model (state " +
                             model::system::join_names(System::state_names.data(), System::dim) + ") does not");
             }
             throw std::invalid_argument("unknown integration method");

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "gyrostat/body.hpp"
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/options.hpp"
@@ -24,10 +25,17 @@ namespace gyrostat::integrate {
 ///   void free_flow(double h, State& y) const;     the exact flow of the free part over h
 ///   Perturbation perturbation(double h) const;    the perturbation's flow over h, prepared
 ///   void perturb(const Perturbation&, double t, State& y) const;   applied at frozen time t
+/// and optionally
+///   bool keeps_momentum_norm() const;    |G| = |Jω| (ω = y[0..2], J = body().moments()) is a
+///                                        first integral of both sub-flows: projected on (below)
 template <class S, class = void>
 struct has_splitting : std::false_type {};
 template <class S>
 struct has_splitting<S, std::void_t<decltype(std::declval<const S&>().perturbation(0.0))>> : std::true_type {};
+template <class S, class = void>
+struct has_momentum_norm : std::false_type {};
+template <class S>
+struct has_momentum_norm<S, std::void_t<decltype(std::declval<const S&>().keeps_momentum_norm())>> : std::true_type {};
 
 namespace splitting_detail {
 
@@ -47,6 +55,35 @@ inline std::vector<double> strang_fractions(int order) {
         for (double g : four) six.push_back(d * g);
     return six;
 }
+
+/// The projection on |Jω| = G0 of a rigid body whose sub-flows both keep |G| (the torque-free
+/// body, the cavity, the orthogonal servo torque): ω ← ω G0/|Jω| after each step (Hairer, Lubich
+/// & Wanner, Geometric Numerical Integration, IV.4). Each sub-flow keeps |G| exactly but rounds
+/// it, and near a slowly changing ω the rounding repeats step after step: a secular drift of
+/// ~1e-16 per step without it (2.6e-11 over 2e6 steps of the cavity, bench/long_horizon.py).
+template <class System>
+class MomentumNormProjection {
+public:
+    MomentumNormProjection(const System& system, const typename System::State& y0) {
+        if constexpr (has_momentum_norm<System>::value) {
+            if (!system.keeps_momentum_norm()) return;
+            moments_ = system.body().moments();
+            G0_ = moments_.cwiseProduct(y0.template head<3>()).norm();
+            active_ = G0_ > 0.0;
+        }
+    }
+    bool active() const { return active_; }
+    void apply(typename System::State& y) const {
+        if (!active_) return;
+        const double G = moments_.cwiseProduct(y.template head<3>()).norm();
+        if (G > 0.0) y.template head<3>() *= G0_ / G;
+    }
+
+private:
+    bool active_ = false;
+    Vec3 moments_ = Vec3::Ones();
+    double G0_ = 0.0;
+};
 
 }  // namespace splitting_detail
 
@@ -142,6 +179,7 @@ Result splitting(const System& system, double t0, const typename System::State& 
     events.start(t0, y);
     if (t0 == t1) return result;
     SplittingStep<System> stepper(system, options.splitting_order);
+    const splitting_detail::MomentumNormProjection<System> keep_G(system, y);
     Ticker ticker(control, t0, t1);
     State f0, f1;
     double t = t0;
@@ -161,6 +199,7 @@ Result splitting(const System& system, double t0, const typename System::State& 
         State y_new = y;
         stats.rhs_evals += stepper.advance(t, h, y_new);
         model::system::project(system, y_new);
+        keep_G.apply(y_new);
         ++stats.steps;
         stats.last_step = std::abs(h);
         if (!all_finite(y_new)) {

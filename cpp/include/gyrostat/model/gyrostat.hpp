@@ -14,7 +14,7 @@
 #include "gyrostat/lanes.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/model/torque_free.hpp"
-#include "gyrostat/integrate/dop853_tableau.hpp"
+#include "gyrostat/integrate/substep.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -220,12 +220,9 @@ public:
     //   f_pert = (J⁻¹ ΣM(t, ω),      0)              the torques with t frozen (t advances in the
     //                                                 free part), q unchanged.
     // Constant and linear torques alone (M = M0 − D ω) have the exact perturbation flow
-    //   ω ← exp(−h J⁻¹D) ω + φ1(−h J⁻¹D) h J⁻¹M0,
-    // from the exponential of the 4×4 matrix h [[−J⁻¹D, J⁻¹M0], [0, 0]] (scaling and squaring of
-    // its Taylor series, to rounding). Any other torque (cavity, damper, medium) is not exact: the
-    // perturbation sub-flow is then one step of the 8th-order Dormand–Prince method (DOP853's
-    // 12 stages) over each sub-step, above the order of every composition offered (≤ 6), so the
-    // composition keeps its order (measured in tests/test_splitting.py).
+    // (integrate::AffineRateFlow). Any other torque (cavity, damper, medium) is not exact: the
+    // perturbation sub-flow is then one step of the 8th-order Dormand–Prince method
+    // (integrate::dop853_substep).
 
     /// Throws std::invalid_argument naming the body when the free gyrostat has no exact flow here.
     void require_splitting() const { FreeBodyFlow::require_closed_form(body_, "splitting"); }
@@ -244,58 +241,17 @@ public:
         }
     }
 
+    /// |G| = |Jω| is a first integral the splitting projects on (a rigid body, and every torque
+    /// keeps it: none, or the cavity).
+    bool keeps_momentum_norm() const { return body_.rotor().squaredNorm() == 0.0 && torques_.keeps_momentum_norm(); }
+
     /// The perturbation's flow over h, prepared once per sub-step size.
-    struct Perturbation {
-        double h = 0.0;
-        bool exact = true;
-        Mat3 propagator = Mat3::Identity();
-        Vec3 shift = Vec3::Zero();
-    };
-    Perturbation perturbation(double h) const {
-        Perturbation p;
-        p.h = h;
-        p.exact = torques_.is_affine();
-        if (!p.exact || torques_.empty()) return p;
-        Eigen::Matrix4d X = Eigen::Matrix4d::Zero();
-        X.template topLeftCorner<3, 3>() = -(body_.inverse_moments().asDiagonal() * torques_.damping_part()) * h;
-        X.template topRightCorner<3, 1>() = body_.inverse_moments().cwiseProduct(torques_.constant_part()) * h;
-        // exp(X): scale to |X| ≤ 1/2, 20 Taylor terms (remainder < 2⁻²⁰/20! ≈ 4e-25), square back
-        const double norm = X.cwiseAbs().rowwise().sum().maxCoeff();
-        int squarings = 0;
-        if (norm > 0.5) squarings = static_cast<int>(std::ceil(std::log2(norm / 0.5)));
-        const Eigen::Matrix4d Y = X / std::ldexp(1.0, squarings);
-        Eigen::Matrix4d E = Eigen::Matrix4d::Identity(), term = Eigen::Matrix4d::Identity();
-        for (int n = 1; n <= 20; ++n) {
-            term = term * Y / n;
-            E += term;
-        }
-        for (int i = 0; i < squarings; ++i) E = E * E;
-        p.propagator = E.template topLeftCorner<3, 3>();
-        p.shift = E.template topRightCorner<3, 1>();
-        return p;
-    }
+    using Perturbation = integrate::TorqueSubflow;
+    Perturbation perturbation(double h) const { return Perturbation::over(h, body_, torques_); }
     /// y ← the perturbation's flow over p.h at frozen time t.
     void perturb(const Perturbation& p, double t, State& y) const {
         if (torques_.empty()) return;
-        Vec3 omega = y.template head<3>();
-        if (p.exact) {
-            omega = p.propagator * omega + p.shift;
-        } else {
-            namespace tab = integrate::dop853_tableau;
-            const Vec3& J = body_.moments();
-            Vec3 k[tab::n_stages];
-            for (int s = 0; s < tab::n_stages; ++s) {
-                Vec3 stage = omega;
-                for (int j = 0; j < s; ++j)
-                    if (tab::a[s][j] != 0.0) stage += (p.h * tab::a[s][j]) * k[j];
-                k[s] = body_.inverse_moments().cwiseProduct(torques_.total(t, stage, J));
-            }
-            Vec3 increment = Vec3::Zero();
-            for (int s = 0; s < tab::n_stages; ++s)
-                if (tab::b[s] != 0.0) increment += tab::b[s] * k[s];
-            omega += p.h * increment;
-        }
-        y.template head<3>() = omega;
+        y.template head<3>() = p.advance(body_, torques_, t, y.template head<3>(), Vec3::Zero());
     }
 
     /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (only with

@@ -13,6 +13,8 @@
 #include "gyrostat/body.hpp"
 #include "gyrostat/model/elliptic.hpp"
 #include "gyrostat/model/system.hpp"
+#include "gyrostat/model/torque_free.hpp"
+#include "gyrostat/integrate/substep.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -150,6 +152,34 @@ public:
         jac.template block<1, 4>(0, 3) << k * x, k * w, k * z, k * yy;          //  μ ∂γ2/∂Q / A
         jac.template block<1, 4>(1, 3) << k * yy, -k * z, k * w, -k * x;        // −μ ∂γ1/∂Q / A
         quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), Vec3(p, q, r));
+    }
+
+    // --- Splitting (integrate/splitting.hpp) ---------------------------------------------------
+    // f = f_free + f_pert with
+    //   f_free: A ṗ = (A − C) q r,  A q̇ = (C − A) p r,  C ṙ = 0,  Q̇ = ½ Q ⊗ (0, ω)
+    //           the free symmetric top, exact (FreeBodyFlow, the symmetric closed form);
+    //   f_pert: J ω̇ = μ (γ2, −γ1, 0) + ΣM(t, ω),  Q̇ = 0
+    //           gravity and the torques with Q (so γ) and t frozen: gravity is a constant torque
+    //           over the sub-step, so with constant and linear torques the flow is exact
+    //           (integrate::AffineRateFlow); with any other torque it is one 8th-order step.
+    // The classical splitting of the heavy top into the free top and the gravity kick. The free
+    // flow keeps the inertial G and the kick changes it by a horizontal torque (e_z × γ-direction
+    // in space), so without torques G_z and r are kept to rounding at any step size.
+
+    /// The free top always has a closed form (symmetric, no rotor); the check names the body if not.
+    void require_splitting() const { FreeBodyFlow::require_closed_form(body_, "splitting"); }
+    /// y ← the exact flow of the free symmetric top over h (double constants, as for the gyrostat).
+    void free_flow(double h, State& y) const {
+        const FreeBodyFlow flow(body_, y.template head<3>(), y.template segment<4>(3), 0.0, true, Phases::Double);
+        y = flow.at(h);
+    }
+    using Perturbation = integrate::TorqueSubflow;
+    Perturbation perturbation(double h) const { return Perturbation::over(h, body_, torques_); }
+    /// y ← the perturbation's flow over p.h at frozen time t and attitude.
+    void perturb(const Perturbation& p, double t, State& y) const {
+        const Vec3 g = vertical_in_body(y[3], y[4], y[5], y[6]);
+        const Vec3 gravity(mu_ * g[1], -mu_ * g[0], 0.0);
+        y.template head<3>() = p.advance(body_, torques_, t, y.template head<3>(), gravity);
     }
 
     /// Keeps |Q| = 1 to rounding (so |γ| = 1).

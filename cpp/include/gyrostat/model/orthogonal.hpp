@@ -13,6 +13,8 @@
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
 #include "gyrostat/model/system.hpp"
+#include "gyrostat/model/torque_free.hpp"
+#include "gyrostat/integrate/substep.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -276,6 +278,58 @@ public:
         jac.template topLeftCorner<3, 3>() = body_.inverse_moments().asDiagonal() * dm;
         jac.template block<1, 3>(tau_index, 0) = dg;
         if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
+    }
+
+    // --- Splitting (integrate/splitting.hpp) ---------------------------------------------------
+    // With G = Jω + k and Q = ω × G, −g Q = −Q + (L/n_δ) Q, so f = f_free + f_pert with
+    //   f_free = (J⁻¹ G × ω,  ½ q ⊗ (0, ω),  1)      the free gyrostat (exact: FreeBodyFlow), τ = t;
+    //   f_pert = (J⁻¹ (L(t) Q/n_δ + ΣM(t, ω)),  0,  −L(t)/n_δ)   the servo torque and the other
+    //            torques with t frozen: one 8th-order step on (ω, τ) (integrate::dop853_substep).
+    // With L = 0 and no other torque the splitting is the exact flow. The servo torque is along
+    // Q ⊥ G, so each sub-flow keeps |G| (the free one exactly, the 8th-order step to its order).
+
+    /// Throws std::invalid_argument naming the body when the free gyrostat has no exact flow (a
+    /// rotor off the symmetry axis, or an asymmetric body with a rotor).
+    void require_splitting() const { FreeBodyFlow::require_closed_form(body_, "splitting"); }
+    /// y ← the exact free flow over h; τ advances by h.
+    void free_flow(double h, State& y) const {
+        if constexpr (WithAttitude) {
+            const FreeBodyFlow flow(body_, y.template head<3>(), y.template segment<4>(3), 0.0, true, Phases::Double);
+            y.template head<7>() = flow.at(h);
+        } else {
+            const FreeBodyFlow flow(body_, y.template head<3>(), Eigen::Vector4d(1, 0, 0, 0), 0.0, false, Phases::Double);
+            y.template head<3>() = flow.omega(h);
+        }
+        y[tau_index] += h;
+    }
+    /// |G| = |Jω| is a first integral the splitting projects on (a rigid body, and every other
+    /// torque keeps it; the servo torque always does).
+    bool keeps_momentum_norm() const { return body_.rotor().squaredNorm() == 0.0 && torques_.keeps_momentum_norm(); }
+
+    struct Perturbation {
+        double h = 0.0;
+    };
+    Perturbation perturbation(double h) const { return {h}; }
+    /// y ← the perturbation's flow over p.h at frozen time t: (ω, τ) by one 8th-order step.
+    void perturb(const Perturbation& p, double t, State& y) const {
+        const double L = law_(t);
+        const Vec3& J = body_.moments();
+        Eigen::Vector4d x(y[0], y[1], y[2], y[tau_index]);
+        integrate::dop853_substep(p.h, x, [&](const Eigen::Vector4d& state) -> Eigen::Vector4d {
+            const Vec3 omega = state.template head<3>();
+            const Vec3 G = J.cwiseProduct(omega) + body_.rotor();
+            const Vec3 Q = omega.cross(G);
+            const double n = denominator(Q.norm(), eta_ * omega.norm() * G.norm());
+            const double servo = n > 0.0 ? L / n : 0.0;  // at ω = 0: Q = 0, g = 1
+            Vec3 m = servo * Q;
+            if (!torques_.empty()) m += torques_.total(t, omega, J);
+            Eigen::Vector4d rate;
+            rate.template head<3>() = body_.inverse_moments().cwiseProduct(m);
+            rate[3] = -servo;
+            return rate;
+        });
+        y.template head<3>() = x.template head<3>();
+        y[tau_index] = x[3];
     }
 
     /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (only with

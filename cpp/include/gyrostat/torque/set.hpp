@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -19,9 +20,15 @@ namespace gyrostat {
 ///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω,
 ///   Vector2d averaged(t, a, r, A, C)               its contribution (ȧ, ṙ) to the system averaged
 ///                                                  over the symmetric Euler–Poinsot motion,
-///   static name.
+///   static name,
+/// and may declare `static constexpr bool keeps_momentum_norm = true` when Jω·M ≡ 0.
 using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
                                torque::ViscousCavity, torque::MovingMassDamper>;
+
+template <class T, class = void>
+struct keeps_momentum_norm : std::false_type {};
+template <class T>
+struct keeps_momentum_norm<T, std::enable_if_t<T::keeps_momentum_norm>> : std::true_type {};
 
 inline const char* torque_name(const AnyTorque& t) {
     return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::name; }, t);
@@ -43,6 +50,13 @@ public:
     bool has_damping() const { return has_damping_; }
     /// Only constant and linear torques: the right-hand side is a quadratic polynomial.
     bool is_affine() const { return others_.empty(); }
+    /// Every torque keeps |Jω| (Jω·M ≡ 0; none at all counts).
+    bool keeps_momentum_norm() const {
+        for (const auto& part : parts_)
+            if (!std::visit([](const auto& x) { return gyrostat::keeps_momentum_norm<std::decay_t<decltype(x)>>::value; }, part))
+                return false;
+        return true;
+    }
 
     /// Σ M_i(t, ω).
     Vec3 total(double t, const Vec3& omega, const Vec3& moments) const {

@@ -61,6 +61,8 @@ struct ViscousCavity {
         return {k * C * (A - C) * r * r * a / (A * A * A), k * (C - A) * a * a * r / (A * C)};
     }
     static constexpr const char* name = "viscous_cavity";
+    /// Jω·M ≡ 0: |Jω| is kept (TorqueSet::keeps_momentum_norm; the splitting projects on it).
+    static constexpr bool keeps_momentum_norm = true;
 
 private:
     using Coefficients = Eigen::Matrix<double, 6, 1>;
