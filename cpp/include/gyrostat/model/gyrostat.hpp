@@ -74,23 +74,21 @@ void affine_euler_rhs(const AffineEuler<T>& e, const T* y, T* dy) {
     }
 }
 
-/// Taylor coefficients c(n, ·), n = 1..order, of the affine Euler equations (and the attitude)
-/// from c(0, ·) = y: y(t + h) = Σ c(n, ·) hⁿ. The right-hand side is quadratic, so each order is
-/// a Cauchy product of earlier ones; with P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m]:
-///   ω_i[n+1] = J_i⁻¹ ((A_j − A_k) P_jk[n] − (ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}) / (n + 1),
-///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
-/// `c(n, i)` returns a reference to coefficient n of component i. The order is a compile-time
-/// constant, so the short nested loops unroll completely; T = double or lanes::Lanes.
-template <int order, bool WithAttitude, class T, class Coefficient>
-void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
+/// One order of the Euler recursion below, ω[n+1] from ω[0..n]: with the Cauchy products
+/// P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m] for (j, k) = (2, 3), (3, 1), (1, 2) and the affine terms
+/// a_i = −(ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0} (computed by the caller; added when `with_affine`),
+///   ω_i[n+1] = ((A_j − A_k) P_jk[n] + a_i) · (J_i⁻¹/(n + 1)).
+/// T = double or lanes::Lanes (then each lane is one body, and the sums are lane by lane).
+/// Products j·k are summed in pairs from both ends (terms m and n − m share their factors'
+/// loads), with two partial sums to shorten the chain of dependent additions; m runs down so that
+/// the newest coefficient (m = 0, r = n) is added last: the step is a chain of dependent
+/// operations, and the older terms' sums can then start early.
+template <int order, class T>
+struct EulerOrders {
     T w1[order + 1], w2[order + 1], w3[order + 1];
-    w1[0] = c(0, 0), w2[0] = c(0, 1), w3[0] = c(0, 2);
-#pragma GCC unroll 32
-    for (int n = 0; n < order; ++n) {
-        // Products j·k summed in pairs from both ends (terms m and n − m share their factors'
-        // loads), with two partial sums to shorten the chain of dependent additions; m runs down
-        // so that the newest coefficient (m = 0, r = n) is added last: the step is a chain of
-        // dependent operations, and the older terms' sums can then start early.
+
+    void push(int n, const T& a, const T& b, const T& c) { w1[n] = a, w2[n] = b, w3[n] = c; }
+    void next(int n, const AffineEuler<T>& e, bool with_affine, const T (&affine)[3], T& a, T& b, T& c) const {
         T p23 = lanes::splat<T>(0.0), p31 = p23, p12 = p23, q23 = p23, q31 = p23, q12 = p23;
 #pragma GCC unroll 16
         for (int m = (n + 1) / 2 - 1; m >= 0; --m) {
@@ -108,29 +106,91 @@ void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
             p31 += w3[m] * w1[m];
             p12 += w1[m] * w2[m];
         }
-        p23 += q23;
-        p31 += q31;
-        p12 += q12;
-        // Plain locals, not Eigen 3-vectors: temporaries here cost store-forwarding stalls.
-        T r1 = e.differences[0] * p23, r2 = e.differences[1] * p31, r3 = e.differences[2] * p12;
+        const double inv = 1.0 / (n + 1);  // J⁻¹/(n + 1) first: one multiplication after the sum
+        T r1 = e.differences[0] * (p23 + q23), r2 = e.differences[1] * (p31 + q31), r3 = e.differences[2] * (p12 + q12);
+        if (with_affine) r1 += affine[0], r2 += affine[1], r3 += affine[2];
+        a = r1 * (e.inverse_moments[0] * inv);
+        b = r2 * (e.inverse_moments[1] * inv);
+        c = r3 * (e.inverse_moments[2] * inv);
+    }
+};
+
+/// The same order for T = double with the six multiplications of a pair (m, r = n − m) in three
+/// 2-wide vectors (one SSE2 register each; scalar code issues one product per instruction): with
+/// X = (ω2, ω3), Y = (ω3, ω1), Z = (ω1, ω2), S = (ω2, ω1) per coefficient,
+///   X[m]·Y[r] = (ω2[m] ω3[r], ω3[m] ω1[r])   terms of (P23, P31),
+///   X[r]·Y[m] = (ω2[r] ω3[m], ω3[r] ω1[m])   the partner terms of (P23, P31),
+///   Z[m]·S[r] = (ω1[m] ω2[r], ω2[m] ω1[r])   both terms of P12 (its lanes summed at the end),
+/// and ω1, ω2 of the new order scaled as one vector too (scalar scaling there undoes most of the
+/// gain). ~20 % faster than EulerOrders<order, double> at orders 13 … 23.
+template <int order>
+struct PackedEulerOrders {
+    typedef double Pair __attribute__((vector_size(16)));
+    Pair X[order + 1], Y[order + 1], Z[order + 1], S[order + 1];
+
+    void push(int n, double a, double b, double c) {
+        X[n] = Pair{b, c}, Y[n] = Pair{c, a}, Z[n] = Pair{a, b}, S[n] = Pair{b, a};
+    }
+    void next(int n, const AffineEuler<double>& e, bool with_affine, const double (&affine)[3], double& a, double& b,
+              double& c) const {
+        Pair p = {0.0, 0.0}, q = p, z = p;
+#pragma GCC unroll 16
+        for (int m = (n + 1) / 2 - 1; m >= 0; --m) {
+            const int r = n - m;
+            p += X[m] * Y[r];
+            q += X[r] * Y[m];
+            z += Z[m] * S[r];
+        }
+        double middle12 = 0.0;
+        if (n % 2 == 0) {  // the middle term m = n/2 (once for P12)
+            const int m = n / 2;
+            p += X[m] * Y[m];
+            middle12 = Z[m][0] * Z[m][1];
+        }
+        const double inv = 1.0 / (n + 1);
+        Pair ab = Pair{e.differences[0], e.differences[1]} * (p + q);
+        double r3 = e.differences[2] * (z[0] + (z[1] + middle12));
+        if (with_affine) ab += Pair{affine[0], affine[1]}, r3 += affine[2];
+        ab *= Pair{e.inverse_moments[0], e.inverse_moments[1]} * inv;
+        a = ab[0], b = ab[1], c = r3 * (e.inverse_moments[2] * inv);
+    }
+};
+
+/// Taylor coefficients c(n, ·), n = 1..order, of the affine Euler equations (and the attitude)
+/// from c(0, ·) = y: y(t + h) = Σ c(n, ·) hⁿ. The right-hand side is quadratic, so each order is
+/// a Cauchy product of earlier ones; with P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m]:
+///   ω_i[n+1] = J_i⁻¹ ((A_j − A_k) P_jk[n] − (ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}) / (n + 1),
+///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
+/// `c(n, i)` returns a reference to coefficient n of component i. The order is a compile-time
+/// constant, so the short nested loops unroll completely; T = double (products packed in pairs,
+/// PackedEulerOrders) or lanes::Lanes (one body per lane, EulerOrders: no lane's numbers depend
+/// on another's).
+template <int order, bool WithAttitude, class T, class Coefficient>
+void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
+    std::conditional_t<std::is_same_v<T, double>, PackedEulerOrders<order>, EulerOrders<order, T>> orders;
+    // ω[n] in plain locals, not read back from c nor Eigen 3-vectors: those cost store-forwarding
+    // stalls on the chain of dependent orders.
+    T w1 = c(0, 0), w2 = c(0, 1), w3 = c(0, 2);
+    orders.push(0, w1, w2, w3);
+#pragma GCC unroll 32
+    for (int n = 0; n < order; ++n) {
+        T affine[3] = {lanes::splat<T>(0.0), lanes::splat<T>(0.0), lanes::splat<T>(0.0)};
         if (e.has_rotor) {  // − ω[n] × k
-            r1 -= w2[n] * e.rotor[2] - w3[n] * e.rotor[1];
-            r2 -= w3[n] * e.rotor[0] - w1[n] * e.rotor[2];
-            r3 -= w1[n] * e.rotor[1] - w2[n] * e.rotor[0];
+            affine[0] -= w2 * e.rotor[2] - w3 * e.rotor[1];
+            affine[1] -= w3 * e.rotor[0] - w1 * e.rotor[2];
+            affine[2] -= w1 * e.rotor[1] - w2 * e.rotor[0];
         }
         if (e.damped) {  // − D ω[n]
-            r1 -= e.damping[0] * w1[n] + e.damping[1] * w2[n] + e.damping[2] * w3[n];
-            r2 -= e.damping[3] * w1[n] + e.damping[4] * w2[n] + e.damping[5] * w3[n];
-            r3 -= e.damping[6] * w1[n] + e.damping[7] * w2[n] + e.damping[8] * w3[n];
+            affine[0] -= e.damping[0] * w1 + e.damping[1] * w2 + e.damping[2] * w3;
+            affine[1] -= e.damping[3] * w1 + e.damping[4] * w2 + e.damping[5] * w3;
+            affine[2] -= e.damping[6] * w1 + e.damping[7] * w2 + e.damping[8] * w3;
         }
-        if (n == 0) r1 += e.constant[0], r2 += e.constant[1], r3 += e.constant[2];
-        const double inv = 1.0 / (n + 1);  // J⁻¹/(n + 1) first: one multiplication after the sum
-        w1[n + 1] = r1 * (e.inverse_moments[0] * inv);
-        w2[n + 1] = r2 * (e.inverse_moments[1] * inv);
-        w3[n + 1] = r3 * (e.inverse_moments[2] * inv);
-        c(n + 1, 0) = w1[n + 1];
-        c(n + 1, 1) = w2[n + 1];
-        c(n + 1, 2) = w3[n + 1];
+        if (n == 0) affine[0] += e.constant[0], affine[1] += e.constant[1], affine[2] += e.constant[2];
+        orders.next(n, e, e.has_rotor || e.damped || n == 0, affine, w1, w2, w3);
+        orders.push(n + 1, w1, w2, w3);
+        c(n + 1, 0) = w1;
+        c(n + 1, 1) = w2;
+        c(n + 1, 2) = w3;
         if constexpr (WithAttitude) {
             T s0 = lanes::splat<T>(0.0), s1 = s0, s2 = s0, s3 = s0;
             for (int m = 0; m <= n; ++m) {
@@ -141,7 +201,7 @@ void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
                 s2 += qw * q + qz * p - qx * r;
                 s3 += qw * r + qx * q - qy * p;
             }
-            const double half = 0.5 * inv;
+            const double half = 0.5 / (n + 1);
             c(n + 1, 3) = half * s0;
             c(n + 1, 4) = half * s1;
             c(n + 1, 5) = half * s2;
