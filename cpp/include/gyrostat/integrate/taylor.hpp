@@ -19,9 +19,18 @@
 // (I = (2, 3, 4), t = 2000, rtol 1e-12: 1.4e-10 here, 8.7e-11 heyoka; it was 9.3e-10 with the
 // previous rule, order +3 and local error ε·e^{−0.7}).
 // The step is one dependent chain (recursion → step size → new state → next recursion), so its
-// latency counts: the step size uses cheap log2/exp2 (fast_log2, fast_exp2) and the new state
-// Estrin's scheme (evaluate_polynomial). No step is rejected; outputs inside a step evaluate the
-// step's Taylor polynomial.
+// latency counts: the step size uses cheap log2/exp2 (fast_log2, fast_exp2) and the change of
+// state Estrin's scheme (increment, evaluate_polynomial). No step is rejected; outputs inside a
+// step evaluate the step's Taylor polynomial.
+// Rounding: at tight tolerances (ε < 1e-12) the state is carried with its rounding error
+// (y + y_low, add_compensated) and the change of state is summed smallest first (increment). The
+// error of a long run there is a phase error from the drift of the invariants; rounding the state
+// once per step (and Estrin's scheme over the whole polynomial, two roundings at the state's
+// size) made it a random walk that stalled the error at ~1e-11 … 5e-12 for rtol 1e-13 … 1e-14
+// on the torque-free body over t = 2000 (bench/taylor_vs_heyoka.py; 7.0e-12 at rtol 1e-14).
+// Compensated, the error follows the truncation error of the step rule: median 2e-13 … 3e-13 at
+// rtol ~1e-14 (the same steps in long double: ~2e-13), the rest being the rounding of the change
+// of state itself (~1 ulp of it per step).
 // A system opts in with `max_taylor_order`, `supports_taylor()` and
 //   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
 // (model/system.hpp).
@@ -133,6 +142,13 @@ void add_compensated(State& y, State& y_low, const State& delta) {
     y = sum;
 }
 
+/// The tolerances (ε = rtol, or atol in absolute mode) below which the state is carried with its
+/// rounding error (add_compensated). From 1e-12 up the truncation error per step (ε/10 ≥ 1e-13,
+/// ~450 ulp of a state ~1) outweighs the state's rounding (the error at rtol 1e-12 on free_2000 is
+/// the same either way, 1.37e-10 and 1.39e-10), and the compensated sum's bookkeeping (~15 ns, 6 %
+/// of a step at order 20, measured with --taylor-profile) buys nothing.
+inline constexpr double compensate_below = 1e-12;
+
 /// The order for a local error target ε (rtol in relative mode, atol in absolute mode):
 /// p = ⌈−½ ln ε⌉ + 6, five above Jorba & Zou's (see the comment at the top of this file).
 inline int order_for(double eps, int max_order) {
@@ -151,9 +167,10 @@ inline double safety_for(double eps, int order) {
 template <int Order, class System>
 struct Step {
     using State = typename System::State;
-    static bool run(const System& system, double t, State& y, State& y_low, double t1, double direction, double scale,
-                    double safety, double max_step, double& h, const std::vector<double>& outputs, std::size_t& next,
-                    Recorder<System>& record, EventLocator<System>& events, double& t_stop, DenseOutput* dense) {
+    static bool run(const System& system, double t, State& y, State& y_low, bool compensated, double t1,
+                    double direction, double scale, double safety, double max_step, double& h,
+                    const std::vector<double>& outputs, std::size_t& next, Recorder<System>& record,
+                    EventLocator<System>& events, double& t_stop, DenseOutput* dense) {
         State c[Order + 1];
         system.template taylor_coefficients<Order>(t, y, c);
         h = step_size(scale, c[Order - 1].cwiseAbs().maxCoeff(), c[Order].cwiseAbs().maxCoeff(), Order, safety);
@@ -162,17 +179,24 @@ struct Step {
             return false;
         }
         h = std::min({h, max_step, std::abs(t1 - t)});
-        const State y_start = y, low_start = y_low;
-        auto evaluate = [&](double dt) -> State { return y_start + (increment<Order>(c, dt) + low_start); };
+        // c[0] = y. Compensated: y + (Σ_{n≥1} c_n dtⁿ + y_low) with the sum's rounding error kept
+        // in y_low; else Estrin's scheme over the whole polynomial (one chain, shortest).
+        const State low_start = y_low;
+        auto evaluate = [&](double dt) -> State {
+            if (compensated) return c[0] + (increment<Order>(c, dt) + low_start);
+            return evaluate_polynomial<Order>(c, dt);
+        };
         double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
-        State y_new = y_start, low_new = low_start;
-        add_compensated(y_new, low_new, increment<Order>(c, t_new - t));
-        t_stop = events.active() ? events.step(t, t_new, y_new, [&](double time) { return evaluate(time - t); })
+        if (compensated) {
+            y = c[0];
+            add_compensated(y, y_low, increment<Order>(c, t_new - t));
+        } else {
+            y = evaluate_polynomial<Order>(c, t_new - t);
+        }
+        t_stop = events.active() ? events.step(t, t_new, y, [&](double time) { return evaluate(time - t); })
                                  : std::numeric_limits<double>::quiet_NaN();
         const bool terminated = !std::isnan(t_stop);
-        if (terminated) t_new = t_stop, y_new = evaluate(t_new - t), low_new.setZero();
-        y = y_new;
-        y_low = low_new;
+        if (terminated) t_new = t_stop, y = evaluate(t_new - t), y_low.setZero();
         if (dense && t_new != t) {  // the Taylor polynomial in s = (t' − t)/h: coefficients c_n hⁿ
             const double step = t_new - t;
             State scaled[Order + 1];
@@ -246,6 +270,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         events.start(t0, y);
         int order = 0;
         double eps_of_order = -1.0, safety = 0.0;
+        bool compensated = false;
         Ticker ticker(control, t0, t1);
 
         while (direction * (t - t1) < 0.0) {
@@ -268,11 +293,12 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 order = taylor_detail::order_for(eps, max_order);
                 safety = taylor_detail::safety_for(eps, order);
                 eps_of_order = eps;
+                compensated = eps < taylor_detail::compensate_below;
             }
             const double t_before = t;
             const State y_before = y;
             double h = 0.0, t_stop = 0.0;
-            if (!steps[order](system, t, y, y_low, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
+            if (!steps[order](system, t, y, y_low, compensated, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
                               next, record, events, t_stop, result.dense.get())) {
                 result.status = Status::NonFiniteState;
                 result.message = "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(t, 17) +

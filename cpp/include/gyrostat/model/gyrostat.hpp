@@ -74,55 +74,38 @@ void affine_euler_rhs(const AffineEuler<T>& e, const T* y, T* dy) {
     }
 }
 
-/// One order of the Euler recursion below, ω[n+1] from ω[0..n]: with the Cauchy products
-/// P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m] for (j, k) = (2, 3), (3, 1), (1, 2) and the affine terms
-/// a_i = −(ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0} (computed by the caller; added when `with_affine`),
-///   ω_i[n+1] = ((A_j − A_k) P_jk[n] + a_i) · (J_i⁻¹/(n + 1)).
-/// T = double or lanes::Lanes (then each lane is one body, and the sums are lane by lane).
-/// Products j·k are summed in pairs from both ends (terms m and n − m share their factors'
-/// loads), with two partial sums to shorten the chain of dependent additions; m runs down so that
-/// the newest coefficient (m = 0, r = n) is added last: the step is a chain of dependent
-/// operations, and the older terms' sums can then start early.
-template <int order, class T>
-struct EulerOrders {
-    T w1[order + 1], w2[order + 1], w3[order + 1];
-
-    void push(int n, const T& a, const T& b, const T& c) { w1[n] = a, w2[n] = b, w3[n] = c; }
-    void next(int n, const AffineEuler<T>& e, bool with_affine, const T (&affine)[3], T& a, T& b, T& c) const {
-        T p23 = lanes::splat<T>(0.0), p31 = p23, p12 = p23, q23 = p23, q31 = p23, q12 = p23;
-#pragma GCC unroll 16
-        for (int m = (n + 1) / 2 - 1; m >= 0; --m) {
-            const int r = n - m;
-            p23 += w2[m] * w3[r];
-            q23 += w2[r] * w3[m];
-            p31 += w3[m] * w1[r];
-            q31 += w3[r] * w1[m];
-            p12 += w1[m] * w2[r];
-            q12 += w1[r] * w2[m];
-        }
-        if (n % 2 == 0) {  // the middle term m = n/2
-            const int m = n / 2;
-            p23 += w2[m] * w3[m];
-            p31 += w3[m] * w1[m];
-            p12 += w1[m] * w2[m];
-        }
-        const double inv = 1.0 / (n + 1);  // J⁻¹/(n + 1) first: one multiplication after the sum
-        T r1 = e.differences[0] * (p23 + q23), r2 = e.differences[1] * (p31 + q31), r3 = e.differences[2] * (p12 + q12);
-        if (with_affine) r1 += affine[0], r2 += affine[1], r3 += affine[2];
-        a = r1 * (e.inverse_moments[0] * inv);
-        b = r2 * (e.inverse_moments[1] * inv);
-        c = r3 * (e.inverse_moments[2] * inv);
+/// The affine terms of order n of the Euler recursion below, added to r_i:
+///   r_i += −(ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}.
+/// (Always inlined: as a call, at every order of the unrolled recursion, it costs 14 % of it.)
+template <class T>
+__attribute__((always_inline)) inline void add_affine_euler_terms(const AffineEuler<T>& e, int n, const T& w1,
+                                                                  const T& w2, const T& w3, T& r1, T& r2, T& r3) {
+    if (e.has_rotor) {  // − ω[n] × k
+        r1 -= w2 * e.rotor[2] - w3 * e.rotor[1];
+        r2 -= w3 * e.rotor[0] - w1 * e.rotor[2];
+        r3 -= w1 * e.rotor[1] - w2 * e.rotor[0];
     }
-};
+    if (e.damped) {  // − D ω[n]
+        r1 -= e.damping[0] * w1 + e.damping[1] * w2 + e.damping[2] * w3;
+        r2 -= e.damping[3] * w1 + e.damping[4] * w2 + e.damping[5] * w3;
+        r3 -= e.damping[6] * w1 + e.damping[7] * w2 + e.damping[8] * w3;
+    }
+    if (n == 0) r1 += e.constant[0], r2 += e.constant[1], r3 += e.constant[2];
+}
 
-/// The same order for T = double with the six multiplications of a pair (m, r = n − m) in three
+/// One order of the Euler recursion below for T = double, ω[n+1] from ω[0..n]:
+///   ω_i[n+1] = ((A_j − A_k) P_jk[n] + a_i) · (J_i⁻¹/(n + 1)),
+/// a_i the affine terms (affine_euler_terms, added when `with_affine`), with the six
+/// multiplications of a pair (m, r = n − m) of the Cauchy products in three
 /// 2-wide vectors (one SSE2 register each; scalar code issues one product per instruction): with
 /// X = (ω2, ω3), Y = (ω3, ω1), Z = (ω1, ω2), S = (ω2, ω1) per coefficient,
 ///   X[m]·Y[r] = (ω2[m] ω3[r], ω3[m] ω1[r])   terms of (P23, P31),
 ///   X[r]·Y[m] = (ω2[r] ω3[m], ω3[r] ω1[m])   the partner terms of (P23, P31),
 ///   Z[m]·S[r] = (ω1[m] ω2[r], ω2[m] ω1[r])   both terms of P12 (its lanes summed at the end),
 /// and ω1, ω2 of the new order scaled as one vector too (scalar scaling there undoes most of the
-/// gain). ~20 % faster than EulerOrders<order, double> at orders 13 … 23.
+/// gain). 6 … 11 % faster than the scalar loop at orders 20 … 23, slower below (in the
+/// integrator's chain of steps, ns per recursion: order 13: 120 against 103; 18: 164 against 158;
+/// 20: 181 against 192; 23: 217 against 245), so euler_taylor_recursion uses it from order 20 on.
 template <int order>
 struct PackedEulerOrders {
     typedef double Pair __attribute__((vector_size(16)));
@@ -156,57 +139,94 @@ struct PackedEulerOrders {
     }
 };
 
+/// Order n + 1 of the attitude in the Euler recursion below:
+///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
+template <class T, class Coefficient>
+void attitude_order(int n, Coefficient& c) {
+    T s0 = lanes::splat<T>(0.0), s1 = s0, s2 = s0, s3 = s0;
+    for (int m = 0; m <= n; ++m) {
+        const T &qw = c(m, 3), &qx = c(m, 4), &qy = c(m, 5), &qz = c(m, 6);
+        const T &p = c(n - m, 0), &q = c(n - m, 1), &r = c(n - m, 2);
+        s0 -= qx * p + qy * q + qz * r;
+        s1 += qw * p + qy * r - qz * q;
+        s2 += qw * q + qz * p - qx * r;
+        s3 += qw * r + qx * q - qy * p;
+    }
+    const double half = 0.5 / (n + 1);
+    c(n + 1, 3) = half * s0;
+    c(n + 1, 4) = half * s1;
+    c(n + 1, 5) = half * s2;
+    c(n + 1, 6) = half * s3;
+}
+
 /// Taylor coefficients c(n, ·), n = 1..order, of the affine Euler equations (and the attitude)
 /// from c(0, ·) = y: y(t + h) = Σ c(n, ·) hⁿ. The right-hand side is quadratic, so each order is
 /// a Cauchy product of earlier ones; with P_jk[n] = Σ_{m≤n} ω_j[m] ω_k[n−m]:
 ///   ω_i[n+1] = J_i⁻¹ ((A_j − A_k) P_jk[n] − (ω[n] × k)_i − (D ω[n])_i + M0_i δ_{n0}) / (n + 1),
 ///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
 /// `c(n, i)` returns a reference to coefficient n of component i. The order is a compile-time
-/// constant, so the short nested loops unroll completely; T = double (products packed in pairs,
-/// PackedEulerOrders) or lanes::Lanes (one body per lane, EulerOrders: no lane's numbers depend
-/// on another's).
+/// constant, so the short nested loops unroll completely; T = double (from order 20 with the
+/// products packed in pairs, PackedEulerOrders) or lanes::Lanes (one body per lane: no lane's
+/// numbers depend on another's).
 template <int order, bool WithAttitude, class T, class Coefficient>
 void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
-    std::conditional_t<std::is_same_v<T, double>, PackedEulerOrders<order>, EulerOrders<order, T>> orders;
-    // ω[n] in plain locals, not read back from c nor Eigen 3-vectors: those cost store-forwarding
-    // stalls on the chain of dependent orders.
-    T w1 = c(0, 0), w2 = c(0, 1), w3 = c(0, 2);
-    orders.push(0, w1, w2, w3);
+    if constexpr (std::is_same_v<T, double> && order >= 20) {  // the products packed in pairs
+        PackedEulerOrders<order> orders;
+        T w1 = c(0, 0), w2 = c(0, 1), w3 = c(0, 2);  // ω[n] in locals (no store-forwarding stalls)
+        orders.push(0, w1, w2, w3);
+#pragma GCC unroll 32
+        for (int n = 0; n < order; ++n) {
+            T affine[3] = {0.0, 0.0, 0.0};
+            const bool with_affine = e.has_rotor || e.damped || n == 0;
+            if (with_affine) add_affine_euler_terms(e, n, w1, w2, w3, affine[0], affine[1], affine[2]);
+            orders.next(n, e, with_affine, affine, w1, w2, w3);
+            orders.push(n + 1, w1, w2, w3);
+            c(n + 1, 0) = w1;
+            c(n + 1, 1) = w2;
+            c(n + 1, 2) = w3;
+            if constexpr (WithAttitude) attitude_order<T>(n, c);
+        }
+        return;
+    }
+    T w1[order + 1], w2[order + 1], w3[order + 1];
+    w1[0] = c(0, 0), w2[0] = c(0, 1), w3[0] = c(0, 2);
 #pragma GCC unroll 32
     for (int n = 0; n < order; ++n) {
-        T affine[3] = {lanes::splat<T>(0.0), lanes::splat<T>(0.0), lanes::splat<T>(0.0)};
-        if (e.has_rotor) {  // − ω[n] × k
-            affine[0] -= w2 * e.rotor[2] - w3 * e.rotor[1];
-            affine[1] -= w3 * e.rotor[0] - w1 * e.rotor[2];
-            affine[2] -= w1 * e.rotor[1] - w2 * e.rotor[0];
+        // Products j·k summed in pairs from both ends (terms m and n − m share their factors'
+        // loads), with two partial sums to shorten the chain of dependent additions; m runs down
+        // so that the newest coefficient (m = 0, r = n) is added last: the step is a chain of
+        // dependent operations, and the older terms' sums can then start early.
+        T p23 = lanes::splat<T>(0.0), p31 = p23, p12 = p23, q23 = p23, q31 = p23, q12 = p23;
+#pragma GCC unroll 16
+        for (int m = (n + 1) / 2 - 1; m >= 0; --m) {
+            const int r = n - m;
+            p23 += w2[m] * w3[r];
+            q23 += w2[r] * w3[m];
+            p31 += w3[m] * w1[r];
+            q31 += w3[r] * w1[m];
+            p12 += w1[m] * w2[r];
+            q12 += w1[r] * w2[m];
         }
-        if (e.damped) {  // − D ω[n]
-            affine[0] -= e.damping[0] * w1 + e.damping[1] * w2 + e.damping[2] * w3;
-            affine[1] -= e.damping[3] * w1 + e.damping[4] * w2 + e.damping[5] * w3;
-            affine[2] -= e.damping[6] * w1 + e.damping[7] * w2 + e.damping[8] * w3;
+        if (n % 2 == 0) {  // the middle term m = n/2
+            const int m = n / 2;
+            p23 += w2[m] * w3[m];
+            p31 += w3[m] * w1[m];
+            p12 += w1[m] * w2[m];
         }
-        if (n == 0) affine[0] += e.constant[0], affine[1] += e.constant[1], affine[2] += e.constant[2];
-        orders.next(n, e, e.has_rotor || e.damped || n == 0, affine, w1, w2, w3);
-        orders.push(n + 1, w1, w2, w3);
-        c(n + 1, 0) = w1;
-        c(n + 1, 1) = w2;
-        c(n + 1, 2) = w3;
-        if constexpr (WithAttitude) {
-            T s0 = lanes::splat<T>(0.0), s1 = s0, s2 = s0, s3 = s0;
-            for (int m = 0; m <= n; ++m) {
-                const T &qw = c(m, 3), &qx = c(m, 4), &qy = c(m, 5), &qz = c(m, 6);
-                const T &p = c(n - m, 0), &q = c(n - m, 1), &r = c(n - m, 2);
-                s0 -= qx * p + qy * q + qz * r;
-                s1 += qw * p + qy * r - qz * q;
-                s2 += qw * q + qz * p - qx * r;
-                s3 += qw * r + qx * q - qy * p;
-            }
-            const double half = 0.5 / (n + 1);
-            c(n + 1, 3) = half * s0;
-            c(n + 1, 4) = half * s1;
-            c(n + 1, 5) = half * s2;
-            c(n + 1, 6) = half * s3;
-        }
+        p23 += q23;
+        p31 += q31;
+        p12 += q12;
+        // Plain locals, not Eigen 3-vectors: temporaries here cost store-forwarding stalls.
+        T r1 = e.differences[0] * p23, r2 = e.differences[1] * p31, r3 = e.differences[2] * p12;
+        add_affine_euler_terms(e, n, w1[n], w2[n], w3[n], r1, r2, r3);
+        const double inv = 1.0 / (n + 1);  // J⁻¹/(n + 1) first: one multiplication after the sum
+        w1[n + 1] = r1 * (e.inverse_moments[0] * inv);
+        w2[n + 1] = r2 * (e.inverse_moments[1] * inv);
+        w3[n + 1] = r3 * (e.inverse_moments[2] * inv);
+        c(n + 1, 0) = w1[n + 1];
+        c(n + 1, 1) = w2[n + 1];
+        c(n + 1, 2) = w3[n + 1];
+        if constexpr (WithAttitude) attitude_order<T>(n, c);
     }
 }
 
