@@ -294,6 +294,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 safety = taylor_detail::safety_for(eps, order);
                 eps_of_order = eps;
                 compensated = eps < taylor_detail::compensate_below;
+                if (!compensated) y_low.setZero();  // (no stale low part if compensation resumes)
             }
             const double t_before = t;
             const State y_before = y;
