@@ -86,7 +86,8 @@ void taylor_rows(const std::vector<double>& tolerances) {
 /// The parts of one Taylor step of order P on free_2000, as chains of dependent steps (each step
 /// starts from the previous step's result, as in the integrator, where the step is bound by the
 /// latency of that chain, not by throughput): (a) the coefficient recursion alone (the next state
-/// y + 0·c_P), (b) recursion and the new state at a fixed h (Estrin), (c) recursion, step size
+/// y + 0·c_P), (b) recursion and the new state at a fixed h (as the integrator: Estrin's scheme, or
+/// y + Σ_{n≥1} c_n hⁿ below taylor_detail::compensate_below), (c) recursion, step size
 /// and new state. Parts: recursion = (a), new state = (b) − (a), step size = (c) − (b), the rest
 /// of the integrator's loop (bookkeeping, checks, outputs) = the whole step − (c), the whole step
 /// being a trajectory's time / steps.
@@ -103,6 +104,12 @@ void taylor_profile_row(const model::Gyrostat<false>& system, double safety, dou
         return 1e9 * s / chain;
     };
     const double h_fixed = 0.8;
+    // the integrator's new state (taylor.hpp): y + Σ_{n≥1} c_n hⁿ when compensated (its two-sum is
+    // beside the chain), else Estrin's scheme over the whole polynomial
+    auto new_state = [&](const Vec3* c, double h) -> Vec3 {
+        if (rtol < integrate::taylor_detail::compensate_below) return c[0] + integrate::taylor_detail::increment<P>(c, h);
+        return integrate::taylor_detail::evaluate_polynomial<P>(c, h);
+    };
     const double recursion = per_step([&](const Vec3& y) {
         Vec3 c[P + 1];
         system.taylor_coefficients<P>(0.0, y, c);
@@ -111,14 +118,14 @@ void taylor_profile_row(const model::Gyrostat<false>& system, double safety, dou
     const double with_state = per_step([&](const Vec3& y) {
         Vec3 c[P + 1];
         system.taylor_coefficients<P>(0.0, y, c);
-        return integrate::taylor_detail::evaluate_polynomial<P>(c, h_fixed);
+        return new_state(c, h_fixed);
     });
     const double with_step_size = per_step([&](const Vec3& y) {
         Vec3 c[P + 1];
         system.taylor_coefficients<P>(0.0, y, c);
         const double h = integrate::taylor_detail::step_size(y.cwiseAbs().maxCoeff(), c[P - 1].cwiseAbs().maxCoeff(),
                                                             c[P].cwiseAbs().maxCoeff(), P, safety);
-        return integrate::taylor_detail::evaluate_polynomial<P>(c, h);
+        return new_state(c, h);
     });
     std::printf("# taylor_profile rtol=%.0e order=%d steps=%ld step_ns=%.1f recursion_ns=%.1f new_state_ns=%.1f "
                 "step_size_ns=%.1f rest_ns=%.1f\n",

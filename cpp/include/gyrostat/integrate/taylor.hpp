@@ -19,9 +19,18 @@
 // (I = (2, 3, 4), t = 2000, rtol 1e-12: 1.4e-10 here, 8.7e-11 heyoka; it was 9.3e-10 with the
 // previous rule, order +3 and local error ε·e^{−0.7}).
 // The step is one dependent chain (recursion → step size → new state → next recursion), so its
-// latency counts: the step size uses cheap log2/exp2 (fast_log2, fast_exp2) and the new state
-// Estrin's scheme (evaluate_polynomial). No step is rejected; outputs inside a step evaluate the
-// step's Taylor polynomial.
+// latency counts: the step size uses cheap log2/exp2 (fast_log2, fast_exp2) and the change of
+// state Estrin's scheme (increment, evaluate_polynomial). No step is rejected; outputs inside a
+// step evaluate the step's Taylor polynomial.
+// Rounding: at tight tolerances (ε < 1e-12) the state is carried with its rounding error
+// (y + y_low, add_compensated) and the change of state is summed smallest first (increment). The
+// error of a long run there is a phase error from the drift of the invariants; rounding the state
+// once per step (and Estrin's scheme over the whole polynomial, two roundings at the state's
+// size) made it a random walk that stalled the error at ~1e-11 … 5e-12 for rtol 1e-13 … 1e-14
+// on the torque-free body over t = 2000 (bench/taylor_vs_heyoka.py; 7.0e-12 at rtol 1e-14).
+// Compensated, the error follows the truncation error of the step rule: median 2e-13 … 3e-13 at
+// rtol ~1e-14 (the same steps in long double: ~2e-13), the rest being the rounding of the change
+// of state itself (~1 ulp of it per step).
 // A system opts in with `max_taylor_order`, `supports_taylor()` and
 //   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
 // (model/system.hpp).
@@ -105,6 +114,41 @@ State evaluate_polynomial(const State* c, double dt) {
     return a[0];
 }
 
+/// The change of the state over dt, Σ c_n dtⁿ for n = 1 … Order, summed smallest first:
+///   c_1 dt + dt²·(c_2 + c_3 dt + … + c_Order dt^{Order−2}),
+/// the tail by Estrin's scheme (its rounding is relative to the tail, ≲ (h/ρ)² of the state) and
+/// the largest term c_1 dt added last, so that the change carries about one rounding of its own
+/// size (Estrin's scheme over c_0 … c_Order rounds twice at the size of the state: c_0 + c_1 dt,
+/// then the sum of the pairs).
+template <int Order, class State>
+State increment(const State* c, double dt) {
+    static_assert(Order >= 2, "the Taylor steps have order 2 or more");
+    return c[1] * dt + evaluate_polynomial<Order - 2>(c + 2, dt) * (dt * dt);
+}
+
+/// y + δ + y_low with the rounding error of the sum kept: y ← fl(y + (δ + y_low)), y_low ← the
+/// part that did not fit (Knuth's two-sum: s = a + b, b' = s − a, err = (a − (s − b')) + (b − b'),
+/// exact for any a, b). Carrying y_low from step to step (compensated summation, as heyoka's
+/// high_accuracy mode) keeps the state's own rounding (half an ulp per step, a random walk of the
+/// invariants and so a phase error growing like t·√N) out of long runs: on the torque-free body
+/// (bench/taylor_vs_heyoka.py, t = 2000, ~1500 steps) the error at rtol 1e-14 falls from ~4e-12
+/// to ~5e-13, near the truncation error of the step rule (~2e-13).
+template <class State>
+void add_compensated(State& y, State& y_low, const State& delta) {
+    const State b = delta + y_low;
+    const State sum = y + b;
+    const State b_virtual = sum - y;
+    y_low = (y - (sum - b_virtual)) + (b - b_virtual);
+    y = sum;
+}
+
+/// The tolerances (ε = rtol, or atol in absolute mode) below which the state is carried with its
+/// rounding error (add_compensated). From 1e-12 up the truncation error per step (ε/10 ≥ 1e-13,
+/// ~450 ulp of a state ~1) outweighs the state's rounding (the error at rtol 1e-12 on free_2000 is
+/// the same either way, 1.37e-10 and 1.39e-10), and the compensated sum's bookkeeping (~15 ns, 6 %
+/// of a step at order 20, measured with --taylor-profile) buys nothing.
+inline constexpr double compensate_below = 1e-12;
+
 /// The order for a local error target ε (rtol in relative mode, atol in absolute mode):
 /// p = ⌈−½ ln ε⌉ + 6, five above Jorba & Zou's (see the comment at the top of this file).
 inline int order_for(double eps, int max_order) {
@@ -123,9 +167,10 @@ inline double safety_for(double eps, int order) {
 template <int Order, class System>
 struct Step {
     using State = typename System::State;
-    static bool run(const System& system, double t, State& y, double t1, double direction, double scale,
-                    double safety, double max_step, double& h, const std::vector<double>& outputs, std::size_t& next,
-                    Recorder<System>& record, EventLocator<System>& events, double& t_stop, DenseOutput* dense) {
+    static bool run(const System& system, double t, State& y, State& y_low, bool compensated, double t1,
+                    double direction, double scale, double safety, double max_step, double& h,
+                    const std::vector<double>& outputs, std::size_t& next, Recorder<System>& record,
+                    EventLocator<System>& events, double& t_stop, DenseOutput* dense) {
         State c[Order + 1];
         system.template taylor_coefficients<Order>(t, y, c);
         h = step_size(scale, c[Order - 1].cwiseAbs().maxCoeff(), c[Order].cwiseAbs().maxCoeff(), Order, safety);
@@ -134,13 +179,24 @@ struct Step {
             return false;
         }
         h = std::min({h, max_step, std::abs(t1 - t)});
-        auto evaluate = [&](double dt) { return evaluate_polynomial<Order>(c, dt); };
+        // c[0] = y. Compensated: y + (Σ_{n≥1} c_n dtⁿ + y_low) with the sum's rounding error kept
+        // in y_low; else Estrin's scheme over the whole polynomial (one chain, shortest).
+        const State low_start = y_low;
+        auto evaluate = [&](double dt) -> State {
+            if (compensated) return c[0] + (increment<Order>(c, dt) + low_start);
+            return evaluate_polynomial<Order>(c, dt);
+        };
         double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
-        State y_new = evaluate(t_new - t);
-        t_stop = events.active() ? events.step(t, t_new, y_new, [&](double time) { return evaluate(time - t); })
+        if (compensated) {
+            y = c[0];
+            add_compensated(y, y_low, increment<Order>(c, t_new - t));
+        } else {
+            y = evaluate_polynomial<Order>(c, t_new - t);
+        }
+        t_stop = events.active() ? events.step(t, t_new, y, [&](double time) { return evaluate(time - t); })
                                  : std::numeric_limits<double>::quiet_NaN();
         const bool terminated = !std::isnan(t_stop);
-        if (terminated) t_new = t_stop, y_new = evaluate(t_new - t);
+        if (terminated) t_new = t_stop, y = evaluate(t_new - t), y_low.setZero();
         if (dense && t_new != t) {  // the Taylor polynomial in s = (t' − t)/h: coefficients c_n hⁿ
             const double step = t_new - t;
             State scaled[Order + 1];
@@ -153,11 +209,24 @@ struct Step {
             record.push(outputs[next], evaluate(outputs[next] - t));
             ++next;
         }
-        y = y_new;
         h = t_new - t;
         return true;
     }
 };
+
+/// The system's projection (back onto |q| = 1, model/system.hpp) of a state carried with its
+/// rounding error: the components it moves drop their low part (the projection's change is larger).
+template <class System>
+void project_compensated(const System& system, typename System::State& y, typename System::State& y_low) {
+    if constexpr (model::system::has_projection<System>::value) {
+        const typename System::State before = y;
+        system.project(y);
+        for (int i = 0; i < y.size(); ++i)
+            if (y[i] != before[i]) y_low[i] = 0.0;
+    } else {
+        (void)system, (void)y, (void)y_low;
+    }
+}
 
 template <class System, int... Orders>
 constexpr auto step_table(std::integer_sequence<int, Orders...>) {
@@ -195,11 +264,13 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         Stats& stats = result.stats;
         double t = t0;
         State y = y0;
+        State y_low = State::Zero();  // the state's rounding error carried between steps (add_compensated)
         model::system::project(system, y);
         while (next < outputs.size() && outputs[next] == t0) record.push(t0, y), ++next;
         events.start(t0, y);
         int order = 0;
         double eps_of_order = -1.0, safety = 0.0;
+        bool compensated = false;
         Ticker ticker(control, t0, t1);
 
         while (direction * (t - t1) < 0.0) {
@@ -222,11 +293,13 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 order = taylor_detail::order_for(eps, max_order);
                 safety = taylor_detail::safety_for(eps, order);
                 eps_of_order = eps;
+                compensated = eps < taylor_detail::compensate_below;
+                if (!compensated) y_low.setZero();  // (no stale low part if compensation resumes)
             }
             const double t_before = t;
             const State y_before = y;
             double h = 0.0, t_stop = 0.0;
-            if (!steps[order](system, t, y, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
+            if (!steps[order](system, t, y, y_low, compensated, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
                               next, record, events, t_stop, result.dense.get())) {
                 result.status = Status::NonFiniteState;
                 result.message = "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(t, 17) +
@@ -253,7 +326,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
                 keep_last(result, t, y, 0.0);
                 return result;
             }
-            model::system::project(system, y);
+            taylor_detail::project_compensated(system, y, y_low);
             ++stats.steps;
             stats.last_step = std::abs(h);
             t = (std::abs(t1 - t) <= std::abs(h)) ? t1 : t + h;
