@@ -5,6 +5,7 @@ import json
 import os
 import signal
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -68,10 +69,13 @@ def test_a_run_stopped_by_max_steps_continues_to_the_uninterrupted_trajectory(fa
 
 def test_ctrl_c_and_terminal_events_say_where_they_stopped():
     model = g.Model(BODY, attitude=True)
-    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    # Ctrl-C from another thread once the run has started (its first progress report), whatever
+    # the machine's load
+    started = threading.Event()
+    timer = threading.Thread(target=lambda: started.wait(60) and (time.sleep(0.1), os.kill(os.getpid(), signal.SIGINT)))
     timer.start()
     with pytest.warns(RuntimeWarning, match="interrupted"):
-        stopped = g.solve(model, W0, (0, 1e8), n_out=11, max_steps=10**12)
+        stopped = g.solve(model, W0, (0, 1e8), n_out=11, max_steps=10**12, progress=lambda fraction: started.set())
     timer.join()
     assert stopped.status == "interrupted" and 0 < stopped.t_last < 1e8 and stopped.h_next > 0
     # the state there is the body's: its |G| is the torque-free motion's, to the drift that rtol 1e-8
