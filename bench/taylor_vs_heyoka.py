@@ -10,7 +10,9 @@ tolerance over several rounds (the machine is shared and noisy) and the best of 
 
 For each heyoka tolerance 1e-6 ... 1e-14 the ratio printed is gyrostat's time at heyoka's error
 (log-log interpolation on gyrostat's work-precision envelope, bench/work_precision.py's
-time_at_error) over heyoka's time. The second panel of the chart is the error each reaches
+time_at_error) over heyoka's time. At the rounding floor a single tolerance's error is a draw,
+so the two are also compared by their median error and time over 24 tolerances 1e-14 ... 1.46e-14
+(floor_band). The second panel of the chart is the error each reaches
 against the tolerance asked for.
 
     python bench/taylor_vs_heyoka.py --bench-exe build/cpp/gyrostat_bench [--rounds 5]
@@ -43,16 +45,16 @@ TARGET = 0.7  # issue 12: gyrostat's time at heyoka's error at most 0.7x heyoka'
 
 def gyrostat_run(exe: str, rtols):
     """(reference state, rows) from one `gyrostat_bench --taylor RTOL,...` call."""
-    out = subprocess.run([exe, "--taylor", ",".join(f"{r:.0e}" for r in rtols)], check=True, capture_output=True,
+    out = subprocess.run([exe, "--taylor", ",".join(f"{r:.6g}" for r in rtols)], check=True, capture_output=True,
                          text=True).stdout
     reference, rows = None, []
     for line in out.splitlines():
         if line.startswith("# reference_state free_2000"):
             reference = np.array([float(v) for v in line.split()[3:]])
         elif line.startswith("free_2000,"):
-            _, method, rtol_text, error, steps, _, seconds = line.split(",")
-            rows.append(dict(method="gyrostat taylor", tol=float(rtol_text), error=float(error), steps=int(steps),
-                             seconds=float(seconds)))
+            _, method, _, error, steps, _, seconds = line.split(",")
+            rows.append(dict(method="gyrostat taylor", tol=rtols[len(rows)], error=float(error), steps=int(steps),
+                             seconds=float(seconds)))  # (the executable prints rtol to one digit)
     if len(rows) != len(rtols):
         raise RuntimeError(f"gyrostat_bench --taylor printed {len(rows)} rows for {len(rtols)} tolerances:\n{out}")
     return reference, rows
@@ -96,6 +98,52 @@ def measure(exe: str, rounds: int):
                     best[key] = row
         print(f"  round {k + 1}/{rounds} done", file=sys.stderr)
     return sorted(best.values(), key=lambda r: (r["method"], -r["tol"]))
+
+
+FLOOR_BAND = [1e-14 * (1.0 + 0.02 * i) for i in range(24)]  # tolerances at the rounding floor
+
+
+def floor_band(exe: str, rounds: int):
+    """Median error and time of each integrator over FLOOR_BAND (tolerances 1e-14 ... 1.46e-14).
+
+    At the floor a single tolerance's error is one draw of the roundings' random walk and of the
+    step sequence: gyrostat's errors scatter over 1e-15 ... 5e-13 there, heyoka's take two values
+    (its steps depend on tol only through the order). The medians compare the two fairly."""
+    import heyoka as hy
+
+    p, q, r = hy.make_vars("p", "q", "r")
+    a, b, c = INERTIA
+    system = [(p, (b - c) / a * q * r), (q, (c - a) / b * r * p), (r, (a - b) / c * p * q)]
+    theirs = {tol: hy.taylor_adaptive(system, OMEGA0, tol=tol) for tol in FLOOR_BAND}
+    ours_best, theirs_best = {}, {}
+    for _ in range(rounds):
+        reference, ours = gyrostat_run(exe, FLOOR_BAND)
+        for row in ours:
+            if row["tol"] not in ours_best or row["seconds"] < ours_best[row["tol"]]["seconds"]:
+                ours_best[row["tol"]] = row
+        for tol, ta in theirs.items():
+            row = heyoka_run(ta, tol, reference)
+            if tol not in theirs_best or row["seconds"] < theirs_best[tol]["seconds"]:
+                theirs_best[tol] = row
+    summary = {}
+    for name, rows in (("gyrostat taylor", ours_best), ("heyoka taylor_adaptive", theirs_best)):
+        errors = np.array([row["error"] for row in rows.values()])
+        seconds = np.array([row["seconds"] for row in rows.values()])
+        summary[name] = dict(median_error=float(np.median(errors)), min_error=float(errors.min()),
+                             max_error=float(errors.max()), median_seconds=float(np.median(seconds)))
+    return summary
+
+
+def floor_lines(summary):
+    ours, theirs = summary["gyrostat taylor"], summary["heyoka taylor_adaptive"]
+    lines = ["", f"At the rounding floor ({len(FLOOR_BAND)} tolerances 1e-14 ... {FLOOR_BAND[-1]:.3g}, medians):",
+             "| | median error | min … max error | median time [s] |", "| --- | --- | --- | --- |"]
+    for name, row in (("gyrostat taylor", ours), ("heyoka taylor_adaptive", theirs)):
+        lines.append(f"| {name} | {row['median_error']:.2e} | {row['min_error']:.1e} … {row['max_error']:.1e} | "
+                     f"{row['median_seconds']:.3e} |")
+    lines.append(f"gyrostat / heyoka: error {ours['median_error'] / theirs['median_error']:.2f}, "
+                 f"time {ours['median_seconds'] / theirs['median_seconds']:.2f}")
+    return lines
 
 
 def table(rows):
@@ -166,6 +214,7 @@ def main():
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows = measure(args.bench_exe, args.rounds)
+    floor = floor_band(args.bench_exe, max(1, args.rounds // 2))
     with (out / "taylor_vs_heyoka.csv").open("w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
@@ -174,6 +223,7 @@ def main():
         print(f"{r['method']:24s} tol {r['tol']:.0e}  error {r['error']:.3e}  steps {r['steps']:6d}  {r['seconds']:.3e} s")
     print()
     print(table(rows))
+    print("\n".join(floor_lines(floor)))
     chart(rows, out / "taylor_vs_heyoka.png")
 
 

@@ -10,6 +10,7 @@
 #include "gyrostat/engine.hpp"
 #include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/lanes.hpp"
+#include "gyrostat/model/affine_euler_avx2.hpp"
 
 namespace gyrostat::bindings {
 
@@ -254,6 +255,7 @@ void expose_integrate(py::module_& m) {
     m.def("methods", &integrate::method_names);
     m.attr("simd_lanes") = lanes::width;
     m.attr("simd_instruction_set") = lanes::instruction_set;
+    m.attr("taylor_kernel") = model::affine_euler_avx2_available() ? "avx2+fma" : "portable";
 }
 
 }  // namespace gyrostat::bindings

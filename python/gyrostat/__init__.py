@@ -54,6 +54,7 @@ __all__ = [
     "validity",
     "simd_lanes",
     "simd_instruction_set",
+    "taylor_kernel",
 ]
 __version__ = _core.__version__
 #: Members one SIMD batch of :func:`solve_ensemble` integrates at once (8 with AVX-512, 4 with
@@ -61,3 +62,8 @@ __version__ = _core.__version__
 simd_lanes: int = _core.simd_lanes
 #: The instruction set the C++ core was compiled for ("sse2" in the portable default build).
 simd_instruction_set: str = _core.simd_instruction_set
+#: The form of the gyrostat's Taylor recursion this process uses: "avx2+fma" (chosen at run time
+#: on CPUs with AVX2 and FMA, whatever the build) or "portable" (elsewhere, or with the
+#: environment variable GYROSTAT_PORTABLE_KERNELS=1 set before gyrostat is imported). The two agree
+#: to rounding, not bit for bit.
+taylor_kernel: str = _core.taylor_kernel

@@ -90,12 +90,14 @@ int main() {
     // taylor at its tightest tolerances is not held up by the rounding of the state (issue 12):
     // I = (2, 3, 4), ω0 = (0.4, 0.9, −0.3), t = 0 → 2000 (bench/taylor_vs_heyoka.py), final error
     // against the closed form (exact to ~2e-16 here, checked against a long-double heyoka run) at
-    // eight rtol in [1e-14, 1.1e-14] (order 23, ~1520 steps each; the step sequences differ, so do
+    // eight rtol in [1e-14, 1.1e-14] (order 23, ~1680 steps each; the step sequences differ, so do
     // the rounding errors' random walks). Rounding the new state y + Σ c_n hⁿ once per step (the
     // state before the compensated sum) gave a median of 5e-12 over such a set (single runs
-    // 8e-14 … 9e-12, 7.0e-12 at 1e-14); with the rounding error carried in y_low the median is
-    // 2e-13 … 3e-13 (max 1.2e-12), near the step rule's truncation error alone (~2e-13, the step
-    // in long double). Bound 1e-12: 3 … 5× the measured median, 5× below the uncompensated one.
+    // 8e-14 … 9e-12, 7.0e-12 at 1e-14); the compensated sum alone with a local error ε/10, 2e-13 …
+    // 3e-13; now (c_1 h exact, c_1's own error added, local error ε/100 at 1e-14) 7.4e-14 with the
+    // AVX2 recursion and 2.5e-13 with the portable one (max 2.0e-13, 4.8e-13). Bound 5e-13: 2×
+    // the portable median (the runs are deterministic: the same binary gives the same draws on
+    // any x86-64 CPU of either kind), 10× below the uncompensated one.
     {
         const Body body_234(Vec3(2.0, 3.0, 4.0));
         const Vec3 omega0(0.4, 0.9, -0.3);
@@ -118,7 +120,72 @@ int main() {
         const double median = 0.5 * (errors[3] + errors[4]);
         std::printf("taylor rtol 1e-14 … 1.1e-14 on I = (2, 3, 4), t = 2000: median error %.3e (max %.3e)\n", median,
                     errors.back());
-        CHECK(median < 1e-12, "taylor's error at rtol ~1e-14 is at the rounding floor of an uncompensated state");
+        CHECK(median < 5e-13, "taylor's error at rtol ~1e-14 is below the rounding floor of an uncompensated state");
+    }
+
+    // The affine Euler recursion in AVX2 lanes (model/affine_euler_avx2.hpp, chosen at run time)
+    // against the portable one (affine_euler.hpp), with every affine term (rotor, damping,
+    // constant torque): the same coefficients to rounding. Bound: 1e-14 of the largest coefficient
+    // of the order (the two sum in different orders and with and without fused multiply-adds;
+    // measured ≤ 2e-16 … 5e-15 up to order 30, the error growing with the order).
+    // And the first coefficient's error beyond double precision (affine_euler_rate_error, used by
+    // the compensated Taylor steps), both forms, against f(ω + ω_low) − c1 in long double (64-bit
+    // mantissa: 5e-20 relative): agreement to 1e-18 of |f| (the quantity itself is ~1e-16 of |f|).
+    {
+        const Body body(Vec3(2.0, 3.0, 4.0), Vec3(0.3, -0.2, 0.5));
+        const TorqueSet torques({torque::Constant(Vec3(0.01, -0.02, 0.03)),
+                                 torque::LinearDamping((Mat3() << 0.1, 0.02, 0, 0.01, 0.2, 0, 0, 0.03, 0.05).finished())});
+        const model::Gyrostat<false> gyrostat(body, torques);
+        const model::AffineEuler<double>& e = gyrostat.affine_euler();
+        const Vec3 omega(0.4, 0.9, -0.3);
+        constexpr int order = 30;
+        Vec3 portable[order + 1], lanes[order + 1];
+        portable[0] = lanes[0] = omega;
+        model::euler_taylor_recursion<order, false>(e, [&](int n, int i) -> double& { return portable[n][i]; });
+        if (model::affine_euler_avx2_available()) {
+#ifdef GYROSTAT_HAS_AVX2_KERNEL
+            model::affine_euler_rate_orders_avx2<order>(e, lanes[0].data(), 3);
+#endif
+            double worst = 0.0;
+            for (int n = 1; n <= order; ++n)
+                worst = std::max(worst, (lanes[n] - portable[n]).cwiseAbs().maxCoeff() / portable[n].cwiseAbs().maxCoeff());
+            std::printf("AVX2 recursion against the portable one, orders 1 … %d: worst relative difference %.2e\n", order,
+                        worst);
+            CHECK(worst < 1e-14, "AVX2 Taylor recursion = portable recursion");
+        } else {
+            std::printf("(the AVX2 recursion is not in use here: no AVX2 + FMA, or GYROSTAT_PORTABLE_KERNELS=1)\n");
+        }
+        const Vec3 low(3e-17, -4e-17, 2e-17);
+        long double f[3];
+        double a[3][3];
+        model::affine_euler_linear_part(e, a);
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, k = (i + 2) % 3;
+            long double w[3];
+            for (int l = 0; l < 3; ++l) w[l] = static_cast<long double>(omega[l]) + low[l];
+            long double sum = static_cast<long double>(e.differences[i]) * w[j] * w[k] + e.constant[i];
+            for (int l = 0; l < 3; ++l) sum += static_cast<long double>(a[i][l]) * w[l];
+            f[i] = sum * e.inverse_moments[i];
+        }
+        Vec3 portable_error, lane_error;
+        model::affine_euler_rate_error(e, omega.data(), low.data(), portable[1].data(), portable_error.data());
+        const Vec3 hook = gyrostat.taylor_rate_error(omega, low, portable[1]);  // AVX2 where available
+#ifdef GYROSTAT_HAS_AVX2_KERNEL
+        if (model::affine_euler_avx2_available())
+            model::affine_euler_rate_error_avx2(e, omega.data(), low.data(), portable[1].data(), lane_error.data());
+        else
+#endif
+            lane_error = portable_error;
+        double worst = 0.0, size = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const double expected = static_cast<double>(f[i] - portable[1][i]);
+            worst = std::max({worst, std::abs(portable_error[i] - expected), std::abs(lane_error[i] - expected),
+                              std::abs(hook[i] - expected)});
+            size = std::max(size, std::abs(static_cast<double>(f[i])));
+        }
+        std::printf("first coefficient's error beyond double: worst difference from long double %.2e of |f| "
+                    "(the error itself %.2e of |f|)\n", worst / size, std::abs(portable_error[0]) / size);
+        CHECK(worst < 1e-18 * size, "rate error beyond double precision = long double's");
     }
 
     // Quaternion norm stays 1 to rounding at every output.

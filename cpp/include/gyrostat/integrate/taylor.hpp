@@ -5,8 +5,9 @@
 //   ρ_m = (1/‖y[m]‖∞)^{1/m}       (absolute mode, rtol·‖y‖∞ ≤ atol, ε = atol),
 //   ρ_m = (‖y‖∞/‖y[m]‖∞)^{1/m}    (relative mode, ε = rtol),
 //   p = ⌈−½ ln ε⌉ + 6,
-//   h = min(ρ_{p−1}, ρ_p) · (ε/10)^{1/p} · exp(−0.7/(p − 1)),
-// so that the truncation term (h/ρ)^p ≈ (ε/10)·e^{−0.7} per step.
+//   h = min(ρ_{p−1}, ρ_p) · δ^{1/p} · exp(−0.7/(p − 1)),   δ = ε/10 (ε ≥ 1e-12; below, smaller:
+//                                                           local_error_fraction),
+// so that the truncation term (h/ρ)^p ≈ δ·e^{−0.7} per step.
 // Why this order: the global error is about (number of steps N) × (local error δ), and
 // N ∝ 1/h ∝ δ^{−1/p}; with a cost per step a + b·p² (a: step size, new state, bookkeeping; b·p²:
 // the recursion) the cost at equal global error is least near p ≈ ½ ln(1/δ)·(1 + a/(b p²)),
@@ -23,14 +24,16 @@
 // state Estrin's scheme (increment, evaluate_polynomial). No step is rejected; outputs inside a
 // step evaluate the step's Taylor polynomial.
 // Rounding: at tight tolerances (ε < 1e-12) the state is carried with its rounding error
-// (y + y_low, add_compensated) and the change of state is summed smallest first (increment). The
-// error of a long run there is a phase error from the drift of the invariants; rounding the state
-// once per step (and Estrin's scheme over the whole polynomial, two roundings at the state's
-// size) made it a random walk that stalled the error at ~1e-11 … 5e-12 for rtol 1e-13 … 1e-14
-// on the torque-free body over t = 2000 (bench/taylor_vs_heyoka.py; 7.0e-12 at rtol 1e-14).
-// Compensated, the error follows the truncation error of the step rule: median 2e-13 … 3e-13 at
-// rtol ~1e-14 (the same steps in long double: ~2e-13), the rest being the rounding of the change
-// of state itself (~1 ulp of it per step).
+// (y + y_low, advance_compensated): the first-order term c_1 h is added exactly, the rest summed
+// smallest first, and a system that can (System::taylor_rate_error, the gyrostat) also gives
+// c_1's own rounding and the effect of y_low on it. The error of a long run there is a phase
+// error from the drift of the invariants; rounding the state once per step (and Estrin's scheme
+// over the whole polynomial, two roundings at the state's size) made it a random walk that
+// stalled the error at ~1e-11 … 5e-12 for rtol 1e-13 … 1e-14 on the torque-free body over
+// t = 2000 (bench/taylor_vs_heyoka.py; 7.0e-12 at rtol 1e-14). With all of these, and the local
+// error ε·local_error_fraction(ε) (below), the median error over 24 rtols in 1e-14 … 1.46e-14
+// is 1.4e-13 (7.5e-13 with the compensated sum alone and a local error ε/10), near the floor of
+// the remaining roundings (c_2 h² and higher, ~1e-13 there whatever the step rule).
 // A system opts in with `max_taylor_order`, `supports_taylor()` and
 //   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
 // (model/system.hpp).
@@ -48,6 +51,7 @@
 #include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
+#include "gyrostat/model/double_double.hpp"
 
 namespace gyrostat::integrate {
 
@@ -126,24 +130,38 @@ State increment(const State* c, double dt) {
     return c[1] * dt + evaluate_polynomial<Order - 2>(c + 2, dt) * (dt * dt);
 }
 
-/// y + δ + y_low with the rounding error of the sum kept: y ← fl(y + (δ + y_low)), y_low ← the
-/// part that did not fit (Knuth's two-sum: s = a + b, b' = s − a, err = (a − (s − b')) + (b − b'),
-/// exact for any a, b). Carrying y_low from step to step (compensated summation, as heyoka's
-/// high_accuracy mode) keeps the state's own rounding (half an ulp per step, a random walk of the
-/// invariants and so a phase error growing like t·√N) out of long runs: on the torque-free body
-/// (bench/taylor_vs_heyoka.py, t = 2000, ~1500 steps) the error at rtol 1e-14 falls from ~4e-12
-/// to ~5e-13, near the truncation error of the step rule (~2e-13).
+/// s = a + b rounded, and its rounding error e = (a + b) − s exactly (Knuth's two-sum:
+/// b' = s − a, e = (a − (s − b')) + (b − b'), exact for any a, b).
 template <class State>
-void add_compensated(State& y, State& y_low, const State& delta) {
-    const State b = delta + y_low;
-    const State sum = y + b;
-    const State b_virtual = sum - y;
-    y_low = (y - (sum - b_virtual)) + (b - b_virtual);
+State two_sum_error(const State& a, const State& b, const State& s) {
+    const State b_virtual = s - a;
+    return (a - (s - b_virtual)) + (b - b_virtual);
+}
+
+/// y ← y + Σ_{n≥1} c_n dtⁿ + y_low with the rounding error kept in y_low (compensated summation,
+/// as heyoka's high_accuracy mode): the first-order term c_1 dt, the largest, is added exactly
+/// (its product's and its sum's rounding errors, model::dekker_product_error and two_sum_error, go to the
+/// low part), then the rest dt²·(c_2 + c_3 dt + …) with the low parts, whose rounding is relative
+/// to that smaller sum, and the final sum's rounding error is the new y_low. Carrying y_low from
+/// step to step keeps the state's rounding (half an ulp per step, a random walk of the invariants
+/// and so a phase error growing like t·√N) out of long runs; adding c_1 dt exactly takes the
+/// largest rounding of the change of state out of that walk too (bench/README.md, "The floor at
+/// tight tolerances").
+template <int Order, class State>
+void advance_compensated(State& y, State& y_low, const State* c, double dt) {
+    static_assert(Order >= 2, "the Taylor steps have order 2 or more");
+    const State first = c[1] * dt;
+    const State rest = evaluate_polynomial<Order - 2>(c + 2, dt) * (dt * dt);
+    const State partial = y + first;
+    const State low = (two_sum_error(y, first, partial) + model::dekker_product_error(c[1], dt, first)) + y_low;
+    const State b = rest + low;
+    const State sum = partial + b;
+    y_low = two_sum_error(partial, b, sum);
     y = sum;
 }
 
 /// The tolerances (ε = rtol, or atol in absolute mode) below which the state is carried with its
-/// rounding error (add_compensated). From 1e-12 up the truncation error per step (ε/10 ≥ 1e-13,
+/// rounding error (advance_compensated). From 1e-12 up the truncation error per step (ε/10 ≥ 1e-13,
 /// ~450 ulp of a state ~1) outweighs the state's rounding (the error at rtol 1e-12 on free_2000 is
 /// the same either way, 1.37e-10 and 1.39e-10), and the compensated sum's bookkeeping (~15 ns, 6 %
 /// of a step at order 20, measured with --taylor-profile) buys nothing.
@@ -155,10 +173,21 @@ inline int order_for(double eps, int max_order) {
     return std::clamp(static_cast<int>(std::ceil(-0.5 * std::log(eps))) + 6, 2, max_order);
 }
 
-/// The factor of min(ρ_{p−1}, ρ_p) in the step size: (ε/10)^{1/p}·e^{−0.7/(p−1)}, for a local
-/// truncation error of about ε/10 per step (see the comment at the top of this file).
+/// The local truncation error a step aims at, as a fraction of ε: 1/10 from ε = 1e-12 up (see the
+/// comment at the top of this file), and 0.1·√(ε/1e-12) below (0.01 at ε = 1e-14). Below 1e-12
+/// the state is compensated and its rounding no longer sets the error; ε/10 per step then left
+/// the truncation error the larger part (torque-free body, t = 2000, 24 rtols in 1e-14 … 1.46e-14:
+/// median error 7.5e-13 with ε/10, 2.3e-13 with ε/100, 1.7e-13 with ε/1000, where the rounding
+/// floor is reached), for 11 % more steps at 1e-14.
+inline double local_error_fraction(double eps) {
+    return eps < compensate_below ? 0.1 * std::sqrt(eps / compensate_below) : 0.1;
+}
+
+/// The factor of min(ρ_{p−1}, ρ_p) in the step size: (δ/ε · ε)^{1/p}·e^{−0.7/(p−1)}, for a local
+/// truncation error of about δ = local_error_fraction(ε)·ε per step (see the comment at the top
+/// of this file).
 inline double safety_for(double eps, int order) {
-    return std::exp(-0.7 / (order - 1)) * std::exp(std::log(0.1 * eps) / order);
+    return std::exp(-0.7 / (order - 1)) * std::exp(std::log(local_error_fraction(eps) * eps) / order);
 }
 
 /// One step of fixed order: coefficients, step size, events and outputs inside the step, the new
@@ -188,8 +217,9 @@ struct Step {
         };
         double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
         if (compensated) {
-            y = c[0];
-            add_compensated(y, y_low, increment<Order>(c, t_new - t));
+            if constexpr (model::system::has_taylor_rate_error<System>::value)
+                y_low += system.taylor_rate_error(c[0], y_low, c[1]) * (t_new - t);
+            advance_compensated<Order>(y, y_low, c, t_new - t);
         } else {
             y = evaluate_polynomial<Order>(c, t_new - t);
         }
@@ -264,7 +294,7 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         Stats& stats = result.stats;
         double t = t0;
         State y = y0;
-        State y_low = State::Zero();  // the state's rounding error carried between steps (add_compensated)
+        State y_low = State::Zero();  // the state's rounding error carried between steps (advance_compensated)
         model::system::project(system, y);
         while (next < outputs.size() && outputs[next] == t0) record.push(t0, y), ++next;
         events.start(t0, y);

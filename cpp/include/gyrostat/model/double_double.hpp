@@ -47,6 +47,22 @@ inline DoubleDouble two_prod(double a, double b) {
 }
 }  // namespace dd_detail
 
+/// a·b − p exactly, p = fl(a·b), without a fused multiply-add (Dekker's product: a and b split
+/// into halves of 26 bits, whose products are exact), for code compiled for CPUs that may lack
+/// FMA (there std::fma, as in two_prod, is a slow library call). T = double or an Eigen vector
+/// (component-wise). |a|, |b| must stay below ~1e300 (the split multiplies by 2^27 + 1).
+template <class T>
+T dekker_product_error(const T& a, double b, const T& p) {
+    constexpr double split = 134217729.0;  // 2^27 + 1
+    const T a_big = split * a;
+    const T a_high = a_big - (a_big - a);
+    const T a_low = a - a_high;
+    const double b_big = split * b;
+    const double b_high = b_big - (b_big - b);
+    const double b_low = b - b_high;
+    return ((a_high * b_high - p) + a_high * b_low + a_low * b_high) + a_low * b_low;
+}
+
 /// a − b exactly (as a double-double): t − t0 without rounding.
 inline DoubleDouble two_diff(double a, double b) { return dd_detail::two_sum(a, -b); }
 

@@ -37,6 +37,12 @@ struct OutputInfo {
 ///   static constexpr int max_taylor_order;                       Taylor coefficients by recursion,
 ///   template <int Order> void taylor_coefficients(double t, const State& y, State* c) const;
 ///   bool supports_taylor() const;                                (default: no Taylor method)
+///   State taylor_rate_error(const State& y, const State& y_low, const State& c1) const;
+///                                                                f(y + y_low) − c1 beyond double
+///                                                                precision, c1 = fl(f(y)) the
+///                                                                first Taylor coefficient; the
+///                                                                Taylor method adds it below
+///                                                                rtol 1e-12 (default: none)
 ///   static constexpr std::array<OutputInfo, n> outputs_info;     named outputs recorded at every
 ///   void outputs(double t, const State& y, double* out) const;   output time (default: none)
 ///   void check_state(const State& y) const;                      throws std::invalid_argument for
@@ -74,6 +80,14 @@ template <class S, class = void>
 struct has_taylor : std::false_type {};
 template <class S>
 struct has_taylor<S, std::void_t<decltype(S::max_taylor_order)>> : std::true_type {};
+
+template <class S, class = void>
+struct has_taylor_rate_error : std::false_type {};
+template <class S>
+struct has_taylor_rate_error<
+    S, std::void_t<decltype(std::declval<const S&>().taylor_rate_error(
+           std::declval<const typename S::State&>(), std::declval<const typename S::State&>(),
+           std::declval<const typename S::State&>()))>> : std::true_type {};
 
 template <class S, class = void>
 struct has_outputs : std::false_type {};
