@@ -15,7 +15,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-PYTHON_DIR = str(Path(__file__).resolve().parent.parent / "python")
+import gyrostat
+
+# the directory of the gyrostat this test imported (installed, or the source tree with the built
+# module in it), for the child processes
+PYTHON_DIR = str(Path(gyrostat.__file__).resolve().parent.parent)
 
 # The members (J, k, D, M0, ω0) and the run, as a script for a fresh process.
 SCRIPT = r"""
