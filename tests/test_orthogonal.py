@@ -198,9 +198,21 @@ def test_exact_permanent_rotation_is_an_equilibrium():
     w0 = np.array([0.0, 0.0, 1.0])
     sol = solve(m, w0, (0, 10), n_out=11)
     assert np.max(np.abs(sol.omega - w0)) == 0.0  # Q = 0: the torque vanishes exactly
-    delta = 1e-3 * 1.0 * 4.5
-    assert abs(sol["tau"][-1] - 10 * (1 - 2 * 0.1 / delta)) < 1e-9 * 10 / delta  # τ̇ = 1 − L/(δ/2)
+    # one rule at Q = 0 (orthogonal.hpp): no servo torque, τ runs with t (g = 1), flagged regularised
+    assert np.all(sol["g"] == 1.0) and sol["tau"][-1] == pytest.approx(10.0, rel=1e-15)  # τ̇ = 1 summed by DOP853
     assert np.all(sol["regularised"] == 1.0)
+
+
+@pytest.mark.parametrize("body, w0", [(g.Body([2, 3, 4], [0.3, -0.2, 0.5]), [0.0, 0.0, 0.0]),  # rest, with rotor
+                                      (g.Body([2, 3, 4]), [1.0, 0.0, 0.0]),                  # permanent rotation
+                                      (g.Body([2, 3, 4]), [0.0, 0.0, 0.0])])                 # rest
+def test_one_rule_wherever_Q_vanishes(body, w0):
+    """Rest with a rotor used to say regularised = 0, g = 1, and a permanent rotation without one
+    regularised = 1, g = -99 (τ running backwards at 99×): Q = 0 has no direction for the servo
+    torque, so both apply nothing, keep τ = t and are flagged."""
+    sol = solve(o.OrthogonalModel(body, 0.1), w0, (0, 1), n_out=3)
+    assert np.all(sol["regularised"] == 1.0) and np.all(sol["g"] == 1.0)
+    assert np.allclose(sol["tau"], sol.t, rtol=1e-15, atol=0) and np.array_equal(sol.omega[-1], np.asarray(w0, float))
 
 
 # ---------------------------------------------------------------------------------- bad input

@@ -7,6 +7,8 @@ integrated by SciPy's DOP853 at rtol 1e-13; the rotation matrix of a quaternion;
 
 import math
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -158,6 +160,29 @@ def linear_case():
     return torques, (lambda t, w: M0 - D @ w)
 
 
+def split_run(model, y0, t_span, **options):
+    """A splitting run that may doubt its own answer: an AccuracyWarning is expected exactly when
+    its own error estimate exceeds rtol (or its step was clamped to the span)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", g.AccuracyWarning)
+        sol = g.solve(model, y0, t_span, method="splitting", **options)
+    said = [str(w.message) for w in caught if issubclass(w.category, g.AccuracyWarning)]
+    rtol = options.get("rtol", g.Options().rtol)
+    assert any("exceeds rtol" in m for m in said) == (sol.error_estimate > rtol), (said, sol.error_estimate)
+    assert all(m in sol.notes for m in said)
+    return sol
+
+
+def honest(sol, error):
+    """The splitting's error estimate has the measured error's order of magnitude: at least a third
+    of it (measured 0.58 on the Lagrange top at order 2 over t = 4, where phase errors grow
+    faster than the linear sum of local errors) and at most 100 times it (measured 10-60 on the
+    rigid body: the local errors of an oscillating solution partly cancel, which the linear sum
+    does not assume); at the rounding floor only the lower bound is asked."""
+    assert error <= 3 * sol.error_estimate, (error, sol.error_estimate)
+    assert error < 1e-12 or sol.error_estimate <= 100 * error, (error, sol.error_estimate)
+
+
 def cavity_case():
     cavity = g.ViscousCavity(EPS, 1.0, 1.0)  # κ = ρ P0 / ν = ε
     return [cavity], None
@@ -172,10 +197,11 @@ def test_order_of_splitting_with_exact_perturbation_flow(order):
     steps = {2: (0.4, 0.2), 4: (0.8, 0.4), 6: (1.6, 0.8)}[order]
     errors = []
     for h in steps:
-        y = g.solve(model, np.concatenate([W0, Q0]), (0, 8.0), t_eval=t, method="splitting", step=h,
-                    splitting_order=order).y[-1]
+        sol = split_run(model, np.concatenate([W0, Q0]), (0, 8.0), t_eval=t, step=h, splitting_order=order)
+        y = sol.y[-1]
         y[3:] *= np.sign(y[3:] @ ref[3:])
         errors.append(np.max(np.abs(y - ref)))
+        honest(sol, errors[-1])
     measured = np.log2(errors[0] / errors[1])
     # the error ratio at halved step is 2^order asymptotically; ±0.5 for the pre-asymptotic range
     assert abs(measured - order) < 0.5, (errors, measured)
@@ -201,10 +227,11 @@ def test_order_of_splitting_with_the_cavity():
     for order, steps in ((2, (0.4, 0.2)), (4, (0.8, 0.4))):
         errors = []
         for h in steps:
-            y = g.solve(model, np.concatenate([W0, Q0]), (0, t_end), t_eval=[0, t_end], method="splitting", step=h,
-                        splitting_order=order).y[-1]
+            sol = split_run(model, np.concatenate([W0, Q0]), (0, t_end), t_eval=[0, t_end], step=h, splitting_order=order)
+            y = sol.y[-1]
             y[3:] *= np.sign(y[3:] @ ref[3:])
             errors.append(np.max(np.abs(y - ref)))
+            honest(sol, errors[-1])
         measured = np.log2(errors[0] / errors[1])
         assert abs(measured - order) < 0.5, (order, errors, measured)
 
@@ -214,7 +241,7 @@ def test_splitting_keeps_G_when_the_perturbation_does():
     keeps it to rounding over a long run (no secular drift), while T decays."""
     torques, _ = cavity_case()
     model = g.Model(g.Body(J), torques)
-    sol = g.solve(model, W0, (0, 2e4), method="splitting", step=0.5, splitting_order=4, n_out=11)
+    sol = split_run(model, W0, (0, 2e4), step=0.5, splitting_order=4, n_out=11)
     G = sol["angular_momentum_norm"]
     # each step ends projected on |Jω| = |G(0)| (splitting.hpp): rounding of that projection
     # only, never accumulated (without it: 1e-13 here, 2.6e-11 over 2e6 steps, a drift)
@@ -276,9 +303,43 @@ def test_bad_splitting_step(step):
         g.solve(model, W0, (0, 1), method="splitting", step=step)
 
 
-def test_splitting_needs_a_step_and_a_model_that_splits():
-    with pytest.raises(ValueError, match="needs a fixed step"):
-        g.solve(g.Model(g.Body(J)), W0, (0, 1), method="splitting")
+@pytest.mark.parametrize("rtol", [1e-6, 1e-10])
+def test_splitting_chooses_its_step_from_rtol(rtol):
+    """step left out: h from the splitting's own probe at t0, so that the run meets rtol (against
+    SciPy with the damping written here; the estimate is conservative, so the error lands below
+    rtol, and the step is no smaller than needed by more than the estimate's factor (≤ 100)^(1/4)
+    ≈ 3.2 against the h that would just meet rtol)."""
+    torques, torque = linear_case()
+    model = g.Model(g.Body(J), torques, attitude=True)
+    ref = reference(J, W0, np.array([0.0, 8.0]), torque=torque)[-1]
+    sol = split_run(model, np.concatenate([W0, Q0]), (0, 8.0), t_eval=[0, 8.0], rtol=rtol, atol=1e-3 * rtol)
+    y = sol.y[-1]
+    y[3:] *= np.sign(y[3:] @ ref[3:])
+    error = np.max(np.abs(y - ref))
+    assert error <= rtol and sol.error_estimate <= rtol, (error, sol.error_estimate)
+    assert any("chosen from rtol" in note for note in sol.notes)
+    h = sol.stats["last_step"]
+    # order 4: the error with 3.2x the step would be ~100x larger; it must not still meet rtol/10
+    coarser = split_run(model, np.concatenate([W0, Q0]), (0, 8.0), t_eval=[0, 8.0], step=3.2 * h, rtol=0.5)
+    y = coarser.y[-1]
+    y[3:] *= np.sign(y[3:] @ ref[3:])
+    assert np.max(np.abs(y - ref)) > 0.1 * error, (h, error)
+
+
+def test_a_step_above_the_span_is_clamped_and_estimated():
+    """The issue's case: step = 10 over (0, 5) returned success with a 9.1 % error. Now: one step of
+    5 with a warning saying so, and the estimate of that step's error above rtol with a warning."""
+    torques, torque = linear_case()
+    model = g.Model(g.Body(J), torques)
+    ref = reference(J, W0, np.array([0.0, 5.0]), q0=Q0, torque=torque)[-1, :3]
+    with pytest.warns(g.AccuracyWarning) as caught:
+        sol = g.solve(model, W0, (0, 5), method="splitting", step=10.0, n_out=2)
+    said = " ".join(str(w.message) for w in caught)
+    assert "exceeds the span" in said and "exceeds rtol" in said and sol.stats["steps"] == 1
+    honest(sol, np.max(np.abs(sol.y[-1] - ref)))
+
+
+def test_splitting_needs_a_model_that_splits():
     with pytest.raises(ValueError, match="splitting_order = 3"):
         g.solve(g.Model(g.Body(J)), W0, (0, 1), method="splitting", step=0.1, splitting_order=3)
     averaged = g.AveragedModel(g.Body([2.0, 2.0, 1.0]))
@@ -316,8 +377,20 @@ def test_scene_with_splitting():
     ref = g.solve(run.model, run.y0, run.t_span, n_out=3, method="taylor", rtol=1e-14, atol=1e-16)
     # order 6, h = 0.1, ε = 1e-3: ~1e-12
     assert np.max(np.abs(sol.y - ref.y)) < 1e-10
-    del doc["integration"]["step"]
-    with pytest.raises(SceneError, match="needs step"):
+    del doc["integration"]["step"]  # left out: chosen from rtol
+    run = Scene.from_dict(doc).runs[0]
+    sol = g.solve(run.model, run.y0, run.t_span, **run.options)
+    assert any("chosen from rtol" in note for note in sol.notes)
+    assert np.max(np.abs(sol.y - ref.y)) < run.options["rtol"]
+    doc["integration"]["step"] = 100.0  # the issue's scene: one step over [0, 10], 2.8 % off, exit 0
+    run = Scene.from_dict(doc).runs[0]
+    with pytest.warns(g.AccuracyWarning) as caught:
+        sol = g.solve(run.model, run.y0, run.t_span, **run.options)
+    said = " ".join(str(w.message) for w in caught)
+    assert "clamped to one step of 10" in said and "exceeds rtol" in said
+    honest(sol, np.max(np.abs(sol.y - ref.y)))
+    with pytest.raises(SceneError, match="step"):
+        doc["integration"]["step"] = -1.0
         Scene.from_dict(doc).runs
 
 
@@ -499,10 +572,11 @@ def test_order_of_splitting_for_the_lagrange_top(case):
     for order, steps in ((2, (0.04, 0.02)), (4, (0.16, 0.08)), (6, (0.32, 0.16))):
         errors = []
         for h in steps:
-            y = g.solve(top, TOP_Y0, (0, t_end), t_eval=[0, t_end], method="splitting", step=h,
-                        splitting_order=order).y[-1]
+            sol = split_run(top, TOP_Y0, (0, t_end), t_eval=[0, t_end], step=h, splitting_order=order)
+            y = sol.y[-1]
             y[3:] *= np.sign(y[3:] @ ref[3:])
             errors.append(np.max(np.abs(y - ref)))
+            honest(sol, errors[-1])
         measured = np.log2(errors[0] / errors[1])
         # 2^order at halved step asymptotically; ±0.5 for the pre-asymptotic range
         assert abs(measured - order) < 0.5, (case, order, errors, measured)
@@ -513,7 +587,7 @@ def test_lagrange_top_splitting_keeps_Gz_and_r():
     horizontal torque with no axial part: G_z and r are kept to rounding at any step; H, not
     kept by either sub-flow, stays bounded (a symplectic composition), no drift."""
     top = g.lagrange.LagrangeTop(TOP_A, TOP_C, TOP_MU)
-    sol = g.solve(top, TOP_Y0, (0, 2000), method="splitting", step=0.1, splitting_order=4, n_out=201)
+    sol = split_run(top, TOP_Y0, (0, 2000), step=0.1, splitting_order=4, n_out=201)
     Gz, H, r = sol["G_z"], sol["H"], sol.y[:, 2]
     # rounding only: measured 1.2e-13 relative over 2e4 steps (1.3e-12 over 2e5: ~6e-18 a step),
     # where DOP853 at rtol 1e-12 drifts by 1e-10; r exactly
@@ -552,14 +626,15 @@ def test_order_of_splitting_for_the_orthogonal_torque():
     for order, steps in ((2, (0.04, 0.02)), (4, (0.16, 0.08)), (6, (0.32, 0.16))):
         errors = []
         for h in steps:
-            y = g.solve(model, y0, (0, t_end), t_eval=[0, t_end], method="splitting", step=h,
-                        splitting_order=order).y[-1]
+            sol = split_run(model, y0, (0, t_end), t_eval=[0, t_end], step=h, splitting_order=order)
+            y = sol.y[-1]
             y[3:7] *= np.sign(y[3:7] @ ref[3:7])
             errors.append(np.max(np.abs(y - ref)))  # ω, q and τ
+            honest(sol, errors[-1])
         measured = np.log2(errors[0] / errors[1])
         assert abs(measured - order) < 0.5, (order, errors, measured)
     # the servo torque is along Q ⊥ G: |G| projected on, kept to rounding over 2e4 steps
-    run = g.solve(model, y0, (0, 2000), method="splitting", step=0.1, n_out=11)
+    run = split_run(model, y0, (0, 2000), step=0.1, n_out=11)
     G = run["angular_momentum_norm"]
     assert np.max(np.abs(G / G[0] - 1)) < 1e-15
     # with L = 0 the splitting is the exact flow and τ = t (rounding per step)
@@ -575,7 +650,7 @@ def test_new_families_split_in_ensembles_and_scenes():
     from gyrostat.scene import Scene, SceneError
 
     top = g.lagrange.LagrangeTop(TOP_A, TOP_C, TOP_MU, top_cases()["medium"][0])
-    opts = dict(method="splitting", step=0.05, n_out=5)
+    opts = dict(method="splitting", step=0.05, n_out=5, rtol=1e-3)  # bit for bit, not accuracy, is checked
     y0s = [TOP_Y0, g.lagrange.initial_state([0.1, 0.2, 2.5], 1.0)]
     members = g.solve_ensemble(top, y0s, (0, 10), **opts)
     for y0, member in zip(y0s, members):  # the scalar path: the same numbers as one solve

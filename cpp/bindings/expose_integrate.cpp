@@ -209,6 +209,10 @@ void expose_integrate(py::module_& m) {
             "Method 'auto': each switch as (t, method switched to, reason).")
         .def_property_readonly("status", [](const Result& r) { return integrate::status_name(r.status); })
         .def_readonly("message", &Result::message)
+        .def_readonly("notes", &Result::notes, "What the run says about its own answer (information).")
+        .def_readonly("warnings", &Result::warnings, "What the run doubts about its own answer (warned in Python).")
+        .def_readonly("error_estimate", &Result::error_estimate,
+                      "The run's own global error estimate relative to max|y_i| (splitting); NaN: none.")
         .def_readonly("t_last", &Result::t_last, "Where the run stopped: the last accepted time.")
         .def_property_readonly(
             "y_last", [](const Result& r) { return py::array_t<double>(static_cast<py::ssize_t>(r.y_last.size()), r.y_last.data()); },

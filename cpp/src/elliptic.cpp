@@ -3,7 +3,6 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_sf_ellint.h>
-#include <gsl/gsl_sf_elljac.h>
 
 #include <cmath>
 #include <limits>
@@ -62,14 +61,65 @@ double elliptic_E(double m) {
 
 std::array<double, 3> jacobi_sn_cn_dn(double u, double m) {
     require_parameter(m, "jacobi_sn_cn_dn");
+    return jacobi_sn_cn_dn_complementary(u, 1.0 - m);
+}
+
+// Bulirsch's descending Gauss transformation with the complementary parameter (the derivation is
+// in elliptic.hpp). The AGM of (1, √m1) converges quadratically once b/a is near 1 and needs about
+// log2 ln(16/m1) steps before that: 12 levels reach m1 = 1e-300; 40 are kept.
+std::array<double, 3> jacobi_sn_cn_dn_complementary(double u, double m1) {
+    if (!(m1 >= 0.0 && m1 <= 1.0))
+        throw std::invalid_argument("jacobi_sn_cn_dn: the complementary parameter m1 = 1 - m must be in [0, 1]; got m1 = " +
+                                    format_value(m1));
     if (!std::isfinite(u)) throw std::invalid_argument("jacobi_sn_cn_dn: argument u = " + format_value(u) + " is not finite");
-    double sn = 0.0, cn = 0.0, dn = 0.0;
-    // gsl_sf_elljac_e takes the parameter m (unlike the complete integrals).
-    const int status = gsl_sf_elljac_e(u, m, &sn, &cn, &dn);
-    if (status != GSL_SUCCESS)
-        throw std::invalid_argument(std::string("jacobi_sn_cn_dn: GSL failed (") + gsl_strerror(status) + ") at u = " +
-                                    format_value(u) + ", m = " + format_value(m));
-    return {sn, cn, dn};
+    const double m = 1.0 - m1;
+    if (std::abs(u) < 1e-8) return {u, 1.0 - 0.5 * u * u, 1.0 - 0.5 * m * u * u};
+    if (m1 == 0.0) {  // the separatrix: sn = tanh u, cn = dn = sech u
+        const double sech = 1.0 / std::cosh(u);
+        return {std::tanh(u), sech, sech};
+    }
+    constexpr int levels = 40;
+    double a_level[levels], b_level[levels];
+    double a = 1.0, b = std::sqrt(m1), mean = 1.0;
+    int n = 0;
+    for (;;) {
+        a_level[n] = a, b_level[n] = b;
+        mean = 0.5 * (a + b);
+        if (std::abs(a - b) <= 1e-9 * a || n + 1 == levels) break;  // quadratic: the next mean is exact to rounding
+        b = std::sqrt(a * b);
+        a = mean;
+        ++n;
+    }
+    const double v = mean * u;
+    const double s = std::sin(v);
+    double dn = 1.0;
+    double x = std::cos(v) / s;  // cot v, then the ratio carried down the levels
+    double c = mean * x;
+    for (int level = n; level >= 0; --level) {
+        x *= c;
+        c *= dn;
+        dn = (b_level[level] + x) / (a_level[level] + x);
+        x = c / a_level[level];
+    }
+    const double sn = std::copysign(1.0 / std::sqrt(c * c + 1.0), s);
+    return {sn, c * sn, dn};
+}
+
+double jacobi_argument(double sn, double cn, double dn, double m1) {
+    if (!(m1 >= 0.0 && m1 <= 1.0))
+        throw std::invalid_argument("jacobi_argument: the complementary parameter m1 = 1 - m must be in [0, 1]; got m1 = " +
+                                    format_value(m1));
+    if (!std::isfinite(sn) || !std::isfinite(cn) || !(dn > 0.0) || !std::isfinite(dn))
+        throw std::invalid_argument("jacobi_argument: needs finite sn, cn and dn > 0; got sn = " + format_value(sn) +
+                                    ", cn = " + format_value(cn) + ", dn = " + format_value(dn));
+    if (sn == 0.0) return cn >= 0.0 ? 0.0 : 2.0 * elliptic_K(1.0 - m1);
+    gsl_sf_result rf;
+    const double x = cn * cn, y = dn * dn;
+    const double F = sn * checked(gsl_sf_ellint_RF_e(x, y, 1.0, GSL_PREC_DOUBLE, &rf), rf, "jacobi_argument (R_F)", 1.0 - m1);
+    if (cn >= 0.0) return F;
+    gsl_sf_result rk;
+    const double K = checked(gsl_sf_ellint_RF_e(0.0, m1, 1.0, GSL_PREC_DOUBLE, &rk), rk, "jacobi_argument (K)", 1.0 - m1);
+    return std::copysign(2.0 * K, sn) - F;
 }
 
 double mean_sn_squared(double m) {

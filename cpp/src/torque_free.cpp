@@ -40,19 +40,22 @@ void compute_constants(const Vec3& J, const Vec3& w, bool precession, FreeBodyCo
     const Real a = sqrt(across / (A * (C - A)));
     const Real b = B == C ? Real(0.0) : sqrt(across / (B * (C - B)));
     const Real c = sqrt(along / (C * (C - A)));
+    // 1 − m = ((C − B) along − (B − A) across)/((C − B) along) = (C − A) versus_middle/((C − B) along):
+    // the complement from the component sum (no cancellation next to the separatrix, where
+    // m = 1 − 1e-30 is not a double), and m from it.
     const Real m_denominator = (C - B) * along;
-    Real m = m_denominator == Real(0.0) ? Real(1.0) : (B - A) * across / m_denominator;
-    if (!(m >= Real(0.0))) m = Real(0.0);
-    if (!(m <= Real(1.0))) m = Real(1.0);
+    Real one_minus_m = m_denominator == Real(0.0) ? Real(0.0) : (C - A) * versus_middle / m_denominator;
+    if (!(one_minus_m >= Real(0.0))) one_minus_m = Real(0.0);
+    if (!(one_minus_m <= Real(1.0))) one_minus_m = Real(1.0);
+    const Real m = Real(1.0) - one_minus_m;
     k.sign3 = w3 >= 0.0 ? 1.0 : -1.0;
     // Parity of the relabelling (1', 2', 3'): a cyclic order keeps Euler's equations, an odd
     // one reverses the sign of their right-hand sides.
     const double parity = (k.axis[1] - k.axis[0] + 3) % 3 == 1 ? 1.0 : -1.0;
     const Real nu = Real(parity * k.sign3) * (C - B) * b * c / (A * a);
-    const Real one_minus_m = Real(1.0) - m;
     const bool bounded = one_minus_m > Real(0.0);
     const Real K = bounded ? carlson_RF(Real(0.0), one_minus_m, Real(1.0)) : Real(std::numeric_limits<double>::infinity());
-    k.a = double(a), k.b = double(b), k.c = double(c), k.m = double(m);
+    k.a = double(a), k.b = double(b), k.c = double(c), k.m = double(m), k.m1 = double(one_minus_m);
     k.nu = DoubleDouble(nu), k.K = DoubleDouble(K);
     if (!precession) return;
     Real G2(0.0);
@@ -85,23 +88,31 @@ TorqueFreeSolution::TorqueFreeSolution(const Body& body, const Vec3& omega0, dou
     else
         compute_constants<double>(J, omega0, precession, k_);
     if (k_.constant) return;
-    const double w1 = omega0[k_.axis[0]], w2 = omega0[k_.axis[1]];
-    const double phi0 = std::atan2(k_.b > 0.0 ? w2 / k_.b : 0.0, w1 / k_.a);
-    u0_ = elliptic_F(phi0, k_.m);
+    // u0 from sn u0 = ω2'/b, cn u0 = ω1'/a, dn u0 = ±ω3'/c (jacobi_argument): next to the
+    // separatrix cn and dn are both tiny, and only the components themselves carry their digits.
+    const double w1 = omega0[k_.axis[0]], w2 = omega0[k_.axis[1]], w3 = omega0[k_.axis[2]];
+    const double sn0 = k_.b > 0.0 ? w2 / k_.b : 0.0, cn0 = w1 / k_.a;
+    const double norm = std::hypot(sn0, cn0);  // 1 to rounding
+    // On the separatrix (K = ∞) the orbit with ω1' < 0 is the mirror (−a sech, −b tanh, ±c sech)
+    // of the one with ω1' > 0: "u + 2K" with K = ∞, so it is carried as the fixed parity j = 1
+    // (sn, cn change sign with j: TorqueFreeSolution::omega) and u0 taken on the other branch.
+    branch_ = isfinite(k_.K) || cn0 >= 0.0 ? 0.0 : 1.0;
+    const double flip = branch_ == 0.0 ? 1.0 : -1.0;
+    u0_ = jacobi_argument(flip * sn0 / norm, flip * cn0 / norm, std::abs(w3) / k_.c, k_.m1);
 }
 
 // u = ν τ + u0 in double-double, j = nearest integer of u/2K, r = u − 2jK (|r| ≤ K up to
 // rounding: clamped so that cn r ≥ 0), then sn, cn, dn of r in double.
 TorqueFreeSolution::Reduced TorqueFreeSolution::reduced_since(const DoubleDouble& tau) const {
     const DoubleDouble u = k_.nu * tau + DoubleDouble(u0_);
-    double j = 0.0, r = double(u);
+    double j = branch_, r = double(u);
     if (isfinite(k_.K)) {
         const Reduction reduction = reduce(u, k_.K + k_.K);
         j = reduction.n;
         const double K = double(k_.K);
         r = std::clamp(double(reduction.r), -K, K);
     }
-    const auto [sn, cn, dn] = jacobi_sn_cn_dn(r, k_.m);
+    const auto [sn, cn, dn] = jacobi_sn_cn_dn_complementary(r, k_.m1);
     return {j, sn, std::max(cn, 0.0), dn};
 }
 

@@ -14,7 +14,7 @@ from gyrostat import _core
 from gyrostat._core import (Body, ConstantTorque, LinearDamping, MovingMassDamper, ResistiveMedium,
                             TorqueFreeSolution, ViscousCavity)
 from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
-from gyrostat.solution import Solution
+from gyrostat.solution import AccuracyWarning, Solution
 from gyrostat.solve import METHODS, Options, solve, solve_ensemble, torque_free
 from gyrostat.validity import ValidityWarning
 from gyrostat.sweeps import LogUniform, Normal, Parameter, Uniform, sweep
@@ -40,6 +40,7 @@ __all__ = [
     "solve_ensemble",
     "torque_free",
     "ValidityWarning",
+    "AccuracyWarning",
     "sweep",
     "Parameter",
     "Uniform",

@@ -207,6 +207,13 @@ class MovingMassModel(ModelBase):
     def quasi_static_state(self, omega) -> np.ndarray:
         return np.asarray(self._core.quasi_static_state(np.asarray(omega, float)))
 
+    def check(self, solution) -> list:
+        """The model's assumptions along a solution: the mass's displacement |u|/ρ ≪ 1 (and the
+        damper torque's, for the reduction it stands behind)."""
+        from gyrostat import validity
+
+        return validity.check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
+
     def __repr__(self) -> str:
         return (f"MovingMassModel({self.body!r}, mass={self.mass}, arm={self.arm}, frequency={self.frequency}, "
                 f"damping={self.damping}, torques={list(self.torques)!r})")

@@ -98,7 +98,7 @@ class OrthogonalModel(ModelBase):
     State: (p, q, r, τ) or, with ``attitude=True``, (p, q, r, q_w, q_x, q_y, q_z, τ); ω alone (or
     ω and the quaternion) as y0 starts τ at 0. Outputs: ``angular_momentum_norm`` |G| and ``h`` =
     ω·Jω (exact without other torques), ``g`` = dτ/dt, ``L``, ``Q_norm`` |Q|, ``delta`` δ,
-    ``regularised`` (1 where |Q| < δ: the prescribed L was not applied), ``theta_G``, ``phi_G``
+    ``regularised`` (1 where |Q| < δ or Q = 0: the prescribed L was not applied; at Q = 0 the servo applies nothing and g = 1), ``theta_G``, ``phi_G``
     (the angles of G in body axes, paper (15)) and, with attitude, the z-x-z Euler angles.
 
     ``regularisation``: ``"threshold"`` (default: the paper's torque wherever |Q| ≥ δ = η|ω||G|,

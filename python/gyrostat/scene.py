@@ -258,9 +258,7 @@ def _integration(doc: dict, kind: str = "rigid_body", **extra) -> dict:
         if kind not in SPLITS:
             raise SceneError(f"[integration] method = 'splitting' is not offered for {kind} scenes (their models do "
                              f"not split into the free-body flow and a perturbation; it is for {', '.join(SPLITS)})")
-        if "step" not in integ:
-            raise SceneError("[integration] method = 'splitting' needs step = h > 0 (its fixed step)")
-        options.update(step=integ["step"], splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
+        options.update(step=integ.get("step"), splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
     options.update(extra)
     return options
 
@@ -303,7 +301,8 @@ def averaged_rung(doc: dict, body, torques, omega, drawable: tuple[str, ...], at
 
 
 SPLITTING_FIELDS = {
-    "step": Field(float, doc="fixed step of method 'splitting' (required there)", unit="s", check=positive),
+    "step": Field(float, doc="fixed step of method 'splitting' (left out: chosen from rtol by the splitting's own "
+                        "error estimate)", unit="s", check=positive),
     "splitting_order": Field(int, default=_DEFAULT.splitting_order, doc="order of the splitting composition: 2, 4 or 6",
                              check=_splitting_order),
 }

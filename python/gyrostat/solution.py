@@ -10,6 +10,12 @@ _RATES = ("p", "q", "r")
 _QUATERNION = ("q_w", "q_x", "q_y", "q_z")
 
 
+class AccuracyWarning(UserWarning):
+    """A run doubts its own answer: the splitting's estimated error exceeds rtol, a fixed step was
+    clamped to the span, or BDF stepped over oscillations it damps away. The sentence names the
+    measured values and what to do; it is also kept in ``Solution.notes``."""
+
+
 class Solution:
     """A trajectory of any model, as recorded by the engine.
 
@@ -34,7 +40,9 @@ class Solution:
     methods_used, method_switches: the integrators that carried the run, in order of first use;
        for ``method="auto"``, each switch as (t, method, reason): where the run went from DOP853
        to CVODE BDF or back, and the measured h·|λ| that decided it.
-    notes: remarks added after the run (assumptions checked, paper-specific analysis).
+    notes: what the run says about its own answer (the splitting's chosen step and estimated
+       error; every :class:`AccuracyWarning`), then remarks added after the run (assumptions
+       checked, paper-specific analysis).
 
     The arrays are views of the engine's memory, made on first access: no copy, no physics
     recomputed in Python.
@@ -45,7 +53,7 @@ class Solution:
     def __init__(self, result: _core.Result, model=None):
         self._result = result
         self._columns = None
-        self.notes: list[str] = []
+        self.notes: list[str] = list(result.notes) + list(result.warnings) if result.notes or result.warnings else []
         self.model = model
 
     # ---- arrays
@@ -219,6 +227,11 @@ class Solution:
     @property
     def message(self) -> str:
         return self._result.message
+
+    @property
+    def error_estimate(self) -> float:
+        """The run's own global error estimate relative to max|y_i| (``splitting``); NaN: none."""
+        return self._result.error_estimate
 
     @property
     def method(self) -> str:

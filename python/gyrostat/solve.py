@@ -11,7 +11,7 @@ import numpy as np
 from gyrostat import _core
 from gyrostat import progress as _bars
 from gyrostat.model import ModelBase
-from gyrostat.solution import Solution
+from gyrostat.solution import AccuracyWarning, Solution
 
 METHODS: tuple[str, ...] = tuple(_core.methods())
 """Integrators: ``dop853`` (fixed-size, allocation-free; the default for non-stiff problems),
@@ -175,6 +175,8 @@ def _span(t_span) -> tuple[float, float]:
 def _checked(solution: Solution, model, check_validity: bool) -> Solution:
     if solution.status == "interrupted":
         warnings.warn(f"interrupted: {solution.message}", RuntimeWarning, stacklevel=3)
+    for doubt in solution._result.warnings:
+        warnings.warn(doubt, AccuracyWarning, stacklevel=3)
     if check_validity and type(model).check is not _BASE_CHECK and len(solution):
         from gyrostat.validity import ValidityWarning
 
@@ -214,10 +216,14 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         grows with the outputs asked for, not with the steps; ``every_step=True`` records every
         accepted step as well. ``options`` gives them all at once.
     step, splitting_order:
-        For ``method="splitting"``: the fixed step h (required; a ValueError names a value
-        ≤ 0 or NaN) and the order of the composition (2: Strang, 4 (default), 6: Yoshida's triple
-        jumps). The free flow is exact (elliptic functions); constant and linear torques have an
-        exact flow too, the others are integrated over each sub-step by one 8th-order step.
+        For ``method="splitting"``: the fixed step h (a ValueError names a value ≤ 0 or NaN; left
+        out, it is chosen from ``rtol`` by the splitting's own error estimate) and the order of
+        the composition (2: Strang, 4 (default), 6: Yoshida's triple jumps). The free flow is
+        exact (elliptic functions); constant and linear torques have an exact flow too, the
+        others are integrated over each sub-step by one 8th-order step. The run estimates its
+        own global error (steps of h against h/2 at up to 32 steps: ``solution.error_estimate``,
+        ``solution.notes``) and warns (:class:`gyrostat.AccuracyWarning`) when it exceeds
+        ``rtol``, or when a step above the span was clamped to it.
     events:
         :class:`gyrostat.events.Event` (a state component or named output crossing a value,
         evaluated in C++) or callables ``f(t, y)`` as in SciPy (the slow path), or a list of
@@ -270,7 +276,7 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     if report is not None:
         _bars.close(report)
     solution = Solution(result, model)
-    if result.success and (not check_validity or type(model).check is _BASE_CHECK):
+    if result.success and (not check_validity or type(model).check is _BASE_CHECK) and not result.warnings:
         return solution
     return _checked(solution, model, check_validity)
 
@@ -338,7 +344,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     finally:
         _bars.close(report)
     solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
-    return [_checked(s, s.model, check_validity) if s.success else s for s in solutions]
+    return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
 
 
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:

@@ -59,7 +59,8 @@ struct Options {
     std::vector<Event> events;
     /// Keep every step's continuous extension (Result::dense): memory grows with the steps.
     bool dense_output = false;
-    /// Fixed step of method 'splitting' (required there: 0 means not set; unused by the others).
+    /// Fixed step of method 'splitting' (0: chosen from rtol by the splitting's own error
+    /// estimate; unused by the other methods).
     double step = 0.0;
     /// Order of the splitting composition: 2 (Strang), 4 or 6 (Yoshida's triple jumps).
     int splitting_order = 4;
@@ -135,6 +136,16 @@ struct Result {
     double t_last = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> y_last;
     double h_next = 0.0;
+    /// What the run says about its own answer, one sentence each. `notes`: information (the
+    /// splitting's chosen step and estimated error); `warnings`: doubts about the answer (that
+    /// estimate above rtol, a step clamped to the span, BDF stepping over oscillations it damps).
+    /// The status stays Success; Python warns with each warning (gyrostat.AccuracyWarning) and
+    /// keeps both in Solution.notes and the scene's report.
+    std::vector<std::string> notes;
+    std::vector<std::string> warnings;
+    /// The run's own estimate of its global error relative to max|y_i| (method 'splitting', from
+    /// composite steps of h against two of h/2); NaN where the method gives none.
+    double error_estimate = std::numeric_limits<double>::quiet_NaN();
 
     bool success() const { return status == Status::Success; }
     std::size_t size() const { return t.size(); }

@@ -78,6 +78,9 @@ bool drive(const System& system, Stepper& stepper, N_Vector y, double t0, Record
     };
     auto stop_time = [&]() { return Stepper::exact_outputs && cursor.pending() ? cursor.next_time() : t1; };
 
+    // An implicit stepper (CVODE BDF) is watched for stepping over oscillations (stiffness.hpp).
+    std::optional<OscillationWatch<System>> oscillations;
+    if (!stepper.suggest_stiff()) oscillations.emplace(system);
     double stop = stop_time();
     stepper.set_stop_time(stop);
     Vector interpolated(N_VClone(y));
@@ -119,6 +122,7 @@ bool drive(const System& system, Stepper& stepper, N_Vector y, double t0, Record
             return false;
         }
         cursor.at_end(t, state(), options.every_step);
+        if (oscillations) oscillations->after_step(t, state(), std::abs(t - t_before), !(direction * (t - t1) < 0.0), result);
         if (monitor && direction * (t - t1) < 0.0 && monitor->implicit_step(t, state(), stepper.stats().last_step)) {
             result.stats = stats();
             keep_last(result, t, state(), result.stats.last_step);

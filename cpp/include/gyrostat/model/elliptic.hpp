@@ -23,8 +23,28 @@ namespace gyrostat::model {
 double elliptic_K(double m);
 /// E(m) = ∫_0^{π/2} √(1 − m sin²ϑ) dϑ, 0 ≤ m ≤ 1.
 double elliptic_E(double m);
-/// (sn, cn, dn)(u | m), 0 ≤ m ≤ 1.
+/// (sn, cn, dn)(u | m), 0 ≤ m ≤ 1: jacobi_sn_cn_dn_complementary(u, 1 − m).
 std::array<double, 3> jacobi_sn_cn_dn(double u, double m);
+/// (sn, cn, dn)(u | m) with the parameter given by its complement m1 = 1 − m, 0 ≤ m1 ≤ 1, so that
+/// m next to 1 (the free body next to its separatrix: m1 down to 1e-30 and below) keeps every digit
+/// of m1 (1 − m in double would round m1 < 1.1e-16 to 0 or to a multiple of 2^-53).
+///
+/// Bulirsch's descending Gauss transformation (R. Bulirsch, Numer. Math. 7 (1965) 78, "sncndn";
+/// DLMF 22.20(ii)): the AGM a_0 = 1, b_0 = √m1, a_{n+1} = (a_n + b_n)/2, b_{n+1} = √(a_n b_n) to
+/// a_N ≈ b_N (= π/2K); with v = a_N u and x_N = cot v the recursion on the cotangent,
+///   x_{n−1} = x_n c_n (with the dn of the level above), dn_{n−1} = (b_{n−1} + x)/(a_{n−1} + x),
+/// gives sn = ±1/√(1 + c²), cn = c·sn, dn. Absolute error ~1e-16 on every m1 in [0, 1] and every
+/// |u| ≤ K (tested against mpmath down to m1 = 1e-30); |u| < 1e-8 takes the Maclaurin terms
+/// sn = u, cn = 1 − u²/2, dn = 1 − m u²/2 (next terms below 1e-16 relative); m1 = 0 gives the
+/// separatrix's tanh u, sech u, sech u.
+std::array<double, 3> jacobi_sn_cn_dn_complementary(double u, double m1);
+/// The argument u ∈ (−2K, 2K] at which (sn, cn, dn)(u | 1 − m1) take the given values (which must
+/// satisfy sn² + cn² = 1, dn² = cn² + m1 sn² to rounding, dn > 0): u = sn R_F(cn², dn², 1) for
+/// cn ≥ 0 (DLMF 19.25.5 with sin φ = sn, cos φ = cn, Δ = dn), and ±2K − sn R_F(cn², dn², 1) for
+/// cn < 0 (F(π − φ) = 2K − F(φ)). dn enters as given, not as √(1 − m sn²): next to the
+/// separatrix both cn and dn are tiny and only their own values carry their digits. m1 = 0 with
+/// cn = dn = 0 (the saddle itself) has no argument: std::invalid_argument.
+double jacobi_argument(double sn, double cn, double dn, double m1);
 /// W(m) = ⟨sn²⟩ over a period = (K − E)/(m K) = R_D(0, 1−m, 1) / (3 R_F(0, 1−m, 1)):
 /// W(0) = ½, W(1) = 1, no 0/0 at m → 0.
 double mean_sn_squared(double m);

@@ -104,13 +104,19 @@ public:
     }
 
     /// |K| (conserved without external torques) and E (dissipated by the damper): see above.
-    static constexpr std::array<OutputInfo, 2> outputs_info{{{"angular_momentum_norm", true}, {"energy", false}}};
+    /// Outputs: |K|, E, and |u|/ρ, the mass's displacement against its arm: the explicit model is
+    /// a point mass on a linear spring near its attachment, so |u|/ρ ≪ 1 is its assumption (a soft
+    /// spring, Ω near the spin rate, lets the mass drift metres on a 1 m arm; the validity check
+    /// reports it like every other assumption).
+    static constexpr std::array<OutputInfo, 3> outputs_info{
+        {{"angular_momentum_norm", true}, {"energy", false}, {"displacement_ratio", false}}};
     void outputs(double, const State& y, double* out) const {
         const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
         const Vec3 d = Vec3(0, 0, rho_) + u;
         const Vec3 s = w.cross(d) + v;
         out[0] = (carrier_.cwiseProduct(w) + mu_ * d.cross(s)).norm();
         out[1] = 0.5 * w.dot(carrier_.cwiseProduct(w)) + 0.5 * mu_ * s.squaredNorm() + 0.5 * mu_ * omega2_ * u.squaredNorm();
+        out[2] = u.norm() / rho_;
     }
 
     /// (u, v) of the forced quasi-static motion for a given ω (docs/papers/001 §C): the initial

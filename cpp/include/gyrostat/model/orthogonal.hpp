@@ -160,8 +160,13 @@ private:
 /// applied exactly. M stays parallel to Q, so |G|² and h = ω·Jω stay exact first integrals and
 /// ω(t) = ω_ZV(τ(t)) stays exact; at Q = 0 the torque vanishes and the permanent rotation is an
 /// equilibrium. (The smooth form L Q/√(|Q|² + δ²) of the docs also works but changes L by a
-/// relative δ²/2|Q|² everywhere: τ(60) moves by 7.6e-4 in scene S1.) Only ω = 0 has n_δ = 0:
-/// there M = 0 and g = 1 (nothing divides by zero).
+/// relative δ²/2|Q|² everywhere: τ(60) moves by 7.6e-4 in scene S1.)
+///
+/// Q = 0 exactly (rest, or any permanent rotation ω ∥ G, with or without a rotor) has one rule
+/// (servo_gain): e_L has no direction, the servo applies nothing (M = 0), τ runs with t (g = 1)
+/// and the point is flagged `regularised` (the prescribed L is not applied), whatever δ is there
+/// (δ = 0 at ω = 0, δ > 0 at a permanent rotation). Every Q ≠ 0 has ω ≠ 0, G ≠ 0, hence δ > 0 and
+/// n_δ ≥ δ/2 > 0: nothing divides by zero.
 ///
 /// State layout: (p, q, r, τ) or (p, q, r, q_w, q_x, q_y, q_z, τ); τ(t0) = 0 when the initial
 /// state is given as ω (or ω and the quaternion).
@@ -204,22 +209,26 @@ public:
         return q_norm >= delta ? q_norm : (q_norm * q_norm + delta * delta) / (2.0 * delta);
     }
 
-    /// dτ/dt = g(t, ω) = 1 − L(t)/n_δ(|Q|) (1 at ω = 0).
+    /// L(t)/n_δ(|Q|) for Q ≠ 0, and 0 at Q = 0 (the class comment's one rule): M_servo = gain·Q,
+    /// g = 1 − gain.
+    double servo_gain(double t, double q_norm, double delta) const {
+        return q_norm > 0.0 ? law_(t) / denominator(q_norm, delta) : 0.0;
+    }
+    /// Whether the prescribed L is not applied at (|Q|, δ): inside the band |Q| < δ, or at Q = 0.
+    static bool regularised(double q_norm, double delta) { return q_norm < delta || q_norm == 0.0; }
+
+    /// dτ/dt = g(t, ω) = 1 − L(t)/n_δ(|Q|) (1 at Q = 0).
     double tau_rate(double t, const Vec3& omega) const {
         const Vec3 G = body_.angular_momentum(omega);
         const Vec3 Q = omega.cross(G);
-        const double d = eta_ * omega.norm() * G.norm();
-        const double n = denominator(Q.norm(), d);
-        return n > 0.0 ? 1.0 - law_(t) / n : 1.0;
+        return 1.0 - servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm());
     }
 
     /// The servo torque L(t) Q/n_δ(|Q|) in body axes.
     Vec3 servo_torque(double t, const Vec3& omega) const {
         const Vec3 G = body_.angular_momentum(omega);
         const Vec3 Q = omega.cross(G);
-        const double d = eta_ * omega.norm() * G.norm();
-        const double n = denominator(Q.norm(), d);
-        return n > 0.0 ? Vec3(law_(t) / n * Q) : Vec3::Zero();
+        return servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm()) * Q;
     }
 
     /// ω̇ = J⁻¹ (−g Q + ΣM_i);  q̇ = ½ q ⊗ (0, ω);  τ̇ = g   (equations in the class comment).
@@ -227,9 +236,7 @@ public:
         const Vec3 omega = y.template head<3>();
         const Vec3 G = body_.moments().cwiseProduct(omega) + body_.rotor();
         const Vec3 Q = omega.cross(G);
-        const double d = eta_ * omega.norm() * G.norm();
-        const double n = denominator(Q.norm(), d);
-        const double g = n > 0.0 ? 1.0 - law_(t) / n : 1.0;
+        const double g = 1.0 - servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm());
         Vec3 m = -g * Q;
         if (!torques_.empty()) m += torques_.total(t, omega, body_.moments());
         dy.template head<3>() = body_.inverse_moments().cwiseProduct(m);
@@ -244,7 +251,7 @@ public:
     ///   ∂n/∂ω = Qᵀ ∂Q/∂ω / |Q|                              (|Q| ≥ δ),
     ///         = Qᵀ ∂Q/∂ω / δ + (½ − |Q|²/(2δ²)) ∂δ/∂ω       (|Q| < δ: the regularised branch),
     ///         = (Qᵀ ∂Q/∂ω + δ ∂δ/∂ω) / n                     (smooth),
-    ///   ∂g/∂ω = L(t)/n² ∂n/∂ω  (0 at ω = 0, where g = 1),
+    ///   ∂g/∂ω = L(t)/n² ∂n/∂ω  (0 at Q = 0, where g = 1),
     ///   ∂ω̇/∂ω = J⁻¹ (−Q ∂g/∂ω − g ∂Q/∂ω + ΣM_i'),  ∂τ̇/∂ω = ∂g/∂ω; the quaternion rows as in
     /// quaternion_rate_jacobian; nothing depends on τ.
     using Jacobian = Eigen::Matrix<double, dim, dim>;
@@ -260,7 +267,7 @@ public:
         const Mat3 dQ = skew(omega) * J.asDiagonal() - skew(G);
         Eigen::RowVector3d dg = Eigen::RowVector3d::Zero();
         double g = 1.0;
-        if (n > 0.0) {
+        if (q_norm > 0.0) {
             const double L = law_(t);
             g = 1.0 - L / n;
             Eigen::RowVector3d dd = Eigen::RowVector3d::Zero();
@@ -312,15 +319,13 @@ public:
     Perturbation perturbation(double h) const { return {h}; }
     /// y ← the perturbation's flow over p.h at frozen time t: (ω, τ) by one 8th-order step.
     void perturb(const Perturbation& p, double t, State& y) const {
-        const double L = law_(t);
         const Vec3& J = body_.moments();
         Eigen::Vector4d x(y[0], y[1], y[2], y[tau_index]);
         integrate::dop853_substep(p.h, x, [&](const Eigen::Vector4d& state) -> Eigen::Vector4d {
             const Vec3 omega = state.template head<3>();
             const Vec3 G = J.cwiseProduct(omega) + body_.rotor();
             const Vec3 Q = omega.cross(G);
-            const double n = denominator(Q.norm(), eta_ * omega.norm() * G.norm());
-            const double servo = n > 0.0 ? L / n : 0.0;  // at ω = 0: Q = 0, g = 1
+            const double servo = servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm());
             Vec3 m = servo * Q;
             if (!torques_.empty()) m += torques_.total(t, omega, J);
             Eigen::Vector4d rate;
@@ -368,7 +373,7 @@ public:
         out[3] = law_(t);
         out[4] = q_norm;
         out[5] = d;
-        out[6] = q_norm < d ? 1.0 : 0.0;
+        out[6] = regularised(q_norm, d) ? 1.0 : 0.0;
         out[7] = std::atan2(std::hypot(G[0], G[1]), G[2]);
         out[8] = std::atan2(G[0], G[1]);
         if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out + 9);

@@ -26,6 +26,7 @@ struct FreeBodyConstants {
     bool constant = true;                  ///< at rest, spherical, or a permanent rotation
     int axis[3] = {0, 1, 2};               ///< body index of axes 1', 2', 3' (3': the polhode's axis)
     double a = 0, b = 0, c = 0, m = 0, sign3 = 1;
+    double m1 = 1;                         ///< 1 − m from its own formula (every digit next to m = 1)
     DoubleDouble nu, K;                    ///< ν and K(m) (K = ∞ on the separatrix m = 1)
     // with the precession (FreeBodyFlow): |G|, |G|/C, |G|(C − A)/(C A ν), Π(N | m), N
     DoubleDouble G, rate, coeff, Pi_complete;
@@ -40,8 +41,13 @@ struct FreeBodyConstants {
 ///   ω1' = a cn(u, m),  ω2' = b sn(u, m),  ω3' = ±c dn(u, m),  u = ν (t − t0) + u0,
 ///   a² = (2TC − G²)/(A(C − A)),  b² = (2TC − G²)/(B(C − B)),  c² = (G² − 2TA)/(C(C − A)),
 ///   m = k² = (B − A)(2TC − G²)/((C − B)(G² − 2TA)),  ν = σ (C − B) b c/(A a),
-/// with σ = ±1 from the sign of ω3' and the parity of the relabelling, and u0 = F(φ0, k),
-/// φ0 = atan2(ω2'(t0)/b, ω1'(t0)/a) (Landau & Lifshitz, Mechanics §37).
+/// with σ = ±1 from the sign of ω3' and the parity of the relabelling, and u0 the argument at
+/// which sn = ω2'(t0)/b, cn = ω1'(t0)/a, dn = |ω3'(t0)|/c (u0 = F(φ0, k), φ0 = atan2(sn, cn);
+/// Landau & Lifshitz, Mechanics §37). Next to the separatrix m = 1 − m1 with m1 below the
+/// rounding of 1 (1 − k² = 1e-30 is reached from ω0 = (1e-15, 1, 1e-15)): m1 is formed as
+/// (C − A)(A(A − B)ω1² + C(C − B)ω3²)/((C − B)(G² − 2TA)), a sum of components, never as 1 − m,
+/// and both sn, cn, dn(u | m) and u0 are evaluated from m1 (elliptic.hpp), with dn u0 taken from
+/// ω3' itself rather than from √(1 − m sn²).
 /// Permanent rotations (a = b = 0) and the spherical body give a constant ω. The argument u is
 /// reduced to r ∈ [−K, K] (u = 2jK + r; sn, cn change sign with j, dn does not) so that the
 /// cost does not depend on t. ν and K (FreeBodyConstants) are computed in double-double from the
@@ -62,6 +68,7 @@ public:
     std::vector<double> omega(const std::vector<double>& times) const;  ///< n×3, row-major
 
     double modulus_squared() const { return k_.m; }           ///< m = k² (0 for permanent rotation)
+    double complementary_parameter() const { return k_.m1; }  ///< 1 − k², to full relative accuracy
     double frequency() const { return double(k_.nu); }        ///< ν (rad/s of the argument u)
     double period() const;                                     ///< of ω(t): 4K(m)/|ν| (∞ when constant)
     /// The longest piece over which an event search may assume at most one crossing of a smooth
@@ -69,7 +76,8 @@ public:
     double event_step() const { return period() / 32.0; }
     bool is_constant() const { return k_.constant; }
 
-    /// u(t) = 2jK + r, |r| ≤ K: (j, sn r, cn r, dn r) (j = 0 and r = u on the separatrix m = 1).
+    /// u(t) = 2jK + r, |r| ≤ K: (j, sn r, cn r, dn r) (on the separatrix m = 1: r = u, and j = 0,
+    /// or 1 on the mirrored orbit where ω1' < 0).
     struct Reduced {
         double j, sn, cn, dn;
     };
@@ -90,6 +98,7 @@ public:
 private:
     Vec3 omega0_ = Vec3::Zero();
     double t0_ = 0.0, u0_ = 0.0;
+    double branch_ = 0.0;  ///< on the separatrix: 1 for the mirrored orbit (ω1' < 0), else 0
     FreeBodyConstants k_;
 };
 
