@@ -62,6 +62,21 @@ def _terminal_count(terminal, what) -> int:
     raise ValueError(f"event {what!r}: terminal = {terminal!r} must be a bool or a count >= 0")
 
 
+def _check_signature(function: Callable, i: int, name: str) -> None:
+    """A callable event is called as f(t, y): one that cannot be is a TypeError naming it now,
+    before the run (a callable without a signature to read is called as it is)."""
+    import inspect
+
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):
+        return
+    try:
+        signature.bind(0.0, None)
+    except TypeError as error:
+        raise TypeError(f"event {i} ({name}) must take (t, y): {error}") from None
+
+
 def to_core(events, state_names, output_names) -> list:
     """The engine's events for a model with these state and output names."""
     if events is None:
@@ -85,6 +100,7 @@ def to_core(events, state_names, output_names) -> list:
             if direction not in (-1, 0, 1):
                 raise ValueError(f"event {i}: direction = {direction!r}: choose -1, 0 or 1")
             name = getattr(event, "__name__", f"event {i}")
+            _check_signature(event, i, name)
             function: Callable = event
             core.append(_core.Event("function", 0, 0.0, direction,
                                     _terminal_count(getattr(event, "terminal", False), name), name, function))

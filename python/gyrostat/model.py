@@ -16,8 +16,40 @@ TORQUE_TYPES = (_core.ConstantTorque, _core.LinearDamping, _core.ResistiveMedium
                 _core.MovingMassDamper)
 
 
+def shown(value, limit: int = 60) -> str:
+    """``repr(value)`` on one line, shortened to ``limit`` characters: for error messages."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def floats(value, name: str, what: str = "real numbers") -> np.ndarray:
+    """``value`` as an array of floats, or a one-line ValueError naming ``name``, ``what`` it must
+    be and the value: strings, None, booleans alone, complex numbers and ragged lists are refused,
+    never cast (NumPy would say "could not convert string to float" or drop an imaginary part)."""
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError):  # a ragged list
+        array = None
+    if array is None or array.dtype.kind not in "iuf":
+        raise ValueError(f"{name} must be {what}, got {shown(value)}")
+    return array.astype(float, copy=False)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` as a bool, or a ValueError naming ``name``: only True and False are booleans
+    (``bool("no")`` is True; 0 and 1 are numbers)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} = {shown(value)} must be True or False")
+
+
 def check_torques(torques) -> tuple:
-    """The torques as a tuple; anything that is not a torque raises TypeError naming its type."""
+    """The torques as a tuple (a single torque is a list of one); anything that is not a torque
+    raises TypeError naming its type."""
+    if isinstance(torques, TORQUE_TYPES):
+        return (torques,)
+    if isinstance(torques, (str, bytes)) or not hasattr(torques, "__iter__"):
+        raise TypeError(f"torques must be a list of torques, got {type(torques).__name__}")
     torques = tuple(torques)
     for torque in torques:
         if not isinstance(torque, TORQUE_TYPES):
@@ -104,7 +136,7 @@ class Model(ModelBase):
     def __init__(self, body: _core.Body, torques: Sequence = (), attitude: bool = False):
         self.body = check_body(body)
         self.torques = check_torques(torques)
-        self._core = _core.gyrostat_model(body, self.torques, bool(attitude))
+        self._core = _core.gyrostat_model(body, self.torques, flag(attitude, "attitude"))
 
     @property
     def is_torque_free_rigid_body(self) -> bool:
@@ -131,7 +163,7 @@ class TorqueFreeModel(ModelBase):
     def __init__(self, body: _core.Body, attitude: bool = False):
         self.body = check_body(body)
         self.torques = ()
-        self._core = _core.torque_free_model(body, bool(attitude))
+        self._core = _core.torque_free_model(body, flag(attitude, "attitude"))
 
     def __repr__(self) -> str:
         return f"TorqueFreeModel({self.body!r}, attitude={self.attitude})"
@@ -196,9 +228,9 @@ class MovingMassModel(ModelBase):
     def __init__(self, body: _core.Body, mass: float, arm: float, frequency: float, damping: float,
                  torques: Sequence = ()):
         self.body = check_body(body)
-        self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
         self.torques = check_torques(torques)
-        self._core = _core.moving_mass_model(body, self.mass, self.arm, self.frequency, self.damping, self.torques)
+        self._core = _core.moving_mass_model(body, mass, arm, frequency, damping, self.torques)  # checks the numbers
+        self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
 
     def damper(self) -> _core.MovingMassDamper:
         """The reduced (quasi-static) torque of the same mass, spring and damper."""
