@@ -4,7 +4,11 @@ wrong answer marked success, a crash or a traceback. `pytest -q tests/test_relia
 prints nothing but the count; each row names its case."""
 
 import math
+import os
+import subprocess
+import sys
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,10 +24,36 @@ def error(call, *words):
     """The case raises ValueError in one line holding every word (the value it names)."""
     with pytest.raises(ValueError) as raised:
         call()
-    message = str(raised.value)
-    assert "\n" not in message and "Invoked with" not in message, message
+    _one_line(str(raised.value), words)
+
+
+def type_error(call, *words):
+    """The case raises TypeError in one line holding every word."""
+    with pytest.raises(TypeError) as raised:
+        call()
+    _one_line(str(raised.value), words)
+
+
+def _one_line(message, words):
+    for dump in ("\n", "Invoked with", "Unable to cast", "PYBIND11", "incompatible", "could not convert"):
+        assert dump not in message, message
     for word in words:
         assert word in message, message
+
+
+def propagates(call, exception):
+    """The user's own exception (raised in their callback) comes out as the same object, with
+    the frame of the callback that raised it in its traceback."""
+    with pytest.raises(type(exception)) as raised:
+        call(exception)
+    assert raised.value is exception, repr(raised.value)
+    assert any(entry.name == "callback" for entry in raised.traceback), raised.traceback
+
+
+def raising(exception):
+    def callback(*_):
+        raise exception
+    return callback
 
 
 def failed(solution, status):
@@ -66,11 +96,95 @@ CASES = {
     "negative moment of inertia": lambda: error(lambda: g.Body([-1.0, 2.0, 2.5]), "-1"),
     "NaN in the initial state": lambda: error(lambda: g.solve(g.Model(BODY), [1.0, math.nan, 0.0], (0, 1)), "nan"),
     "a run stopped by max_steps says where": lambda: _max_steps_case(),
+    # issue 25, item 6: the user's own exceptions propagate; an event's wrong value is named
+    "event raising KeyError('mine')": lambda: propagates(
+        lambda e: g.solve(g.Model(BODY), W0, (0, 1), events=raising(e)), KeyError("mine")),
+    "event raising the user's TypeError": lambda: propagates(
+        lambda e: g.solve(g.Model(BODY), W0, (0, 1), events=raising(e)), TypeError("mine")),
+    "progress callable raising": lambda: propagates(
+        lambda e: g.solve(g.Model(BODY), W0, (0, 2e6), rtol=1e-12, n_out=10, progress=raising(e)), KeyError("bar")),
+    "ensemble event raising": lambda: propagates(
+        lambda e: g.solve_ensemble(g.Model(BODY), [W0, W0], (0, 1), events=raising(e)), ValueError("mine")),
+    "event returning an array": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[:2])), "event 'crossing'", "array(", "a number"),
+    "event returning None": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: None)), "event 'crossing'", "None", "a number"),
+    "event returning a string": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: "up")), "event 'crossing'", "'up'", "a number"),
+    "event taking f(t)": lambda: type_error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=[lambda t: t - 0.5]), "event 0", "(t, y)"),
+    # item 7: no signature dumps, no bare NumPy messages
+    "ViscousCavity('1260', 1000, 0.48)": lambda: error(
+        lambda: g.ViscousCavity("1260", 1000, 0.48), "ViscousCavity: density", "'1260'", "must be a number"),
+    "MovingMassDamper(None, 1, 10, 98)": lambda: error(
+        lambda: g.MovingMassDamper(None, 1, 10, 98), "MovingMassDamper: mass", "None", "must be a number"),
+    "MovingMassDamper([1], 1, 10, 98)": lambda: error(
+        lambda: g.MovingMassDamper([1], 1, 10, 98), "mass", "[1]", "must be a number"),
+    "ConstantTorque(...)(0.0, [1, 2], [1, 2, 3])": lambda: error(
+        lambda: g.ConstantTorque([0, 0, 1])(0.0, [1, 2], [1, 2, 3]), "omega", "[1, 2]", "3 numbers"),
+    "Model(body, a single torque)": lambda: _single_torque_case(),
+    "Model(body, 5)": lambda: type_error(lambda: g.Model(BODY, 5), "torques must be a list of torques", "int"),
+    "y0 = ['a', 1, 2]": lambda: error(lambda: g.solve(g.Model(BODY), ["a", 1, 2], (0, 1)), "y0", "'a'"),
+    "y0 with a complex number": lambda: error(lambda: g.solve(g.Model(BODY), [1j, 1, 2], (0, 1)), "y0", "1j"),
+    "t_eval = ['a', 'b']": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), t_eval=["a", "b"]), "t_eval", "'a'"),
+    "t_span = ('a', 1)": lambda: error(lambda: g.solve(g.Model(BODY), W0, ("a", 1)), "t_span", "'a'"),
+    "sol('abc')": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), dense_output=True)("abc"), "t", "'abc'"),
+    "MovingMassModel mass = [1]": lambda: error(
+        lambda: g.MovingMassModel(g.Body([2, 2, 1]), [1], 1, 10, 98), "MovingMassModel: mass", "[1]"),
+    "MovingMassModel mass = 1j": lambda: error(
+        lambda: g.MovingMassModel(g.Body([2, 2, 1]), 1j, 1, 10, 98), "MovingMassModel: mass", "1j"),
+    "Body([1j, 2, 3])": lambda: error(lambda: g.Body([1j, 2, 3]), "moments", "1j"),
+    "Body(['1', '2', '3'])": lambda: error(lambda: g.Body(["1", "2", "3"]), "moments", "'1'"),
+    "ConstantTorque([1j, 0, 0])": lambda: error(lambda: g.ConstantTorque([1j, 0, 0]), "moment", "1j"),
+    # item 8
+    "solve_ensemble over a generator of states": lambda: _generator_case(),
+    "solve_ensemble y0s = 5": lambda: error(lambda: g.solve_ensemble(g.Model(BODY), 5, (0, 1)), "y0s", "5"),
+    # item 9: validation that does not depend on call history; booleans are booleans
+    "n_out = False after n_out = 0": lambda: _n_out_false_case(),
+    "n_out = True": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), n_out=True), "n_out = True"),
+    "attitude = 'no'": lambda: error(lambda: g.Model(BODY, attitude="no"), "attitude = 'no'", "True or False"),
+    "every_step = 'no'": lambda: error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), every_step="no"), "every_step = 'no'", "True or False"),
+    "dense_output = 'no'": lambda: error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), dense_output="no"), "dense_output = 'no'", "True or False"),
+    "batch = 'no'": lambda: error(
+        lambda: g.solve_ensemble(g.Model(BODY), [W0], (0, 1), batch="no"), "batch = 'no'", "True or False"),
+    "check_validity = 'no'": lambda: error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), check_validity="no"), "check_validity = 'no'", "True or False"),
+    "t_eval = []": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), t_eval=[]), "t_eval = []"),
+    "torque_free(body, W0, [3, 1, 2])": lambda: error(
+        lambda: g.torque_free(BODY, W0, [3, 1, 2]), "t_eval = [3, 1, 2]", "unsorted", "increasing"),
+    # item 10: an ensemble's outputs within the limit of one run
+    "ensemble of 1000 x 10**6 outputs": lambda: error(
+        lambda: g.solve_ensemble(g.Model(BODY), [W0] * 1000, (0, 1), n_out=10**6), "1000 members", "GiB", "limit 2 GiB"),
 }
 
 
 def _equal(value, expected):
     assert value == expected, value
+
+
+def _named_event(function):
+    function.__name__ = "crossing"
+    return function
+
+
+def _single_torque_case():
+    torque = g.ConstantTorque([0, 0, 1])
+    assert g.Model(BODY, torque).torques == (torque,)
+    one, listed = (g.solve(g.Model(BODY, t), W0, (0, 1), n_out=3) for t in (torque, [torque]))
+    assert np.array_equal(one.y, listed.y)
+
+
+def _generator_case():
+    members = g.solve_ensemble(g.Model(BODY), (np.array(W0) * k for k in (1, 2)), (0, 1), n_out=5)
+    assert [m.status for m in members] == ["success", "success"]
+    assert np.array_equal(members[1].y[0], 2 * np.array(W0))
+
+
+def _n_out_false_case():
+    assert g.solve(g.Model(BODY), W0, (0, 1), n_out=0).success  # n_out = 0 first: then False must not hit its cache
+    error(lambda: g.solve(g.Model(BODY), W0, (0, 1), n_out=False), "n_out = False", "must be a number")
 
 
 def _atol_case():
