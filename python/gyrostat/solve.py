@@ -338,7 +338,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
     batch, check_validity = flag(batch, "batch"), flag(check_validity, "check_validity")
-    _check_ensemble_memory(cores, count, opts)
+    outputs = len(opts.t_eval) or opts.n_out
+    check_output_memory(cores, count, outputs, f"{count} members x {outputs} output times")
     report = _bars.resolve(progress, total=count, unit="member")
     try:
         results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report, batch=batch)
@@ -353,20 +354,16 @@ RUN_MEMORY_LIMIT = 2 * 2**30
 cpp/include/gyrostat/integrate/recorder.hpp); :func:`solve_ensemble` applies it to all members together."""
 
 
-def output_bytes(cores, members: int, opts: Options) -> float:
-    """The bytes that ``members`` runs record at the output times ``opts`` asks for (t, the state
-    and the named outputs at each; ``every_step`` not counted: unknown before the run)."""
-    rows = len(opts.t_eval) if len(opts.t_eval) else max(opts.n_out, 2)
-    widths = [1 + c.dim + len(c.output_names) for c in cores]  # one model for all, or one per member
-    return float(members) * rows * sum(widths) / len(widths) * 8.0
-
-
-def _check_ensemble_memory(cores, members: int, opts: Options) -> None:
-    need = output_bytes(cores, members, opts)
+def check_output_memory(models, members: int, outputs: int, what: str) -> None:
+    """A ValueError starting with ``what`` when ``members`` runs of these models (one for all, or
+    one per member) would record more than RUN_MEMORY_LIMIT bytes at ``outputs`` output times
+    (t, the state and the named outputs at each, as the engine counts them; ``every_step`` is
+    not counted: unknown before the run)."""
+    widths = [1 + m.dim + len(m.output_names) for m in models]
+    need = float(members) * max(outputs, 2) * sum(widths) / len(widths) * 8.0
     if need > RUN_MEMORY_LIMIT:
-        raise ValueError(f"{members} members x {len(opts.t_eval) or opts.n_out} output times would take "
-                         f"{need / 2**30:.3g} GiB (limit {RUN_MEMORY_LIMIT / 2**30:g} GiB, as for one run): ask "
-                         "for fewer outputs or fewer members at once")
+        raise ValueError(f"{what} would take {need / 2**30:.3g} GiB (limit {RUN_MEMORY_LIMIT / 2**30:g} GiB for "
+                         "one run's outputs): ask for fewer outputs" + (" or fewer members" if members > 1 else ""))
 
 
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
