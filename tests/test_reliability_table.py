@@ -56,6 +56,74 @@ def raising(exception):
     return callback
 
 
+PYTHON_DIR = str(Path(g.__file__).resolve().parent.parent)  # child processes import this gyrostat
+SCENE = """[body]
+moments = [1.0, 2.0, 2.5]
+[initial]
+omega = [1.0, 0.5, -0.3]
+[integration]
+model = "full"
+method = "dop853"
+t_span = [0.0, 2.0]
+n_out = 21
+"""
+GRID = '\n[sweep]\n[[sweep.vary]]\npath = "initial.omega[0]"\nvalues = [1.0, 2.0]\n'
+TRIAXIAL = """kind = "orthogonal_torque"
+[body]
+moments = [2.0, 3.0, 4.0]
+[initial]
+omega = [1.0, 0.5, -0.8]
+[[runs]]
+name = "constant"
+law = { kind = "constant", value = 0.15 }
+[integration]
+t_span = [0.0, 2.0]
+n_out = 21
+[outputs]
+plots = ["omega", "approximation_errors"]
+"""
+
+
+def command_line(scene, *args):
+    """``python -m gyrostat run SCENE --out OUT`` (or ``sweep`` with ``args = ("sweep", ...)``) on
+    a scene written to a fresh folder: (exit code, stdout, stderr, report.json or None when the
+    scene did not run)."""
+    import json
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="gyrostat-table-") as name:
+        folder = Path(name)
+        path = folder / "scene.toml"
+        path.write_bytes(scene) if isinstance(scene, bytes) else path.write_text(scene)
+        command = args[0] if args else "run"
+        env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        done = subprocess.run([sys.executable, "-m", "gyrostat", command, str(path), "--out", str(folder / "out"),
+                               "--quiet", *args[1:]], capture_output=True, text=True, env=env, timeout=600)
+        report = folder / "out" / "scene" / "report.json"
+        return done.returncode, done.stdout, done.stderr, json.loads(report.read_text()) if report.exists() else None
+
+
+def cli_error(scene, *words, args=()):
+    """The command line refuses the scene before running anything: exit code 2, one line on
+    stderr holding every word, no traceback, no results written."""
+    code, _, err, report = command_line(scene, *args)
+    lines = [line for line in err.splitlines() if line]
+    assert code == 2 and len(lines) == 1 and "Traceback" not in err, (code, err)
+    _one_line(lines[0], words)
+    assert report is None, "the scene ran before its error was found"
+
+
+def plots_skipped(scene, expected):
+    """The scene runs; each plot it asked for that cannot be drawn is named, with the reason, on
+    the console and in report.json."""
+    code, out, err, report = command_line(scene)
+    assert code == 0, err
+    skipped = {entry["plot"]: entry["reason"] for entry in report["plots_skipped"]}
+    assert set(skipped) == set(expected), skipped
+    for plot, word in expected.items():
+        assert word in skipped[plot] and f"plot '{plot}' not drawn: {skipped[plot]}" in out, (skipped, out)
+
+
 def failed(solution, status):
     """The case returns, but says that it failed and why; never success."""
     assert not solution.success and solution.status == status and solution.message
@@ -154,7 +222,33 @@ CASES = {
     "t_eval = []": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), t_eval=[]), "t_eval = []"),
     "torque_free(body, W0, [3, 1, 2])": lambda: error(
         lambda: g.torque_free(BODY, W0, [3, 1, 2]), "t_eval = [3, 1, 2]", "unsorted", "increasing"),
-    # item 10: an ensemble's outputs within the limit of one run
+    # item 10: scenes and sweeps: every input error exits 2 with one line, before anything runs
+    "scene: n_out = 1e12": lambda: cli_error(
+        SCENE.replace("n_out = 21", "n_out = 1e12"), "[integration] n_out = 1000000000000", "GiB", "limit 2 GiB"),
+    "scene: a binary file": lambda: cli_error(bytes(range(256)) * 4, "not a UTF-8 text file"),
+    "scene [sweep]: summary naming no variable": lambda: cli_error(
+        SCENE + GRID.replace("[sweep]", '[sweep]\nsummary = "final_nonsense"'), "[sweep] summary 'final_nonsense'",
+        "not a variable"),
+    "scene [sweep]: reference line with 2 x and 3 y": lambda: cli_error(
+        SCENE + GRID + '[[sweep.lines]]\nlabel = "l"\nx = [1.0, 2.0]\ny = [1.0, 2.0, 3.0]\n', "[sweep] lines[0]",
+        "x has 2 values and y 3"),
+    "scene [sweep]: contour on a one-parameter grid": lambda: cli_error(
+        SCENE + GRID.replace("[sweep]", "[sweep]\ncontour = 1.0"), "[sweep] contour = 1.0", "two parameters"),
+    "scene [sweep]: integration.method": lambda: cli_error(
+        SCENE + GRID.replace("initial.omega[0]", "integration.method"), "'integration.method'", "not a number"),
+    "scene [sweep]: initial.omega as a whole": lambda: cli_error(
+        SCENE + GRID.replace("initial.omega[0]", "initial.omega"), "'initial.omega' is a list", "initial.omega[0]"),
+    "scene [sweep]: a dispersion without samples": lambda: cli_error(
+        SCENE + GRID.replace("values = [1.0, 2.0]", 'distribution = "uniform"\nlow = 1.0\nhigh = 2.0'), "[sweep]",
+        "samples"),
+    "gyrostat sweep --vary initial.omega=1,2": lambda: cli_error(
+        SCENE, "'initial.omega' is a list", args=("sweep", "--vary", "initial.omega=1,2")),
+    "plots 'error' without a reference, 'ladder' with model = full": lambda: plots_skipped(
+        SCENE + '[outputs]\nplots = ["omega", "error", "ladder"]\n',
+        {"error": 'reference = "closed_form"', "ladder": 'model = "auto"'}),
+    "plot 'approximation_errors' for a triaxial body": lambda: plots_skipped(
+        TRIAXIAL, {"approximation_errors": "nearly spherical"}),
+    # an ensemble's outputs within the limit of one run
     "ensemble of 1000 x 10**6 outputs": lambda: error(
         lambda: g.solve_ensemble(g.Model(BODY), [W0] * 1000, (0, 1), n_out=10**6), "1000 members", "GiB", "limit 2 GiB"),
 }
