@@ -225,6 +225,8 @@ CASES = {
     # item 10: scenes and sweeps: every input error exits 2 with one line, before anything runs
     "scene: n_out = 1e12": lambda: cli_error(
         SCENE.replace("n_out = 21", "n_out = 1e12"), "[integration] n_out = 1000000000000", "GiB", "limit 2 GiB"),
+    "scene: rtol = 1e-20": lambda: cli_error(
+        SCENE.replace("n_out = 21", "n_out = 21\nrtol = 1e-20"), "[integration] rtol = 1e-20", "below 1e-14"),
     "scene: a binary file": lambda: cli_error(bytes(range(256)) * 4, "not a UTF-8 text file"),
     "scene [sweep]: summary naming no variable": lambda: cli_error(
         SCENE + GRID.replace("[sweep]", '[sweep]\nsummary = "final_nonsense"'), "[sweep] summary 'final_nonsense'",

@@ -153,6 +153,9 @@ void expose_integrate(py::module_& m) {
         .def_readwrite("dense_output", &Options::dense_output)
         .def_readwrite("step", &Options::step)
         .def_readwrite("splitting_order", &Options::splitting_order)
+        .def(
+            "validate", [](const Options& o, double t0, double t1) { integrate::validate(o, t0, t1); }, py::arg("t0"),
+            py::arg("t1"), "The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.")
         .def("__repr__", [](const Options& o) {
             return "Options(method='" + std::string(integrate::method_name(o.method)) + "', rtol=" + format_value(o.rtol) +
                    ", atol=" + format_value(o.atol) + ", n_out=" + std::to_string(o.n_out) + ", t_eval=<" +

@@ -49,7 +49,7 @@ from gyrostat import ladder as _ladder
 from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, OneOf, SceneError, Table, Variants, Vector,
                              at_least, describe, increasing, non_negative, positive, validate)
-from gyrostat.solve import check_output_memory
+from gyrostat.solve import check_run
 
 __all__ = ["Scene", "Run", "SceneError", "KINDS", "SCENES", "load", "scene_format"]
 
@@ -774,9 +774,8 @@ class Scene:
         kind = KINDS[kind_name]
         doc = validate(kind.schema, data)
         runs, choice, reason = kind.runs(doc)
-        for run in runs:  # memory: refused now, naming the key, not once the run has started
-            n_out = run.options.get("n_out", _DEFAULT.n_out)
-            _build("integration", check_output_memory, [run.model], 1, n_out, f"n_out = {n_out} output times")
+        for run in runs:  # tolerances, outputs and their memory: refused now, naming the key, not once running
+            _build("integration", check_run, run.model, run.t_span, run.options)
         _add_events(doc, runs)
         rungs = kind.ladder(doc) if doc.get("integration", {}).get("model") == "auto" else None
         return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason, ladder=rungs)

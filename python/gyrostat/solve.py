@@ -366,6 +366,17 @@ def check_output_memory(models, members: int, outputs: int, what: str) -> None:
                          "one run's outputs): ask for fewer outputs" + (" or fewer members" if members > 1 else ""))
 
 
+def check_run(model, t_span, options: dict) -> None:
+    """The options of a run of ``model`` over ``t_span`` checked as :func:`solve` checks them
+    (tolerances, steps, output times and their memory), without running: a ValueError naming
+    the value. ``method`` is taken as valid (a scene's schema has checked it); events are not
+    options here."""
+    opts = make_options(**{name: options[name] for name in _OPTION_NAMES if name in options and name != "method"})
+    outputs = len(opts.t_eval) or opts.n_out
+    check_output_memory([model], 1, outputs, f"n_out = {outputs} output times")
+    opts.validate(*_span(t_span))
+
+
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
     """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no
     integration. The same as ``solve(TorqueFreeModel(body), omega0, (t_eval[0], t_eval[-1]),
