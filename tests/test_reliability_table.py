@@ -15,6 +15,7 @@ import pytest
 
 import gyrostat as g
 from gyrostat import lagrange, orthogonal
+from gyrostat.events import Event
 
 BODY = g.Body([1.0, 2.0, 3.0])
 W0 = [1.0, 0.5, -0.3]
@@ -179,6 +180,10 @@ CASES = {
         g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: None)), "event 'crossing'", "None", "a number"),
     "event returning a string": lambda: error(lambda: g.solve(
         g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: "up")), "event 'crossing'", "'up'", "a number"),
+    "Event('p', direction=True)": lambda: error(lambda: Event("p", direction=True), "direction = True"),
+    "event with direction = 'up'": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[0], direction="up")), "crossing",
+        "direction = 'up'"),
     "event taking f(t)": lambda: type_error(lambda: g.solve(
         g.Model(BODY), W0, (0, 1), events=[lambda t: t - 0.5]), "event 0", "(t, y)"),
     # item 7: no signature dumps, no bare NumPy messages
@@ -260,8 +265,10 @@ def _equal(value, expected):
     assert value == expected, value
 
 
-def _named_event(function):
+def _named_event(function, **attributes):
     function.__name__ = "crossing"
+    for name, value in attributes.items():
+        setattr(function, name, value)
     return function
 
 
