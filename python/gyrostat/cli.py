@@ -186,8 +186,11 @@ def main(argv: list[str] | None = None) -> int:
         try:
             scene = Scene.from_toml(path)
             job = prepare_sweep(scene) if "sweep" in scene.doc else None  # its [sweep] checked before any run
-        except SceneError as error:
-            print(f"{path}: error: {error}", file=sys.stderr)
+        except KeyboardInterrupt:
+            print(f"{path}: interrupted", file=sys.stderr)
+            return 130
+        except (ValueError, TypeError) as error:  # SceneError included: the scene is wrong and nothing ran
+            print(f"{path}: error: {' '.join(str(error).split())}", file=sys.stderr)
             bad_scenes += 1
             continue
         try:

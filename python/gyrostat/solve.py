@@ -227,7 +227,9 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         :class:`gyrostat.events.Event` (a state component or named output crossing a value,
         evaluated in C++) or callables ``f(t, y)`` as in SciPy (the slow path), or a list of
         them; located on each step's continuous extension. Results: ``t_events``, ``y_events``,
-        ``terminal_event``. Terminal events end the run (status success).
+        ``terminal_event``. Terminal events end the run (status success). A callable returns a
+        number (anything else is a ValueError naming the event); an exception it raises, like
+        one of a ``progress`` callable, propagates as it was raised.
     dense_output:
         Keep every step's continuous extension so that the solution can be called anywhere in
         the span, ``solution(t)`` (memory then grows with the steps taken, not with the outputs).
@@ -285,8 +287,10 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
 
     ``models`` is one model for every member or a sequence of N (different parameters, or
-    different families, per member); ``y0s`` is (N, dim), or a sequence of N states (of each
-    member's own size, short states completed as in :func:`solve`). Results come in index order.
+    different families, per member); ``y0s`` is (N, dim), or any iterable of N states (of each
+    member's own size, short states completed as in :func:`solve`; a generator is read once).
+    Results come in index order. All members' outputs together are held to the limit of one
+    run's (2 GiB: ``RUN_MEMORY_LIMIT``), checked before any member starts.
 
     With ``batch=True`` (the default), members that a SIMD batch covers run
     :data:`gyrostat.simd_lanes` at a time, one per lane, each lane with its own parameters,
@@ -303,7 +307,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     Ctrl-C stops the members running (status ``"interrupted"``, partial trajectories kept) and
     those not started (empty, ``"interrupted"``). Options, ``events`` and ``dense_output`` as in
     :func:`solve`: every member watches the same events and stops on its own terminal event (the
-    events are resolved against the first model's names: give members of one family).
+    events are resolved against the first model's names: give members of one family); the first
+    exception an event callable raises is raised again once the members have finished.
     """
     if isinstance(models, ModelBase):
         models = [models]
