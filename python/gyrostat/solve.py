@@ -266,11 +266,13 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         raise ValueError(f"y0 must be one state (a 1-D array), got shape {y0.shape}")
     if atol is not None and atol > 1e-3:
         _warn_loose_atol(atol, y0)
-    report = _bars.default() if progress is None else _bars.resolve(progress)
     check_validity = check_validity if check_validity is True else flag(check_validity, "check_validity")
-    result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates as raised
-    if report is not None:
-        _bars.close(report)
+    report = _bars.default() if progress is None else _bars.resolve(progress)
+    try:
+        result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates
+    finally:
+        if report is not None:
+            _bars.close(report)
     solution = Solution(result, model)
     if result.success and (not check_validity or type(model).check is _BASE_CHECK):
         return solution
