@@ -175,11 +175,11 @@ CASES = {
     "ensemble event raising": lambda: propagates(
         lambda e: g.solve_ensemble(g.Model(BODY), [W0, W0], (0, 1), events=raising(e)), ValueError("mine")),
     "event returning an array": lambda: error(lambda: g.solve(
-        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[:2])), "event 'crossing'", "array(", "a number"),
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[:2])), "event 0 ('crossing')", "array(", "a number"),
     "event returning None": lambda: error(lambda: g.solve(
-        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: None)), "event 'crossing'", "None", "a number"),
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: None)), "event 0 ('crossing')", "None", "a number"),
     "event returning a string": lambda: error(lambda: g.solve(
-        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: "up")), "event 'crossing'", "'up'", "a number"),
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: "up")), "event 0 ('crossing')", "'up'", "a number"),
     "Event('p', direction=True)": lambda: error(lambda: Event("p", direction=True), "direction = True"),
     "event with direction = 'up'": lambda: error(lambda: g.solve(
         g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[0], direction="up")), "crossing",

@@ -110,9 +110,9 @@ void expose_integrate(py::module_& m) {
                  if (!function.is_none()) {
                      // the slow path: one call into Python (GIL held) per evaluation; an exception
                      // of the function propagates as it was raised, a value that is not a number
-                     // is a ValueError naming the event
-                     e.function = [function, what = "event '" + e.name + "' returned a value that"](double t, const double* y,
-                                                                                                 int dim) {
+                     // is a ValueError naming the event (index: its place in the list given)
+                     const std::string what = "event " + std::to_string(index) + " ('" + e.name + "') returned a value that";
+                     e.function = [function, what](double t, const double* y, int dim) {
                          py::gil_scoped_acquire gil;
                          py::array_t<double> state(dim, y);
                          const py::object value = function(t, state);

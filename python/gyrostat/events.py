@@ -106,7 +106,7 @@ def to_core(events, state_names, output_names) -> list:
             direction = _direction(getattr(event, "direction", 0), f"event {i} ({name})")
             _check_signature(event, i, name)
             function: Callable = event
-            core.append(_core.Event("function", 0, 0.0, direction,
+            core.append(_core.Event("function", i, 0.0, direction,
                                     _terminal_count(getattr(event, "terminal", False), name), name, function))
         else:
             raise TypeError(f"event {i} must be a gyrostat.events.Event or a callable f(t, y), "
