@@ -202,6 +202,8 @@ CASES = {
     "t_eval = ['a', 'b']": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), t_eval=["a", "b"]), "t_eval", "'a'"),
     "t_span = ('a', 1)": lambda: error(lambda: g.solve(g.Model(BODY), W0, ("a", 1)), "t_span", "'a'"),
     "sol('abc')": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), dense_output=True)("abc"), "t", "'abc'"),
+    "Model.rhs('a', W0)": lambda: error(lambda: g.Model(BODY).rhs("a", W0), "t must be a number", "'a'"),
+    "Model.rhs(0, 'abc')": lambda: error(lambda: g.Model(BODY).rhs(0, "abc"), "y must be real numbers", "'abc'"),
     "MovingMassModel mass = [1]": lambda: error(
         lambda: g.MovingMassModel(g.Body([2, 2, 1]), [1], 1, 10, 98), "MovingMassModel: mass", "[1]"),
     "MovingMassModel mass = 1j": lambda: error(

@@ -35,6 +35,14 @@ def floats(value, name: str, what: str = "real numbers") -> np.ndarray:
     return array.astype(float, copy=False)
 
 
+def number(value, name: str) -> float:
+    """``value`` as one float, or a one-line ValueError naming ``name`` and the value (as :func:`floats`)."""
+    array = floats(value, name, "a number")
+    if array.ndim:
+        raise ValueError(f"{name} must be a number, got {shown(value)}")
+    return float(array)
+
+
 def flag(value, name: str) -> bool:
     """``value`` as a bool, or a ValueError naming ``name``: only True and False are booleans
     (``bool("no")`` is True; 0 and 1 are numbers)."""
@@ -99,12 +107,12 @@ class ModelBase:
 
     def rhs(self, t: float, y) -> np.ndarray:
         """The right-hand side f(t, y), evaluated by the core (for checks, not for speed)."""
-        return np.asarray(self._core.rhs(float(t), np.asarray(y, float)))
+        return np.asarray(self._core.rhs(number(t, "t"), floats(y, "y")))
 
     def initial_state(self, y0) -> np.ndarray:
         """The full initial state from a shorter one where the model allows it (ω alone for a
         model with attitude: identity quaternion; τ(0) = 0 for the orthogonal torque)."""
-        return np.asarray(self._core.initial_state(np.asarray(y0, float).ravel()))
+        return np.asarray(self._core.initial_state(floats(y0, "y0").ravel()))
 
     def check(self, solution) -> list:
         """The model's assumptions along a solution (averaged models override this);
@@ -197,11 +205,11 @@ class AveragedModel(ModelBase):
 
     def fast_frequency(self, r: float) -> float:
         """|φ̇| = |(C − A) r / A|."""
-        return self._core.fast_frequency(float(r))
+        return self._core.fast_frequency(number(r, "r"))
 
     def slow_rate(self, t: float, y) -> float:
         """max(|ȧ/a|, |ṙ/r|) at (t, a, r)."""
-        return self._core.slow_rate(float(t), np.asarray(y, float))
+        return self._core.slow_rate(number(t, "t"), floats(y, "y"))
 
     def check(self, solution) -> list:
         from gyrostat import validity
@@ -237,7 +245,7 @@ class MovingMassModel(ModelBase):
         return _core.MovingMassDamper(self.mass, self.arm, self.frequency, self.damping)
 
     def quasi_static_state(self, omega) -> np.ndarray:
-        return np.asarray(self._core.quasi_static_state(np.asarray(omega, float)))
+        return np.asarray(self._core.quasi_static_state(floats(omega, "omega")))
 
     def __repr__(self) -> str:
         return (f"MovingMassModel({self.body!r}, mass={self.mass}, arm={self.arm}, frequency={self.frequency}, "
