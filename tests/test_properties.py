@@ -112,6 +112,27 @@ def test_an_ensemble_equals_its_single_runs(states, method):
         assert run.status == single.status and np.array_equal(run.y, single.y)
 
 
+class CallbackError(Exception):
+    """An exception type of the user's own."""
+
+
+@SETTINGS
+@given(st.sampled_from([KeyError, TypeError, ValueError, CallbackError]), st.text(max_size=20),
+       st.floats(0.0, 1.0), method)
+def test_an_event_callbacks_exception_propagates_as_raised(kind, text, when, method):
+    raised = kind(text)
+
+    def event(t, y):
+        if t >= when:
+            raise raised
+        return y[0] - 10.0
+
+    with pytest.raises(kind) as caught:
+        g.solve(g.Model(g.Body([1.0, 2.0, 3.0])), [1.0, 0.5, -0.3], (0.0, 1.0), method=method, events=event,
+                progress=False)
+    assert caught.value is raised
+
+
 # ------------------------------------------------------------------------------------ scene documents
 SHIPPED = sorted(SCENES.glob("*.toml"))
 

@@ -4,13 +4,18 @@ wrong answer marked success, a crash or a traceback. `pytest -q tests/test_relia
 prints nothing but the count; each row names its case."""
 
 import math
+import os
+import subprocess
+import sys
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import gyrostat as g
 from gyrostat import lagrange, orthogonal
+from gyrostat.events import Event
 
 BODY = g.Body([1.0, 2.0, 3.0])
 W0 = [1.0, 0.5, -0.3]
@@ -20,10 +25,104 @@ def error(call, *words):
     """The case raises ValueError in one line holding every word (the value it names)."""
     with pytest.raises(ValueError) as raised:
         call()
-    message = str(raised.value)
-    assert "\n" not in message and "Invoked with" not in message, message
+    _one_line(str(raised.value), words)
+
+
+def type_error(call, *words):
+    """The case raises TypeError in one line holding every word."""
+    with pytest.raises(TypeError) as raised:
+        call()
+    _one_line(str(raised.value), words)
+
+
+def _one_line(message, words):
+    for dump in ("\n", "Invoked with", "Unable to cast", "PYBIND11", "incompatible", "could not convert"):
+        assert dump not in message, message
     for word in words:
         assert word in message, message
+
+
+def propagates(call, exception):
+    """The user's own exception (raised in their callback) comes out as the same object, with
+    the frame of the callback that raised it in its traceback."""
+    with pytest.raises(type(exception)) as raised:
+        call(exception)
+    assert raised.value is exception, repr(raised.value)
+    assert any(entry.name == "callback" for entry in raised.traceback), raised.traceback
+
+
+def raising(exception):
+    def callback(*_):
+        raise exception
+    return callback
+
+
+PYTHON_DIR = str(Path(g.__file__).resolve().parent.parent)  # child processes import this gyrostat
+SCENE = """[body]
+moments = [1.0, 2.0, 2.5]
+[initial]
+omega = [1.0, 0.5, -0.3]
+[integration]
+model = "full"
+method = "dop853"
+t_span = [0.0, 2.0]
+n_out = 21
+"""
+GRID = '\n[sweep]\n[[sweep.vary]]\npath = "initial.omega[0]"\nvalues = [1.0, 2.0]\n'
+TRIAXIAL = """kind = "orthogonal_torque"
+[body]
+moments = [2.0, 3.0, 4.0]
+[initial]
+omega = [1.0, 0.5, -0.8]
+[[runs]]
+name = "constant"
+law = { kind = "constant", value = 0.15 }
+[integration]
+t_span = [0.0, 2.0]
+n_out = 21
+[outputs]
+plots = ["omega", "approximation_errors"]
+"""
+
+
+def command_line(scene, *args):
+    """``python -m gyrostat run SCENE --out OUT`` (or ``sweep`` with ``args = ("sweep", ...)``) on
+    a scene written to a fresh folder: (exit code, stdout, stderr, report.json or None when the
+    scene did not run)."""
+    import json
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="gyrostat-table-") as name:
+        folder = Path(name)
+        path = folder / "scene.toml"
+        path.write_bytes(scene) if isinstance(scene, bytes) else path.write_text(scene)
+        command = args[0] if args else "run"
+        env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        done = subprocess.run([sys.executable, "-m", "gyrostat", command, str(path), "--out", str(folder / "out"),
+                               "--quiet", *args[1:]], capture_output=True, text=True, env=env, timeout=600)
+        report = folder / "out" / "scene" / "report.json"
+        return done.returncode, done.stdout, done.stderr, json.loads(report.read_text()) if report.exists() else None
+
+
+def cli_error(scene, *words, args=()):
+    """The command line refuses the scene before running anything: exit code 2, one line on
+    stderr holding every word, no traceback, no results written."""
+    code, _, err, report = command_line(scene, *args)
+    lines = [line for line in err.splitlines() if line]
+    assert code == 2 and len(lines) == 1 and "Traceback" not in err, (code, err)
+    _one_line(lines[0], words)
+    assert report is None, "the scene ran before its error was found"
+
+
+def plots_skipped(scene, expected):
+    """The scene runs; each plot it asked for that cannot be drawn is named, with the reason, on
+    the console and in report.json."""
+    code, out, err, report = command_line(scene)
+    assert code == 0, err
+    skipped = {entry["plot"]: entry["reason"] for entry in report["plots_skipped"]}
+    assert set(skipped) == set(expected), skipped
+    for plot, word in expected.items():
+        assert word in skipped[plot] and f"plot '{plot}' not drawn: {skipped[plot]}" in out, (skipped, out)
 
 
 def failed(solution, status):
@@ -66,11 +165,131 @@ CASES = {
     "negative moment of inertia": lambda: error(lambda: g.Body([-1.0, 2.0, 2.5]), "-1"),
     "NaN in the initial state": lambda: error(lambda: g.solve(g.Model(BODY), [1.0, math.nan, 0.0], (0, 1)), "nan"),
     "a run stopped by max_steps says where": lambda: _max_steps_case(),
+    # issue 25, item 6: the user's own exceptions propagate; an event's wrong value is named
+    "event raising KeyError('mine')": lambda: propagates(
+        lambda e: g.solve(g.Model(BODY), W0, (0, 1), events=raising(e)), KeyError("mine")),
+    "event raising the user's TypeError": lambda: propagates(
+        lambda e: g.solve(g.Model(BODY), W0, (0, 1), events=raising(e)), TypeError("mine")),
+    "progress callable raising": lambda: propagates(
+        lambda e: g.solve(g.Model(BODY), W0, (0, 2e6), rtol=1e-12, n_out=10, progress=raising(e)), KeyError("bar")),
+    "ensemble event raising": lambda: propagates(
+        lambda e: g.solve_ensemble(g.Model(BODY), [W0, W0], (0, 1), events=raising(e)), ValueError("mine")),
+    "event returning an array": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[:2])), "event 0 ('crossing')", "array(", "a number"),
+    "event returning None": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: None)), "event 0 ('crossing')", "None", "a number"),
+    "event returning a string": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: "up")), "event 0 ('crossing')", "'up'", "a number"),
+    "Event('p', direction=True)": lambda: error(lambda: Event("p", direction=True), "direction = True"),
+    "event with direction = 'up'": lambda: error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=_named_event(lambda t, y: y[0], direction="up")), "crossing",
+        "direction = 'up'"),
+    "event taking f(t)": lambda: type_error(lambda: g.solve(
+        g.Model(BODY), W0, (0, 1), events=[lambda t: t - 0.5]), "event 0", "(t, y)"),
+    # item 7: no signature dumps, no bare NumPy messages
+    "ViscousCavity('1260', 1000, 0.48)": lambda: error(
+        lambda: g.ViscousCavity("1260", 1000, 0.48), "ViscousCavity: density", "'1260'", "must be a number"),
+    "MovingMassDamper(None, 1, 10, 98)": lambda: error(
+        lambda: g.MovingMassDamper(None, 1, 10, 98), "MovingMassDamper: mass", "None", "must be a number"),
+    "MovingMassDamper([1], 1, 10, 98)": lambda: error(
+        lambda: g.MovingMassDamper([1], 1, 10, 98), "mass", "[1]", "must be a number"),
+    "ConstantTorque(...)(0.0, [1, 2], [1, 2, 3])": lambda: error(
+        lambda: g.ConstantTorque([0, 0, 1])(0.0, [1, 2], [1, 2, 3]), "omega", "[1, 2]", "3 numbers"),
+    "Model(body, a single torque)": lambda: _single_torque_case(),
+    "Model(body, 5)": lambda: type_error(lambda: g.Model(BODY, 5), "torques must be a list of torques", "int"),
+    "y0 = ['a', 1, 2]": lambda: error(lambda: g.solve(g.Model(BODY), ["a", 1, 2], (0, 1)), "y0", "'a'"),
+    "y0 with a complex number": lambda: error(lambda: g.solve(g.Model(BODY), [1j, 1, 2], (0, 1)), "y0", "1j"),
+    "t_eval = ['a', 'b']": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), t_eval=["a", "b"]), "t_eval", "'a'"),
+    "t_span = ('a', 1)": lambda: error(lambda: g.solve(g.Model(BODY), W0, ("a", 1)), "t_span", "'a'"),
+    "sol('abc')": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), dense_output=True)("abc"), "t", "'abc'"),
+    "Model.rhs('a', W0)": lambda: error(lambda: g.Model(BODY).rhs("a", W0), "t must be a number", "'a'"),
+    "Model.rhs(0, 'abc')": lambda: error(lambda: g.Model(BODY).rhs(0, "abc"), "y must be real numbers", "'abc'"),
+    "MovingMassModel mass = [1]": lambda: error(
+        lambda: g.MovingMassModel(g.Body([2, 2, 1]), [1], 1, 10, 98), "MovingMassModel: mass", "[1]"),
+    "MovingMassModel mass = 1j": lambda: error(
+        lambda: g.MovingMassModel(g.Body([2, 2, 1]), 1j, 1, 10, 98), "MovingMassModel: mass", "1j"),
+    "Body([1j, 2, 3])": lambda: error(lambda: g.Body([1j, 2, 3]), "moments", "1j"),
+    "Body(['1', '2', '3'])": lambda: error(lambda: g.Body(["1", "2", "3"]), "moments", "'1'"),
+    "ConstantTorque([1j, 0, 0])": lambda: error(lambda: g.ConstantTorque([1j, 0, 0]), "moment", "1j"),
+    # item 8
+    "solve_ensemble over a generator of states": lambda: _generator_case(),
+    "solve_ensemble y0s = 5": lambda: error(lambda: g.solve_ensemble(g.Model(BODY), 5, (0, 1)), "y0s", "5"),
+    # item 9: validation that does not depend on call history; booleans are booleans
+    "n_out = False after n_out = 0": lambda: _n_out_false_case(),
+    "n_out = True": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), n_out=True), "n_out = True"),
+    "attitude = 'no'": lambda: error(lambda: g.Model(BODY, attitude="no"), "attitude = 'no'", "True or False"),
+    "every_step = 'no'": lambda: error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), every_step="no"), "every_step = 'no'", "True or False"),
+    "dense_output = 'no'": lambda: error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), dense_output="no"), "dense_output = 'no'", "True or False"),
+    "batch = 'no'": lambda: error(
+        lambda: g.solve_ensemble(g.Model(BODY), [W0], (0, 1), batch="no"), "batch = 'no'", "True or False"),
+    "check_validity = 'no'": lambda: error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), check_validity="no"), "check_validity = 'no'", "True or False"),
+    "t_eval = []": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1), t_eval=[]), "t_eval = []"),
+    "torque_free(body, W0, [3, 1, 2])": lambda: error(
+        lambda: g.torque_free(BODY, W0, [3, 1, 2]), "t_eval = [3, 1, 2]", "unsorted", "increasing"),
+    # item 10: scenes and sweeps: every input error exits 2 with one line, before anything runs
+    "scene: n_out = 1e12": lambda: cli_error(
+        SCENE.replace("n_out = 21", "n_out = 1e12"), "[integration] n_out = 1000000000000", "GiB", "limit 2 GiB"),
+    "scene: rtol = 1e-20": lambda: cli_error(
+        SCENE.replace("n_out = 21", "n_out = 21\nrtol = 1e-20"), "[integration] rtol = 1e-20", "below 1e-14"),
+    "scene: a binary file": lambda: cli_error(bytes(range(256)) * 4, "not a UTF-8 text file"),
+    "scene [sweep]: summary naming no variable": lambda: cli_error(
+        SCENE + GRID.replace("[sweep]", '[sweep]\nsummary = "final_nonsense"'), "[sweep] summary 'final_nonsense'",
+        "not a variable"),
+    "scene [sweep]: reference line with 2 x and 3 y": lambda: cli_error(
+        SCENE + GRID + '[[sweep.lines]]\nlabel = "l"\nx = [1.0, 2.0]\ny = [1.0, 2.0, 3.0]\n', "[sweep] lines[0]",
+        "x has 2 values and y 3"),
+    "scene [sweep]: contour on a one-parameter grid": lambda: cli_error(
+        SCENE + GRID.replace("[sweep]", "[sweep]\ncontour = 1.0"), "[sweep] contour = 1.0", "two parameters"),
+    "scene [sweep]: integration.method": lambda: cli_error(
+        SCENE + GRID.replace("initial.omega[0]", "integration.method"), "'integration.method'", "not a number"),
+    "scene [sweep]: initial.omega as a whole": lambda: cli_error(
+        SCENE + GRID.replace("initial.omega[0]", "initial.omega"), "'initial.omega' is a list", "initial.omega[0]"),
+    "scene [sweep]: a dispersion without samples": lambda: cli_error(
+        SCENE + GRID.replace("values = [1.0, 2.0]", 'distribution = "uniform"\nlow = 1.0\nhigh = 2.0'), "[sweep]",
+        "samples"),
+    "gyrostat sweep --vary initial.omega=1,2": lambda: cli_error(
+        SCENE, "'initial.omega' is a list", args=("sweep", "--vary", "initial.omega=1,2")),
+    "plots 'error' without a reference, 'ladder' with model = full": lambda: plots_skipped(
+        SCENE + '[outputs]\nplots = ["omega", "error", "ladder"]\n',
+        {"error": 'reference = "closed_form"', "ladder": 'model = "auto"'}),
+    "plot 'approximation_errors' for a triaxial body": lambda: plots_skipped(
+        TRIAXIAL, {"approximation_errors": "nearly spherical"}),
+    # an ensemble's outputs within the limit of one run
+    "ensemble of 1000 x 10**6 outputs": lambda: error(
+        lambda: g.solve_ensemble(g.Model(BODY), [W0] * 1000, (0, 1), n_out=10**6), "1000 members", "GiB", "limit 2 GiB"),
 }
 
 
 def _equal(value, expected):
     assert value == expected, value
+
+
+def _named_event(function, **attributes):
+    function.__name__ = "crossing"
+    for name, value in attributes.items():
+        setattr(function, name, value)
+    return function
+
+
+def _single_torque_case():
+    torque = g.ConstantTorque([0, 0, 1])
+    assert g.Model(BODY, torque).torques == (torque,)
+    one, listed = (g.solve(g.Model(BODY, t), W0, (0, 1), n_out=3) for t in (torque, [torque]))
+    assert np.array_equal(one.y, listed.y)
+
+
+def _generator_case():
+    members = g.solve_ensemble(g.Model(BODY), (np.array(W0) * k for k in (1, 2)), (0, 1), n_out=5)
+    assert [m.status for m in members] == ["success", "success"]
+    assert np.array_equal(members[1].y[0], 2 * np.array(W0))
+
+
+def _n_out_false_case():
+    assert g.solve(g.Model(BODY), W0, (0, 1), n_out=0).success  # n_out = 0 first: then False must not hit its cache
+    error(lambda: g.solve(g.Model(BODY), W0, (0, 1), n_out=False), "n_out = False", "must be a number")
 
 
 def _atol_case():

@@ -44,20 +44,45 @@ inline std::vector<AnyTorque> torques_from(const py::iterable& objects) {
     return torques;
 }
 
+/// The value as the user wrote it, on one line (runs of white space folded to one space) and
+/// shortened to 60 characters: for error messages.
+inline std::string shown(const py::handle& obj) {
+    std::string text;
+    for (char c : std::string(py::repr(obj))) {
+        const bool space = std::isspace(static_cast<unsigned char>(c)) != 0;
+        if (!space || (!text.empty() && text.back() != ' ')) text += space ? ' ' : c;
+    }
+    return text.size() > 60 ? text.substr(0, 57) + "..." : text;
+}
+
+/// `obj` as one real number (int, float, a NumPy real scalar), or a ValueError naming `what` and
+/// the value: str, None, bool, complex, lists are refused (pybind11 would dump its signatures).
+inline double scalar(const py::handle& obj, const std::string& what) {
+    PyObject* p = obj.ptr();
+    const bool real = !PyBool_Check(p) && (PyFloat_Check(p) || PyLong_Check(p) ||
+                                           py::isinstance(obj, py::module_::import("numbers").attr("Real")));
+    if (real) {
+        const double value = PyFloat_AsDouble(p);
+        if (!(value == -1.0 && PyErr_Occurred())) return value;
+        PyErr_Clear();  // an int too large for a double
+    }
+    throw py::value_error(what + " must be a number, got " + shown(obj));
+}
+
 /// `obj` as numbers of the given shape (cols = 0: a vector of `rows`), or a ValueError that names
-/// what was expected and what was given (instead of pybind11's list of signatures).
+/// what was expected and what was given (instead of pybind11's list of signatures). Only real
+/// numbers are taken: strings, None and complex numbers are refused, not cast.
 inline Eigen::MatrixXd numbers(const py::handle& obj, long rows, long cols, const std::string& what) {
-    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    const py::array given = py::array::ensure(obj);  // the values as written, before any cast
+    using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+    const char kind = given ? given.dtype().kind() : '?';
+    const bool real = kind == 'i' || kind == 'u' || kind == 'f';
+    const Doubles a = real ? Doubles::ensure(given) : Doubles();
     const bool vector = cols == 0;
-    if (!a || a.ndim() != (vector ? 1 : 2) || a.shape(0) != rows || (!vector && a.shape(1) != cols)) {
-        std::string shown;  // the value on one line: runs of white space folded to one space
-        for (char c : std::string(py::repr(obj)))
-            if (!std::isspace(static_cast<unsigned char>(c)) || (!shown.empty() && shown.back() != ' ')) shown += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;
-        if (shown.size() > 60) shown = shown.substr(0, 57) + "...";
+    if (!real || !a || a.ndim() != (vector ? 1 : 2) || a.shape(0) != rows || (!vector && a.shape(1) != cols))
         throw py::value_error(what + " must be " +
                               (vector ? std::to_string(rows) + " numbers" : std::to_string(rows) + "x" + std::to_string(cols) + " numbers") +
-                              ", got " + shown);
-    }
+                              ", got " + shown(obj));
     Eigen::MatrixXd m(rows, vector ? 1 : cols);
     for (long i = 0; i < rows; ++i)
         for (long j = 0; j < (vector ? 1 : cols); ++j) m(i, j) = a.data()[vector ? i : i * cols + j];

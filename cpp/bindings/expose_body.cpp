@@ -21,14 +21,23 @@ std::string matrix_text(const Mat3& m) {
            vector_text(m.row(2).transpose()) + "]";
 }
 
-/// What every torque shares in Python: evaluation, its averaged contribution, its name.
+/// What every torque shares in Python: evaluation, its averaged contribution, its name. Every
+/// argument is converted here, so that a wrong one is a ValueError naming it (convert.hpp).
 template <class Torque>
 py::class_<Torque> expose_torque(py::module_& m, const char* python_name) {
+    const std::string name = python_name;
     return py::class_<Torque>(m, python_name)
-        .def("__call__", [](const Torque& x, double t, const Vec3& w, const Vec3& moments) { return x(t, w, moments); },
+        .def("__call__",
+             [name](const Torque& x, const py::object& t, const py::object& omega, const py::object& moments) {
+                 return x(scalar(t, name + ": t"), vec3(omega, name + ": omega"), vec3(moments, name + ": moments"));
+             },
              py::arg("t"), py::arg("omega"), py::arg("moments"), "The torque in body axes at (t, omega) on a body with these moments.")
         .def("averaged",
-             [](const Torque& x, double t, double a, double r, double A, double C) { return x.averaged(t, a, r, A, C); },
+             [name](const Torque& x, const py::object& t, const py::object& a, const py::object& r, const py::object& A,
+                    const py::object& C) {
+                 return x.averaged(scalar(t, name + ": t"), scalar(a, name + ": a"), scalar(r, name + ": r"),
+                                   scalar(A, name + ": A"), scalar(C, name + ": C"));
+             },
              py::arg("t"), py::arg("a"), py::arg("r"), py::arg("A"), py::arg("C"),
              "Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.")
         .def_property_readonly_static("kind", [](py::object) { return std::string(Torque::name); });
@@ -66,7 +75,9 @@ void expose_body(py::module_& m) {
              }),
              py::arg("coefficients"))
         .def_readonly("coefficients", &torque::ResistiveMedium::coefficients)
-        .def("at", &torque::ResistiveMedium::at, py::arg("t"))
+        .def(
+            "at", [](const torque::ResistiveMedium& x, const py::object& t) { return x.at(scalar(t, "ResistiveMedium.at: t")); },
+            py::arg("t"))
         .def("__repr__", [](const torque::ResistiveMedium& x) {
             std::string s = "ResistiveMedium(coefficients=[";
             for (std::size_t k = 0; k < x.coefficients.size(); ++k) s += (k ? ", " : "") + matrix_text(x.coefficients[k]);
@@ -74,8 +85,19 @@ void expose_body(py::module_& m) {
         });
 
     expose_torque<torque::ViscousCavity>(m, "ViscousCavity")
-        .def(py::init<double, double, double>(), py::arg("density"), py::arg("viscosity"), py::arg("p0"))
-        .def_static("sphere", &torque::ViscousCavity::sphere, py::arg("density"), py::arg("viscosity"), py::arg("radius"))
+        .def(py::init([](const py::object& density, const py::object& viscosity, const py::object& p0) {
+                 return torque::ViscousCavity(scalar(density, "ViscousCavity: density"),
+                                              scalar(viscosity, "ViscousCavity: viscosity"), scalar(p0, "ViscousCavity: p0"));
+             }),
+             py::arg("density"), py::arg("viscosity"), py::arg("p0"))
+        .def_static(
+            "sphere",
+            [](const py::object& density, const py::object& viscosity, const py::object& radius) {
+                return torque::ViscousCavity::sphere(scalar(density, "ViscousCavity.sphere: density"),
+                                                     scalar(viscosity, "ViscousCavity.sphere: viscosity"),
+                                                     scalar(radius, "ViscousCavity.sphere: radius"));
+            },
+            py::arg("density"), py::arg("viscosity"), py::arg("radius"))
         .def_readonly("density", &torque::ViscousCavity::density)
         .def_readonly("viscosity", &torque::ViscousCavity::viscosity)
         .def_readonly("p0", &torque::ViscousCavity::p0)
@@ -87,13 +109,23 @@ void expose_body(py::module_& m) {
         });
 
     expose_torque<torque::MovingMassDamper>(m, "MovingMassDamper")
-        .def(py::init<double, double, double, double>(), py::arg("mass"), py::arg("arm"), py::arg("frequency"),
-             py::arg("damping"))
+        .def(py::init([](const py::object& mass, const py::object& arm, const py::object& frequency,
+                         const py::object& damping) {
+                 return torque::MovingMassDamper(scalar(mass, "MovingMassDamper: mass"), scalar(arm, "MovingMassDamper: arm"),
+                                                 scalar(frequency, "MovingMassDamper: frequency"),
+                                                 scalar(damping, "MovingMassDamper: damping"));
+             }),
+             py::arg("mass"), py::arg("arm"), py::arg("frequency"), py::arg("damping"))
         .def_readonly("mass", &torque::MovingMassDamper::mass)
         .def_readonly("arm", &torque::MovingMassDamper::arm)
         .def_readonly("frequency", &torque::MovingMassDamper::frequency)
         .def_readonly("damping", &torque::MovingMassDamper::damping)
-        .def("S", &torque::MovingMassDamper::S, py::arg("A"), py::arg("C"))
+        .def(
+            "S",
+            [](const torque::MovingMassDamper& x, const py::object& A, const py::object& C) {
+                return x.S(scalar(A, "MovingMassDamper.S: A"), scalar(C, "MovingMassDamper.S: C"));
+            },
+            py::arg("A"), py::arg("C"))
         .def("__repr__", [](const torque::MovingMassDamper& x) {
             return "MovingMassDamper(mass=" + format_value(x.mass) + ", arm=" + format_value(x.arm) +
                    ", frequency=" + format_value(x.frequency) + ", damping=" + format_value(x.damping) + ")";

@@ -50,6 +50,36 @@ private:
     std::unique_ptr<py::error_already_set> error_;
 };
 
+/// The options of an ensemble whose Python event functions keep the first exception they raise:
+/// the engine turns an exception into its member's status, but the user's own exception must
+/// reach the caller as it was raised (solve_ensemble raises it once every member has finished).
+class CallbackErrors {
+public:
+    integrate::Options watch(const integrate::Options& options) {
+        integrate::Options watched = options;
+        for (auto& e : watched.events) {
+            if (e.quantity != integrate::Event::Quantity::Function || !e.function) continue;
+            e.function = [this, inner = e.function](double t, const double* y, int dim) {
+                try {
+                    return inner(t, y, dim);
+                } catch (py::error_already_set& error) {
+                    py::gil_scoped_acquire gil;
+                    if (!first_) first_ = std::make_unique<py::error_already_set>(error);
+                    throw;
+                }
+            };
+        }
+        return watched;
+    }
+    /// Re-raises the first exception of an event function (with the GIL held).
+    void rethrow() {
+        if (first_) throw std::move(*first_);
+    }
+
+private:
+    std::unique_ptr<py::error_already_set> first_;
+};
+
 std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
     std::vector<Eigen::VectorXd> states;
     if (py::isinstance<py::array>(y0s) && py::array(y0s.cast<py::array>()).ndim() == 2) {
@@ -78,11 +108,15 @@ void expose_integrate(py::module_& m) {
                  else throw py::value_error("event quantity '" + quantity + "': choose state, output or function");
                  e.index = index, e.value = value, e.direction = direction, e.terminal = terminal, e.name = std::move(name);
                  if (!function.is_none()) {
-                     // the slow path: one call into Python (GIL held) per evaluation
-                     e.function = [function](double t, const double* y, int dim) {
+                     // the slow path: one call into Python (GIL held) per evaluation; an exception
+                     // of the function propagates as it was raised, a value that is not a number
+                     // is a ValueError naming the event (index: its place in the list given)
+                     const std::string what = "event " + std::to_string(index) + " ('" + e.name + "') returned a value that";
+                     e.function = [function, what](double t, const double* y, int dim) {
                          py::gil_scoped_acquire gil;
                          py::array_t<double> state(dim, y);
-                         return function(t, state).cast<double>();
+                         const py::object value = function(t, state);
+                         return PyFloat_CheckExact(value.ptr()) ? PyFloat_AS_DOUBLE(value.ptr()) : scalar(value, what);
                      };
                  }
                  return e;
@@ -119,6 +153,9 @@ void expose_integrate(py::module_& m) {
         .def_readwrite("dense_output", &Options::dense_output)
         .def_readwrite("step", &Options::step)
         .def_readwrite("splitting_order", &Options::splitting_order)
+        .def(
+            "validate", [](const Options& o, double t0, double t1) { integrate::validate(o, t0, t1); }, py::arg("t0"),
+            py::arg("t1"), "The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.")
         .def("__repr__", [](const Options& o) {
             return "Options(method='" + std::string(integrate::method_name(o.method)) + "', rtol=" + format_value(o.rtol) +
                    ", atol=" + format_value(o.atol) + ", n_out=" + std::to_string(o.n_out) + ", t_eval=<" +
@@ -245,12 +282,15 @@ void expose_integrate(py::module_& m) {
             models.reserve(bound.size());
             for (const BoundModel* b : bound) models.push_back(&b->model);
             PythonControl control(std::move(progress), interval);
+            CallbackErrors errors;
+            const Options watched = errors.watch(options);
             std::vector<Result> results;
             {
                 py::gil_scoped_release release;
-                results = solve_ensemble(models, starts, t0, t1, options, threads, control.get(), batch);
+                results = solve_ensemble(models, starts, t0, t1, watched, threads, control.get(), batch);
             }
             control.rethrow();
+            errors.rethrow();
             return results;
         },
         py::arg("models"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("threads") = 0,

@@ -92,9 +92,11 @@ void expose_models(py::module_& m) {
         py::arg("body"), py::arg("torques"));
     m.def(
         "moving_mass_model",
-        [](const Body& body, double mass, double arm, double frequency, double damping,
-           const py::iterable& torques) -> BoundModel {
-            return {model::MovingMass(body, mass, arm, frequency, damping, TorqueSet(torques_from(torques)))};
+        [](const Body& body, const py::object& mass, const py::object& arm, const py::object& frequency,
+           const py::object& damping, const py::iterable& torques) -> BoundModel {
+            return {model::MovingMass(body, scalar(mass, "MovingMassModel: mass"), scalar(arm, "MovingMassModel: arm"),
+                                      scalar(frequency, "MovingMassModel: frequency"),
+                                      scalar(damping, "MovingMassModel: damping"), TorqueSet(torques_from(torques)))};
         },
         py::arg("body"), py::arg("mass"), py::arg("arm"), py::arg("frequency"), py::arg("damping"), py::arg("torques"));
     m.def(

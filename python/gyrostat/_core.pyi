@@ -223,6 +223,10 @@ class Options:
         ...
     def __repr__(self) -> str:
         ...
+    def validate(self, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.
+        """
     @property
     def atol(self) -> float:
         ...

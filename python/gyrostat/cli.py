@@ -51,6 +51,8 @@ def _print_report(report: dict) -> None:
             print(f"  averaged vs full: {text}")
     for broken in report.get("broken_assumptions", []):
         print(f"  WARNING assumption broken: {broken}")
+    for plot in report.get("plots_skipped", []):
+        print(f"  WARNING plot '{plot['plot']}' not drawn: {plot['reason']}")
     if "max_error_vs_closed_form" in report:
         print(f"  max |omega - closed form| = {report['max_error_vs_closed_form']:.3e}")
     for f in report.get("files", []):
@@ -171,7 +173,8 @@ def main(argv: list[str] | None = None) -> int:
     import warnings
 
     from gyrostat import output
-    from gyrostat.runner import run_scene
+    from gyrostat.runner import prepare_sweep, run_scene, run_sweep
+    from gyrostat.scene import Scene
     from gyrostat.schema import SceneError
     from gyrostat.validity import ValidityWarning
 
@@ -181,11 +184,21 @@ def main(argv: list[str] | None = None) -> int:
     bad_scenes = failures = 0
     for path in paths:
         try:
+            scene = Scene.from_toml(path)
+            job = prepare_sweep(scene) if "sweep" in scene.doc else None  # its [sweep] checked before any run
+        except KeyboardInterrupt:
+            print(f"{path}: interrupted", file=sys.stderr)
+            return 130
+        except (ValueError, TypeError) as error:  # SceneError included: the scene is wrong and nothing ran
+            print(f"{path}: error: {' '.join(str(error).split())}", file=sys.stderr)
+            bad_scenes += 1
+            continue
+        try:
             output.claim_folder(args.out / Path(path).stem, args.overwrite)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # printed in the report below
                 warnings.simplefilter("ignore", RuntimeWarning)   # an interrupted run: in its report
-                report = run_scene(path, args.out, progress=not args.quiet)
+                report = run_scene(scene, args.out, progress=not args.quiet)
         except KeyboardInterrupt:
             print(f"{path}: interrupted", file=sys.stderr)
             return 130
@@ -203,11 +216,9 @@ def main(argv: list[str] | None = None) -> int:
             continue
         _print_report(report)
         failures += report["status"] != "success"
-        if "sweep" in report["inputs"] and report["status"] != "interrupted":  # the scene's [sweep] as well
-            from gyrostat.runner import run_sweep
-
+        if job is not None and report["status"] != "interrupted":  # the scene's [sweep] as well
             try:
-                _print_sweep(run_sweep(path, args.out, progress=False if args.quiet else None))
+                _print_sweep(run_sweep(job, args.out, progress=False if args.quiet else None))
             except KeyboardInterrupt:
                 print(f"{path}: sweep interrupted", file=sys.stderr)
                 return 130

@@ -41,15 +41,21 @@ class Event:
     name: str | None = None
 
     def __post_init__(self):
-        if self.direction not in (-1, 0, 1):
-            raise ValueError(f"event direction = {self.direction!r}: choose -1, 0 or 1")
-        if not isinstance(self.value, (int, float)) or not math.isfinite(self.value):
+        _direction(self.direction, f"event {self.quantity!r}")
+        if isinstance(self.value, bool) or not isinstance(self.value, (int, float)) or not math.isfinite(self.value):
             raise ValueError(f"event value = {self.value!r} must be a finite number")
         _terminal_count(self.terminal, self.quantity)
 
     @property
     def label(self) -> str:
         return self.name or f"{self.quantity} = {self.value:g}"
+
+
+def _direction(direction, what: str) -> int:
+    """-1, 0 or 1 (a bool or a string is not a direction), or a ValueError naming the event."""
+    if isinstance(direction, (bool, str)) or direction not in (-1, 0, 1):
+        raise ValueError(f"{what}: direction = {direction!r}: choose -1, 0 or 1")
+    return int(direction)
 
 
 def _terminal_count(terminal, what) -> int:
@@ -60,6 +66,21 @@ def _terminal_count(terminal, what) -> int:
     if isinstance(terminal, int) and terminal >= 0:
         return terminal
     raise ValueError(f"event {what!r}: terminal = {terminal!r} must be a bool or a count >= 0")
+
+
+def _check_signature(function: Callable, i: int, name: str) -> None:
+    """A callable event is called as f(t, y): one that cannot be is a TypeError naming it now,
+    before the run (a callable without a signature to read is called as it is)."""
+    import inspect
+
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):
+        return
+    try:
+        signature.bind(0.0, None)
+    except TypeError as error:
+        raise TypeError(f"event {i} ({name}) must take (t, y): {error}") from None
 
 
 def to_core(events, state_names, output_names) -> list:
@@ -81,12 +102,11 @@ def to_core(events, state_names, output_names) -> list:
             core.append(_core.Event(kind, index, float(event.value), event.direction,
                                     _terminal_count(event.terminal, event.quantity), event.label))
         elif callable(event):
-            direction = int(getattr(event, "direction", 0))
-            if direction not in (-1, 0, 1):
-                raise ValueError(f"event {i}: direction = {direction!r}: choose -1, 0 or 1")
             name = getattr(event, "__name__", f"event {i}")
+            direction = _direction(getattr(event, "direction", 0), f"event {i} ({name})")
+            _check_signature(event, i, name)
             function: Callable = event
-            core.append(_core.Event("function", 0, 0.0, direction,
+            core.append(_core.Event("function", i, 0.0, direction,
                                     _terminal_count(getattr(event, "terminal", False), name), name, function))
         else:
             raise TypeError(f"event {i} must be a gyrostat.events.Event or a callable f(t, y), "

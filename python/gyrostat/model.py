@@ -16,8 +16,48 @@ TORQUE_TYPES = (_core.ConstantTorque, _core.LinearDamping, _core.ResistiveMedium
                 _core.MovingMassDamper)
 
 
+def shown(value, limit: int = 60) -> str:
+    """``repr(value)`` on one line, shortened to ``limit`` characters: for error messages."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def floats(value, name: str, what: str = "real numbers") -> np.ndarray:
+    """``value`` as an array of floats, or a one-line ValueError naming ``name``, ``what`` it must
+    be and the value: strings, None, booleans alone, complex numbers and ragged lists are refused,
+    never cast (NumPy would say "could not convert string to float" or drop an imaginary part)."""
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError):  # a ragged list
+        array = None
+    if array is None or array.dtype.kind not in "iuf":
+        raise ValueError(f"{name} must be {what}, got {shown(value)}")
+    return array.astype(float, copy=False)
+
+
+def number(value, name: str) -> float:
+    """``value`` as one float, or a one-line ValueError naming ``name`` and the value (as :func:`floats`)."""
+    array = floats(value, name, "a number")
+    if array.ndim:
+        raise ValueError(f"{name} must be a number, got {shown(value)}")
+    return float(array)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` as a bool, or a ValueError naming ``name``: only True and False are booleans
+    (``bool("no")`` is True; 0 and 1 are numbers)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} = {shown(value)} must be True or False")
+
+
 def check_torques(torques) -> tuple:
-    """The torques as a tuple; anything that is not a torque raises TypeError naming its type."""
+    """The torques as a tuple (a single torque is a list of one); anything that is not a torque
+    raises TypeError naming its type."""
+    if isinstance(torques, TORQUE_TYPES):
+        return (torques,)
+    if isinstance(torques, (str, bytes)) or not hasattr(torques, "__iter__"):
+        raise TypeError(f"torques must be a list of torques, got {type(torques).__name__}")
     torques = tuple(torques)
     for torque in torques:
         if not isinstance(torque, TORQUE_TYPES):
@@ -67,12 +107,12 @@ class ModelBase:
 
     def rhs(self, t: float, y) -> np.ndarray:
         """The right-hand side f(t, y), evaluated by the core (for checks, not for speed)."""
-        return np.asarray(self._core.rhs(float(t), np.asarray(y, float)))
+        return np.asarray(self._core.rhs(number(t, "t"), floats(y, "y")))
 
     def initial_state(self, y0) -> np.ndarray:
         """The full initial state from a shorter one where the model allows it (ω alone for a
         model with attitude: identity quaternion; τ(0) = 0 for the orthogonal torque)."""
-        return np.asarray(self._core.initial_state(np.asarray(y0, float).ravel()))
+        return np.asarray(self._core.initial_state(floats(y0, "y0").ravel()))
 
     def check(self, solution) -> list:
         """The model's assumptions along a solution (averaged models override this);
@@ -104,7 +144,7 @@ class Model(ModelBase):
     def __init__(self, body: _core.Body, torques: Sequence = (), attitude: bool = False):
         self.body = check_body(body)
         self.torques = check_torques(torques)
-        self._core = _core.gyrostat_model(body, self.torques, bool(attitude))
+        self._core = _core.gyrostat_model(body, self.torques, flag(attitude, "attitude"))
 
     @property
     def is_torque_free_rigid_body(self) -> bool:
@@ -131,7 +171,7 @@ class TorqueFreeModel(ModelBase):
     def __init__(self, body: _core.Body, attitude: bool = False):
         self.body = check_body(body)
         self.torques = ()
-        self._core = _core.torque_free_model(body, bool(attitude))
+        self._core = _core.torque_free_model(body, flag(attitude, "attitude"))
 
     def __repr__(self) -> str:
         return f"TorqueFreeModel({self.body!r}, attitude={self.attitude})"
@@ -165,11 +205,11 @@ class AveragedModel(ModelBase):
 
     def fast_frequency(self, r: float) -> float:
         """|φ̇| = |(C − A) r / A|."""
-        return self._core.fast_frequency(float(r))
+        return self._core.fast_frequency(number(r, "r"))
 
     def slow_rate(self, t: float, y) -> float:
         """max(|ȧ/a|, |ṙ/r|) at (t, a, r)."""
-        return self._core.slow_rate(float(t), np.asarray(y, float))
+        return self._core.slow_rate(number(t, "t"), floats(y, "y"))
 
     def check(self, solution) -> list:
         from gyrostat import validity
@@ -196,16 +236,16 @@ class MovingMassModel(ModelBase):
     def __init__(self, body: _core.Body, mass: float, arm: float, frequency: float, damping: float,
                  torques: Sequence = ()):
         self.body = check_body(body)
-        self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
         self.torques = check_torques(torques)
-        self._core = _core.moving_mass_model(body, self.mass, self.arm, self.frequency, self.damping, self.torques)
+        self._core = _core.moving_mass_model(body, mass, arm, frequency, damping, self.torques)  # checks the numbers
+        self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
 
     def damper(self) -> _core.MovingMassDamper:
         """The reduced (quasi-static) torque of the same mass, spring and damper."""
         return _core.MovingMassDamper(self.mass, self.arm, self.frequency, self.damping)
 
     def quasi_static_state(self, omega) -> np.ndarray:
-        return np.asarray(self._core.quasi_static_state(np.asarray(omega, float)))
+        return np.asarray(self._core.quasi_static_state(floats(omega, "omega")))
 
     def check(self, solution) -> list:
         """The model's assumptions along a solution: the mass's displacement |u|/ρ ≪ 1 (and the

@@ -464,6 +464,28 @@ def draw_scene(scene, solutions: dict[str, Solution], derived: dict, folder: Pat
     return files
 
 
+def skipped(scene, files: list[Path]) -> list[dict]:
+    """The plots the scene asks for that :func:`draw_scene` did not draw, each with the reason
+    (for the console and report.json: a plot asked for is never left out silently)."""
+    drawn = {Path(f).stem for f in files}
+    return [{"plot": plot, "reason": _why_not_drawn(scene, plot)} for plot in scene.plots if plot not in drawn]
+
+
+def _why_not_drawn(scene, plot: str) -> str:
+    doc = scene.doc
+    if plot == "ladder" and scene.ladder is None:
+        return (f"it compares the rungs of the model ladder, which runs only with [integration] model = \"auto\" "
+                f"(this scene: model = {doc['integration'].get('model')!r})")
+    if plot == "error" and doc["outputs"].get("reference") is None:
+        return ("it needs a reference: [outputs] reference = \"closed_form\" (a rigid body with neither torques "
+                "nor a rotor)")
+    if plot == "approximation_errors" and getattr(scene.kind, "spherical", lambda _: None)(doc) is None:
+        return "the zeroth and first approximations are for a nearly spherical body ([nearly_spherical]), not [body]"
+    if plot == "euler_angles":
+        return "it needs the attitude: give [initial] attitude (the run then integrates the quaternion)"
+    return f"the scene's runs ({', '.join(r.name for r in scene.runs)}) have nothing to draw it from"
+
+
 def ladder(rows: list[dict], title: str, path: Path, accuracy: float) -> Path:
     """Each rung's cost (seconds for the whole span) against its error measured against the top
     rung, the chosen one ringed, its estimate drawn as an arrow from the measured error, and the

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -189,14 +190,16 @@ ANALYSES = {"rigid_body": _rigid_body, "averaged": _rigid_body, "lagrange_top": 
 
 
 # ------------------------------------------------------------------------------------ a scene on disk
-def run_scene(path: str | Path, out_dir: str | Path, progress: bool = True) -> dict:
-    """Loads, solves, saves and plots one scene of any kind; returns its report (also written as
-    report.json). Scene errors raise :class:`gyrostat.schema.SceneError` (one line)."""
+def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = True) -> dict:
+    """Loads (unless given a loaded :class:`Scene`), solves, saves and plots one scene of any
+    kind; returns its report (also written as report.json; ``plots_skipped`` names the plots
+    asked for that could not be drawn, with the reason). Scene errors raise
+    :class:`gyrostat.schema.SceneError` (one line)."""
     import warnings
 
     from gyrostat.validity import ValidityWarning
 
-    scene = Scene.from_toml(path)
+    scene = path if isinstance(path, Scene) else Scene.from_toml(path)
     solutions, report, derived = solve_scene(scene, progress=progress)
     for broken in report["broken_assumptions"]:
         warnings.warn(f"{scene.name}: {broken}", ValidityWarning, stacklevel=2)
@@ -211,41 +214,77 @@ def run_scene(path: str | Path, out_dir: str | Path, progress: bool = True) -> d
         extra = {"tau": scene.doc["torque"]["epsilon"] * solution.t} if scene.kind.name == "lagrange_top" else None
         files += output.write_solution(solution, folder, stem, extra)
         report["units"].update({column: output.unit(column) for column in solution.columns()})
-    files += plots.draw_scene(scene, solutions, derived, folder)
+    drawn = plots.draw_scene(scene, solutions, derived, folder)
+    report["plots_skipped"] = plots.skipped(scene, drawn)
+    files += drawn
     report["files"] = [str(f) for f in files] + [str(folder / "report.json")]
     output.write_report(report, folder)
     return report
 
 
 # ------------------------------------------------------------------------------------ a sweep on disk
-def run_sweep(path: str | Path, out_dir: str | Path, vary=None, *, samples: int | None = None,
+@dataclass
+class SweepJob:
+    """A sweep checked against its scene before any member runs (:func:`prepare_sweep`)."""
+
+    scene: Scene
+    plan: object  # gyrostat.sweeps.Plan
+    trajectories: bool
+    summary: str
+    contour: float | None
+    lines: list
+
+
+def prepare_sweep(path: str | Path | Scene, vary=None, *, samples: int | None = None, seed: int | None = None,
+                  run: str | None = None, trajectories: bool | None = None,
+                  summary: str | None = None) -> SweepJob:
+    """A scene's sweep (its ``[sweep]`` table, or ``vary``: a list of
+    :class:`gyrostat.sweeps.Parameter` that replaces the table's parameters) with everything it
+    can get wrong checked now: the paths, the grid or dispersion, the run, the summary and the
+    plot's reference lines. Errors of the table are SceneErrors naming ``[sweep]``."""
+    from gyrostat import sweeps
+
+    scene = path if isinstance(path, Scene) else Scene.from_toml(path)
+    spec = scene.doc.get("sweep", {})
+    from_table = vary is None
+    try:
+        if from_table:
+            if not spec:
+                raise SceneError(f"{scene.name} has no [sweep] table: give the parameters to vary (--vary)")
+            vary = [sweeps.parameter_from_table(p, f"[sweep.vary[{i}]]") for i, p in enumerate(spec["vary"])]
+        plan = sweeps.Plan(scene, vary, samples=samples if samples is not None else spec.get("samples"),
+                           seed=seed if seed is not None else spec.get("seed"), run=run or spec.get("run"))
+        trajectories = trajectories if trajectories is not None else spec.get("trajectories", False)
+        expression = sweeps.check_plot(plan, summary or spec.get("summary") or None, trajectories=trajectories,
+                                       contour=spec.get("contour"), lines=spec.get("lines"))
+    except ValueError as error:  # SceneError included
+        if not from_table or str(error).startswith("["):
+            raise
+        raise SceneError(f"[sweep] {error}") from None
+    return SweepJob(scene, plan, trajectories, expression, spec.get("contour"), spec.get("lines") or [])
+
+
+def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, samples: int | None = None,
               seed: int | None = None, run: str | None = None, trajectories: bool | None = None,
               summary: str | None = None, client=None, threads: int = 0, chunk_size: int | None = None,
               progress: bool | None = None) -> dict:
-    """Runs a scene's sweep (its ``[sweep]`` table, or ``vary``: a list of
-    :class:`gyrostat.sweeps.Parameter` that replaces the table's parameters): every member's
-    results streamed to ``OUT/SCENE/sweep.nc``, the summary plotted against the parameters in
+    """Runs a scene's sweep (:func:`prepare_sweep`, or a job it made): every member's results
+    streamed to ``OUT/SCENE/sweep.nc``, the summary plotted against the parameters in
     ``sweep.png``, a report in ``sweep.json``; returns the report."""
     from gyrostat import sweeps
 
-    scene = Scene.from_toml(path)
-    spec = scene.doc.get("sweep", {})
-    if vary is None:
-        if not spec:
-            raise SceneError(f"{scene.name} has no [sweep] table: give the parameters to vary (--vary)")
-        vary = [sweeps.parameter_from_table(p, f"[sweep.vary[{i}]]") for i, p in enumerate(spec["vary"])]
+    job = path if isinstance(path, SweepJob) else prepare_sweep(path, vary, samples=samples, seed=seed, run=run,
+                                                                 trajectories=trajectories, summary=summary)
+    scene = job.scene
     folder = Path(out_dir) / scene.name
     folder.mkdir(parents=True, exist_ok=True)
     target = folder / "sweep.nc"
-    ds = sweeps.sweep(scene, vary, samples=samples if samples is not None else spec.get("samples"),
-                      seed=seed if seed is not None else spec.get("seed"), run=run or spec.get("run"),
-                      trajectories=trajectories if trajectories is not None else spec.get("trajectories", False),
-                      client=client, threads=threads, chunk_size=chunk_size, path=target, progress=progress)
+    ds = sweeps.sweep(job.plan, None, trajectories=job.trajectories, client=client, threads=threads,
+                      chunk_size=chunk_size, path=target, progress=progress)
     ds.close()
     ds = sweeps.open_sweep(target)
-    expression = summary or spec.get("summary") or next(str(name) for name in ds.data_vars
-                                                        if str(name).startswith("final_"))
-    values = sweeps.summary(ds, expression)  # a bad expression fails here, before the plot
+    expression = job.summary
+    values = sweeps.summary(ds, expression)
     statuses = {str(k): int(v) for k, v in zip(*np.unique(ds["status"].values.astype(str), return_counts=True))}
     report = {"scene": scene.name, "title": scene.title, "members": int(ds.attrs["members"]),
               "mode": ds.attrs["mode"], "seed": ds.attrs.get("seed"), "run": ds.attrs["run"],
@@ -258,7 +297,7 @@ def run_sweep(path: str | Path, out_dir: str | Path, vary=None, *, samples: int 
               "members_with_broken_assumptions": int((ds["broken_assumptions"] > 0).sum()),
               "broken_assumptions": sorted({str(a) for a in np.unique(ds["first_broken_assumption"].values) if a})}
     files = [target, plots.sweep(ds, expression, f"{scene.title}: sweep", folder / "sweep.png",
-                                 contour=spec.get("contour"), lines=spec.get("lines"))]
+                                 contour=job.contour, lines=job.lines)]
     report["files"] = [str(f) for f in files] + [str(folder / "sweep.json")]
     (folder / "sweep.json").write_text(json.dumps(output.clean(report), indent=2) + "\n")
     return report

@@ -49,6 +49,7 @@ from gyrostat import ladder as _ladder
 from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, OneOf, SceneError, Table, Variants, Vector,
                              at_least, describe, increasing, non_negative, positive, validate)
+from gyrostat.solve import check_run
 
 __all__ = ["Scene", "Run", "SceneError", "KINDS", "SCENES", "load", "scene_format"]
 
@@ -772,6 +773,8 @@ class Scene:
         kind = KINDS[kind_name]
         doc = validate(kind.schema, data)
         runs, choice, reason = kind.runs(doc)
+        for run in runs:  # tolerances, outputs and their memory: refused now, naming the key, not once running
+            _build("integration", check_run, run.model, run.t_span, run.options)
         _add_events(doc, runs)
         rungs = kind.ladder(doc) if doc.get("integration", {}).get("model") == "auto" else None
         return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason, ladder=rungs)
@@ -784,6 +787,9 @@ class Scene:
                 data = tomllib.load(handle)
         except tomllib.TOMLDecodeError as error:
             raise SceneError(f"not valid TOML: {error}") from None
+        except UnicodeDecodeError as error:
+            raise SceneError(f"not a UTF-8 text file (byte {error.object[error.start]:#04x} at position "
+                             f"{error.start}): a scene is a TOML text file") from None
         except OSError as error:
             raise SceneError(f"cannot read the scene: {error.strerror}") from None
         return cls.from_dict(data, name=path.stem)

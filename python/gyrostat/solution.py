@@ -165,7 +165,9 @@ class Solution:
         """The solution at t (a number or an array of times anywhere in the span), from the
         stored continuous extension of each step (solve with ``dense_output=True``; memory grows
         with the steps taken). The attitude part stays a unit quaternion."""
-        times = np.asarray(t, dtype=float)
+        from gyrostat.model import floats
+
+        times = floats(t, "t", "a time or times (numbers)")
         values = self._result.dense(times.ravel())
         return values[0] if times.ndim == 0 else values.reshape(times.shape + (values.shape[1],))
 

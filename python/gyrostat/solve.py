@@ -10,7 +10,7 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat import progress as _bars
-from gyrostat.model import ModelBase
+from gyrostat.model import ModelBase, flag, floats, shown
 from gyrostat.solution import AccuracyWarning, Solution
 
 METHODS: tuple[str, ...] = tuple(_core.methods())
@@ -60,9 +60,7 @@ def make_options(options: Options | None = None, **given) -> Options:
                     "(measured; see docs/integrators.md): expect global errors far above rtol; prefer dop853",
                     UserWarning, stacklevel=3)
         elif name == "t_eval":
-            value = np.asarray(value, dtype=float)
-            if value.ndim != 1:
-                raise ValueError(f"t_eval must be one-dimensional, got shape {value.shape}")
+            value = _times(value)
         elif name in _NUMBER_OPTIONS:
             kind = _NUMBER_OPTIONS[name]
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
@@ -78,11 +76,21 @@ def make_options(options: Options | None = None, **given) -> Options:
                 raise ValueError(f"splitting_order = {value!r} must be 2, 4 or 6")
             value = kind(value)
         elif name == "every_step":
-            value = bool(value)
+            value = flag(value, "every_step")
         else:
             raise TypeError(f"unknown option {name!r}; options are {', '.join(_OPTION_NAMES)}")
         setattr(result, name, value)
     return result
+
+
+def _times(t_eval) -> np.ndarray:
+    """The output times as a 1-D array of floats, at least one; ValueError naming t_eval otherwise."""
+    t = floats(t_eval, "t_eval", "output times (numbers)")
+    if t.ndim != 1:
+        raise ValueError(f"t_eval must be one-dimensional, got shape {t.shape}")
+    if t.size == 0:
+        raise ValueError("t_eval = [] holds no output time: give at least one (or n_out, or neither)")
+    return t
 
 
 _CACHE: dict[tuple, Options] = {}
@@ -93,7 +101,8 @@ def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, 
     """make_options, with the Options of recent keyword combinations kept (they are never
     modified once made): repeated calls with the same options cost a dictionary look-up."""
     if t_eval is None and options is None:
-        key = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
+        values = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
+        key = values + tuple(map(type, values))  # True == 1, yet n_out=True is refused and n_out=1 is not
         try:
             return _CACHE[key]
         except KeyError:
@@ -113,14 +122,6 @@ def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, 
                         step=step, splitting_order=splitting_order)
 
 
-def _bad_call(core, y0, t0, t1) -> ValueError:
-    """The argument a failed call to the engine could not take, named (instead of pybind11's dump)."""
-    if not isinstance(t0, (int, float, np.integer, np.floating)) or not isinstance(t1, (int, float, np.integer,
-                                                                                        np.floating)):
-        return ValueError(f"t_span must be two numbers (t0, t1), got ({t0!r}, {t1!r})")
-    return ValueError(f"y0 must be a 1-D array of numbers, got {np.asarray(y0).dtype} values")
-
-
 _BASE_CHECK = ModelBase.check
 
 
@@ -130,7 +131,7 @@ def _with_events(opts: Options, events, dense_output: bool, core) -> Options:
 
     made = make_options(opts)
     made.events = to_core(events, list(core.state_names), list(core.output_names))
-    made.dense_output = bool(dense_output)
+    made.dense_output = flag(dense_output, "dense_output")
     return made
 
 
@@ -165,11 +166,15 @@ def _core_model(model):
 
 
 def _span(t_span) -> tuple[float, float]:
+    """(t0, t1) as floats, or a ValueError naming t_span and its value."""
     try:
         t0, t1 = t_span
-        return float(t0), float(t1)
     except (TypeError, ValueError):
-        raise ValueError(f"t_span must be (t0, t1), got {t_span!r}") from None
+        raise ValueError(f"t_span must be (t0, t1), got {shown(t_span)}") from None
+    if type(t0) in (float, int) and type(t1) in (float, int):  # the common case, without NumPy
+        return float(t0), float(t1)
+    t0, t1 = floats((t0, t1), "t_span", "two numbers (t0, t1)")
+    return float(t0), float(t1)
 
 
 def _checked(solution: Solution, model, check_validity: bool) -> Solution:
@@ -228,7 +233,9 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         :class:`gyrostat.events.Event` (a state component or named output crossing a value,
         evaluated in C++) or callables ``f(t, y)`` as in SciPy (the slow path), or a list of
         them; located on each step's continuous extension. Results: ``t_events``, ``y_events``,
-        ``terminal_event``. Terminal events end the run (status success).
+        ``terminal_event``. Terminal events end the run (status success). A callable returns a
+        number (anything else is a ValueError naming the event); an exception it raises, like
+        one of a ``progress`` callable, propagates as it was raised.
     dense_output:
         Keep every step's continuous extension so that the solution can be called anywhere in
         the span, ``solution(t)`` (memory then grows with the steps taken, not with the outputs).
@@ -255,26 +262,23 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         core = _core_model(model)
     opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step,
                     splitting_order)
-    if events is not None or dense_output:
+    if events is not None or dense_output is not False:
         opts = _with_events(opts, events, dense_output, core)
-    try:
-        t0, t1 = t_span
-    except (TypeError, ValueError):
-        t0, t1 = _span(t_span)
+    t0, t1 = _span(t_span)
     if isinstance(y0, Solution):
         y0, opts = _continuation(y0, t0, opts, first_step)
-    y0 = np.asarray(y0, dtype=float)
+    y0 = floats(y0, "y0")
     if y0.ndim != 1:
         raise ValueError(f"y0 must be one state (a 1-D array), got shape {y0.shape}")
     if atol is not None and atol > 1e-3:
         _warn_loose_atol(atol, y0)
+    check_validity = check_validity if check_validity is True else flag(check_validity, "check_validity")
     report = _bars.default() if progress is None else _bars.resolve(progress)
     try:
-        result = _core.solve(core, y0, t0, t1, opts, report)
-    except TypeError:
-        raise _bad_call(core, y0, t0, t1) from None
-    if report is not None:
-        _bars.close(report)
+        result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates
+    finally:
+        if report is not None:
+            _bars.close(report)
     solution = Solution(result, model)
     if result.success and (not check_validity or type(model).check is _BASE_CHECK) and not result.warnings:
         return solution
@@ -291,8 +295,10 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
 
     ``models`` is one model for every member or a sequence of N (different parameters, or
-    different families, per member); ``y0s`` is (N, dim), or a sequence of N states (of each
-    member's own size, short states completed as in :func:`solve`). Results come in index order.
+    different families, per member); ``y0s`` is (N, dim), or any iterable of N states (of each
+    member's own size, short states completed as in :func:`solve`; a generator is read once).
+    Results come in index order. All members' outputs together are held to the limit of one
+    run's (2 GiB: ``RUN_MEMORY_LIMIT``), checked before any member starts.
 
     With ``batch=True`` (the default), members that a SIMD batch covers run
     :data:`gyrostat.simd_lanes` at a time, one per lane, each lane with its own parameters,
@@ -309,7 +315,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     Ctrl-C stops the members running (status ``"interrupted"``, partial trajectories kept) and
     those not started (empty, ``"interrupted"``). Options, ``events`` and ``dense_output`` as in
     :func:`solve`: every member watches the same events and stops on its own terminal event (the
-    events are resolved against the first model's names: give members of one family).
+    events are resolved against the first model's names: give members of one family); the first
+    exception an event callable raises is raised again once the members have finished.
     """
     if isinstance(models, ModelBase):
         models = [models]
@@ -317,19 +324,24 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     if not models:
         raise ValueError("solve_ensemble needs at least one model")
     cores = [_core_model(m) for m in models]
-    if isinstance(y0s, np.ndarray) or (y0s and not isinstance(y0s[0], (list, tuple, np.ndarray))):
-        y0s = np.asarray(y0s, dtype=float)
+    if not isinstance(y0s, (np.ndarray, Sequence)):  # a generator or any other iterable of states
+        try:
+            y0s = list(y0s)
+        except TypeError:
+            raise ValueError(f"y0s must be (N, dim) numbers or a sequence of N states, got {shown(y0s)}") from None
+    if isinstance(y0s, np.ndarray) or (len(y0s) and not isinstance(y0s[0], (list, tuple, np.ndarray))):
+        y0s = floats(y0s, "y0s")
         if y0s.ndim != 2:
             raise ValueError(f"y0s must be (N, dim), got shape {y0s.shape}")
         count = y0s.shape[0]
     else:
-        y0s = [np.asarray(y, dtype=float).ravel() for y in y0s]
+        y0s = [floats(y, f"y0s[{i}]").ravel() for i, y in enumerate(y0s)]
         count = len(y0s)
     if len(models) not in (1, count):
         raise ValueError(f"{len(models)} models for {count} initial states: give 1 or {count}")
     opts = _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step,
                     splitting_order)
-    if events is not None or dense_output:
+    if events is not None or dense_output is not False:
         if len({tuple(c.state_names) + tuple(c.output_names) for c in cores}) > 1:
             raise ValueError("events in an ensemble need members of one family (the same state and output names)")
         opts = _with_events(opts, events, dense_output, cores[0])
@@ -338,13 +350,44 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         _warn_loose_atol(atol, np.abs(np.asarray(y0s[0] if isinstance(y0s, list) else y0s, float)).max(axis=0))
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
+    batch, check_validity = flag(batch, "batch"), flag(check_validity, "check_validity")
+    outputs = len(opts.t_eval) or opts.n_out
+    check_output_memory(cores, count, outputs, f"{count} members x {outputs} output times")
     report = _bars.resolve(progress, total=count, unit="member")
     try:
-        results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report, batch=bool(batch))
+        results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report, batch=batch)
     finally:
         _bars.close(report)
     solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
     return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
+
+
+RUN_MEMORY_LIMIT = 2 * 2**30
+"""The bytes of output one run may record: the engine refuses a run above it (``Recorder`` in
+cpp/include/gyrostat/integrate/recorder.hpp); :func:`solve_ensemble` applies it to all members together."""
+
+
+def check_output_memory(models, members: int, outputs: int, what: str) -> None:
+    """A ValueError starting with ``what`` when ``members`` runs of these models (one for all, or
+    one per member) would record more than RUN_MEMORY_LIMIT bytes at ``outputs`` output times
+    (t, the state and the named outputs at each, as the engine counts them; ``every_step`` is
+    not counted: unknown before the run)."""
+    widths = [1 + m.dim + len(m.output_names) for m in models]
+    need = float(members) * max(outputs, 2) * sum(widths) / len(widths) * 8.0
+    if need > RUN_MEMORY_LIMIT:
+        raise ValueError(f"{what} would take {need / 2**30:.3g} GiB (limit {RUN_MEMORY_LIMIT / 2**30:g} GiB for "
+                         "one run's outputs): ask for fewer outputs" + (" or fewer members" if members > 1 else ""))
+
+
+def check_run(model, t_span, options: dict) -> None:
+    """The options of a run of ``model`` over ``t_span`` checked as :func:`solve` checks them
+    (tolerances, steps, output times and their memory), without running: a ValueError naming
+    the value. ``method`` is taken as valid (a scene's schema has checked it); events are not
+    options here."""
+    opts = make_options(**{name: options[name] for name in _OPTION_NAMES if name in options and name != "method"})
+    outputs = len(opts.t_eval) or opts.n_out
+    check_output_memory([model], 1, outputs, f"n_out = {outputs} output times")
+    opts.validate(*_span(t_span))
 
 
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
@@ -353,7 +396,7 @@ def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
     t_eval=t_eval)``."""
     from gyrostat.model import TorqueFreeModel
 
-    t = np.asarray(t_eval, dtype=float).ravel()
-    if t.size == 0:
-        raise ValueError("t_eval is empty")
+    t = _times(t_eval)
+    if np.any(np.diff(t) < 0):
+        raise ValueError(f"t_eval = {shown(t_eval)} is unsorted: the times must be increasing")
     return solve(TorqueFreeModel(body), omega0, (t[0], t[-1]), t_eval=t)

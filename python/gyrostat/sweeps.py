@@ -53,10 +53,11 @@ import numpy as np
 
 from gyrostat import _core, output
 from gyrostat import progress as _bars
+from gyrostat.model import shown
 from gyrostat.schema import SceneError, locate
 
 __all__ = ["Uniform", "Normal", "LogUniform", "Parameter", "Plan", "sweep", "open_sweep", "summary",
-           "solve_chunk", "parameter_from_table", "parameter_from_text", "MEMORY_LIMIT"]
+           "solve_chunk", "parameter_from_table", "parameter_from_text", "check_plot", "MEMORY_LIMIT"]
 
 MEMORY_LIMIT = 4 * 2**30
 """Bytes a sweep may keep in memory (trajectories and summaries); beyond it a sweep asks for
@@ -151,7 +152,9 @@ def parse_path(text: str) -> tuple:
 
 
 def _entry(value, inner: tuple, text: str) -> list:
-    """The numbers a path's inner indices select inside a field's value (checked)."""
+    """The numbers a path's inner indices select inside a field's value (checked): one number, or
+    the entries of a slice; a whole list is refused (a sweep sets one number per path)."""
+    sliced = False
     for i, part in enumerate(inner):
         if isinstance(part, str):  # a key of a table inside a value (a law given as a table)
             if not isinstance(value, dict) or part not in value:
@@ -165,11 +168,14 @@ def _entry(value, inner: tuple, text: str) -> list:
             chosen = range(*part.indices(len(value)))
             if part.start < 0 or part.stop > len(value) or not chosen:
                 raise SceneError(f"vary: {text!r}: the slice is outside the {len(value)} entries")
-            value = [value[k] for k in chosen]
+            value, sliced = [value[k] for k in chosen], True
             break
         if not -len(value) <= part < len(value):
             raise SceneError(f"vary: {text!r}: index {part} is outside the {len(value)} entries")
         value = value[part]
+    if isinstance(value, list) and not sliced:
+        raise SceneError(f"vary: {text!r} is a list ({shown(value)}): a sweep sets one number per path; vary one "
+                         f"entry ({text}[0]) or a slice of them ({text}[0:{len(value)}])")
     numbers = value if isinstance(value, list) else [value]
     if not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in numbers):
         raise SceneError(f"vary: {text!r} is {value!r}, not a number")
@@ -760,7 +766,8 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     Parameters
     ----------
     scene:
-        A scene file, a scene document (dict) or a :class:`gyrostat.scene.Scene`.
+        A scene file, a scene document (dict) or a :class:`gyrostat.scene.Scene`; or a
+        :class:`Plan` made already (``vary``, ``samples``, ``seed`` and ``run`` are then its own).
     vary:
         ``{path: values}`` (a grid: the product of the value lists), ``{path: distribution}``
         (a dispersion: :class:`Uniform`, :class:`Normal`, :class:`LogUniform`), or a list of
@@ -800,7 +807,7 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
         batches (``taylor`` or ``dop853`` on the gyrostat with constant and linear torques, the
         averaged model under ``dop853``), which equal them to the tolerance.
     """
-    plan = Plan(scene, vary, samples=samples, seed=seed, run=run)
+    plan = scene if isinstance(scene, Plan) else Plan(scene, vary, samples=samples, seed=seed, run=run)
     if trajectories and getattr(plan, "varies_n_out", False):
         raise ValueError("integration.n_out varies across members: their trajectories differ in length; keep "
                          "summaries only (trajectories=False)")
@@ -915,6 +922,29 @@ def _run_dask(plan, ranges, sink, bar, client, threads, options) -> dict:
 
 
 # ------------------------------------------------------------------------------------ summaries
+def check_plot(plan: Plan, expression: str | None, *, trajectories: bool, extrema: Sequence[str] | None = None,
+               contour: float | None = None, lines: Sequence[Mapping] | None = None) -> str:
+    """What a sweep's plot will show, checked before any member runs against the variables the
+    sweep will have: the summary (None: the first final value; returned), the reference lines
+    (as many x as y values) and the contour (drawn on a grid over two parameters)."""
+    import xarray as xr
+
+    extrema = plan.output_names if extrema is None else tuple(extrema)
+    blank = _blank(plan, 1, trajectories, extrema)
+    ds = xr.Dataset({name: (("member",) if a.ndim == 1 else ("member", "time"), a, _attributes(plan, name))
+                     for name, a in blank.items()})
+    expression = expression if expression is not None else f"final_{plan.names[0]}"
+    summary(ds, expression)
+    for i, line in enumerate(lines or ()):
+        if len(line["x"]) != len(line["y"]):
+            raise ValueError(f"lines[{i}] ({line['label']!r}): x has {len(line['x'])} values and y "
+                             f"{len(line['y'])}: give as many of each")
+    if contour is not None and not (plan.mode == "grid" and len(plan.parameters) == 2):
+        raise ValueError(f"contour = {contour!r} is a level line on a grid over two parameters; this sweep is a "
+                         f"{plan.mode} over {len(plan.parameters)}")
+    return expression
+
+
 _ALLOWED = re.compile(r"[\sA-Za-z0-9_.+\-*/()]*")
 
 
