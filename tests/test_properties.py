@@ -10,7 +10,7 @@ import tomllib
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import gyrostat as g
@@ -48,6 +48,35 @@ def test_a_free_body_keeps_its_momentum_and_energy(moments, w, method, rtol):
     scale = max(G[0], 1e-12)
     assert np.max(np.abs(G - G[0])) <= 1e4 * rtol * scale + 1e-12
     assert np.max(np.abs(T - T[0])) <= 1e4 * rtol * max(T[0], 1e-12) + 1e-12
+
+
+@settings(max_examples=25, deadline=None, database=None, derandomize=True,
+          suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@given(bodies(), st.floats(-30.0, -1.0), st.sampled_from([1.0, -1.0]), st.sampled_from([1.0, -1.0]),
+       st.floats(0.05, 0.95))
+def test_the_closed_form_next_to_the_separatrix(moments, log_gap, side, sign, split):
+    """A state whose polhode passes within 1 - k^2 ~ 10^log_gap of the separatrix, on either side
+    (A(A-B)p^2 + C(C-B)r^2 of sign `side`), against SciPy with Euler's equations written here
+    (DOP853, rtol 1e-13, atol 1e-20: its own error over t <= 20 stays below 1e-12 there,
+    tests/test_separatrix.py) over about two swings: relative error below 1e-9."""
+    from scipy.integrate import solve_ivp
+
+    A, B, C = sorted(moments)
+    assume(min(B - A, C - B) >= 0.05 * C)  # a nearly symmetric body has no separatrix worth the name
+    # q = 1 about the middle axis; p, r of size sqrt(gap) with A(A-B)p^2 + C(C-B)r^2 = side·gap·B(B-A)
+    gap = 10.0**log_gap
+    r2 = split * gap
+    p2 = (C * (C - B) * r2 - side * gap * B * (B - A)) / (A * (B - A))
+    assume(p2 > 0)
+    w0 = [math.sqrt(p2), sign * 1.0, math.sqrt(r2)]
+    J = [A, B, C]
+    t = np.linspace(0.0, 20.0, 21)
+    sol = g.solve(g.TorqueFreeModel(g.Body(J)), w0, (0.0, 20.0), t_eval=t)
+
+    def f(_, w):
+        return [(B - C) * w[1] * w[2] / A, (C - A) * w[2] * w[0] / B, (A - B) * w[0] * w[1] / C]
+    ref = solve_ivp(f, (0.0, 20.0), w0, method="DOP853", t_eval=t, rtol=1e-13, atol=1e-20).y.T
+    assert np.max(np.abs(sol.omega - ref)) < 1e-9 * np.linalg.norm(w0), np.max(np.abs(sol.omega - ref))
 
 
 @SETTINGS

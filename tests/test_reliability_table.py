@@ -260,7 +260,109 @@ CASES = {
     # an ensemble's outputs within the limit of one run
     "ensemble of 1000 x 10**6 outputs": lambda: error(
         lambda: g.solve_ensemble(g.Model(BODY), [W0] * 1000, (0, 1), n_out=10**6), "1000 members", "GiB", "limit 2 GiB"),
+    # issue 25 items 1-5: wrong answers that were returned as success
+    "closed form from [1e-8, 1, 1e-8] (was 0.099 off)": lambda: _near_separatrix_case([1e-8, 1.0, 1e-8]),
+    "closed form from [1e-6, 1, 1e-6] (was 2.1e-5 off)": lambda: _near_separatrix_case([1e-6, 1.0, 1e-6]),
+    "rigid_body scene, model = auto, from [1e-8, 1, 1e-8]": lambda: _near_separatrix_scene_case(),
+    "splitting from [1e-6, 1, 1e-6], torque 1e-9 (was 9.3e-3 off)": lambda: _near_separatrix_splitting_case(
+        [1e-6, 1.0, 1e-6]),
+    "splitting from [1e-8, 1, 1e-8], torque 1e-9 (was a GSL error)": lambda: _near_separatrix_splitting_case(
+        [1e-8, 1.0, 1e-8]),
+    "splitting, step = 10 over (0, 5) (was 9.1 % off, success)": lambda: _big_step_case(),
+    "scene: splitting with step = 100 over [0, 5] (was 2.8 % off, exit 0)": lambda: _big_step_scene_case(),
+    "cvode_bdf from (1e100, 0.5, -0.3): steps over the oscillation": lambda: _bdf_oscillation_case(),
+    "explicit moving mass on a soft spring (Omega = 0.5)": lambda: _soft_spring_case(),
+    "orthogonal torque at rest with a rotor, and at a permanent rotation": lambda: _orthogonal_one_rule_case(),
 }
+
+
+def _euler_reference(moments, w0, times, torque=(0.0, 0.0, 0.0)):
+    """Euler's equations written here, SciPy's DOP853 at rtol 1e-13, atol 1e-20 (its own error
+    from [1e-8, 1, 1e-8] over (0, 30): 5e-14, measured against an mpmath solution)."""
+    from scipy.integrate import solve_ivp
+
+    A, B, C = moments
+    M = np.asarray(torque, float)
+
+    def f(t, w):
+        return [((B - C) * w[1] * w[2] + M[0]) / A, ((C - A) * w[2] * w[0] + M[1]) / B,
+                ((A - B) * w[0] * w[1] + M[2]) / C]
+    return solve_ivp(f, (times[0], times[-1]), w0, method="DOP853", t_eval=times, rtol=1e-13, atol=1e-20).y.T
+
+
+def _near_separatrix_case(w0):
+    sol = g.solve(g.TorqueFreeModel(BODY), w0, (0, 30), n_out=31)
+    error_ = np.max(np.abs(sol.omega - _euler_reference([1.0, 2.0, 3.0], w0, sol.t)))
+    assert sol.success and error_ < 1e-10, error_  # measured 3e-16 and 3e-15 (tests/test_separatrix.py)
+
+
+def _near_separatrix_scene_case():
+    from gyrostat.runner import solve_scene
+    from gyrostat.scene import Scene
+
+    scene = Scene.from_dict({"body": {"moments": [1.0, 2.0, 3.0]}, "initial": {"omega": [1e-8, 1.0, 1e-8]},
+                             "integration": {"model": "auto", "t_span": [0.0, 30.0], "n_out": 31}})
+    solutions, report, _ = solve_scene(scene, progress=False)
+    (sol,) = solutions.values()
+    assert report["model"] == "closed_form" and report["status"] == "success", report["model"]
+    assert np.max(np.abs(sol.omega - _euler_reference([1.0, 2.0, 3.0], [1e-8, 1.0, 1e-8], sol.t))) < 1e-10
+
+
+def _near_separatrix_splitting_case(w0):
+    torque = [0.0, 0.0, 1e-9]
+    sol = g.solve(g.Model(BODY, [g.ConstantTorque(torque)]), w0, (0, 30), method="splitting", step=0.01, n_out=31)
+    error_ = np.max(np.abs(sol.omega - _euler_reference([1.0, 2.0, 3.0], w0, sol.t, torque)))
+    assert sol.success and error_ < 1e-9, (sol.message, error_)  # measured 5e-12 and 1e-12
+
+
+def _big_step_case():
+    with pytest.warns(g.AccuracyWarning) as caught:
+        sol = g.solve(g.Model(BODY, [g.LinearDamping(0.05 * np.eye(3))]), W0, (0, 5), method="splitting", step=10.0)
+    said = " ".join(str(w.message) for w in caught)
+    assert "exceeds the span" in said and "exceeds rtol" in said and sol.error_estimate > 1e-3, said
+
+
+def _big_step_scene_case():
+    code, out, err, report = command_line(_splitting_scene(100.0))
+    assert code == 0 and "Traceback" not in err and "AccuracyWarning" not in err, err
+    doubts = " ".join(report["accuracy_warnings"])
+    assert "exceeds the span" in doubts and "exceeds rtol" in doubts, report["accuracy_warnings"]
+    assert "WARNING accuracy" in out and any("estimated global error" in n for r in report["runs"].values()
+                                             for n in r["notes"])
+
+
+def _splitting_scene(step):
+    return f"""[body]
+moments = [2.0, 3.0, 4.0]
+[[torques]]
+type = "linear_damping"
+matrix = [[0.05, 0.0, 0.0], [0.0, 0.05, 0.0], [0.0, 0.0, 0.05]]
+[initial]
+omega = [0.4, 0.9, -0.3]
+[integration]
+t_span = [0.0, 5.0]
+method = "splitting"
+step = {step}
+"""
+
+
+def _bdf_oscillation_case():
+    with pytest.warns(g.AccuracyWarning, match="steps over oscillations") as caught:
+        sol = g.solve(g.Model(BODY, [g.ConstantTorque([0, 0, 0.05])]), [1e100, 0.5, -0.3], (0, 10), method="cvode_bdf")
+    assert "auto" in str(caught[0].message) and any("steps over oscillations" in n for n in sol.notes)
+
+
+def _soft_spring_case():
+    model = g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), mass=1, arm=1, frequency=0.5, damping=1)
+    with pytest.warns(g.ValidityWarning, match=r"displacement \|u\|/ρ"):
+        sol = g.solve(model, model.quasi_static_state([1, 0, 1]), (0, 50), method="cvode_bdf")
+    assert sol["displacement_ratio"].max() > 1.0 and any("displacement" in n for n in sol.notes)
+
+
+def _orthogonal_one_rule_case():
+    for body, w0 in ((g.Body([2, 3, 4], [0.3, -0.2, 0.5]), [0.0, 0.0, 0.0]), (g.Body([2, 3, 4]), [1.0, 0.0, 0.0])):
+        sol = g.solve(orthogonal.OrthogonalModel(body, 0.1), w0, (0, 1), n_out=3)
+        assert np.all(sol["regularised"] == 1.0) and np.all(sol["g"] == 1.0), (w0, sol["regularised"], sol["g"])
 
 
 def _equal(value, expected):

@@ -298,6 +298,7 @@ void expose_integrate(py::module_& m) {
 
     m.def("methods", &integrate::method_names);
     m.attr("simd_lanes") = lanes::width;
+    m.attr("max_output_bytes") = integrate::kMaxOutputBytes;
     m.attr("simd_instruction_set") = lanes::instruction_set;
     m.attr("taylor_kernel") = model::affine_euler_avx2_available() ? "avx2+fma" : "portable";
 }

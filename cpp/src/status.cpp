@@ -74,7 +74,6 @@ void validate(const Options& o, double t0, double t1) {
     if (!std::isfinite(t0)) throw std::invalid_argument("t0 = " + format_value(t0) + " is not finite");
     if (!std::isfinite(t1)) throw std::invalid_argument("t1 = " + format_value(t1) + " is not finite");
     // Each output row holds t and at least two state components: n_out·24 bytes at the least.
-    constexpr double kMaxOutputBytes = 2.0 * 1024 * 1024 * 1024;
     if (static_cast<double>(o.n_out) * 24.0 > kMaxOutputBytes)
         throw std::invalid_argument("n_out = " + std::to_string(o.n_out) + " output times would take at least " +
                                     format_value(static_cast<double>(o.n_out) * 24.0 / (1024.0 * 1024 * 1024)) +

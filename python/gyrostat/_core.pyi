@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model']
+__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'max_output_bytes', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model']
 class Body:
     def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
@@ -21,7 +21,7 @@ class Body:
         ...
 class ConstantTorque:
     kind: typing.ClassVar[str] = 'constant'
-    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
@@ -29,7 +29,7 @@ class ConstantTorque:
         ...
     def __repr__(self) -> str:
         ...
-    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+    def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
@@ -38,7 +38,7 @@ class ConstantTorque:
         ...
 class LinearDamping:
     kind: typing.ClassVar[str] = 'linear_damping'
-    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
@@ -46,7 +46,7 @@ class LinearDamping:
         ...
     def __repr__(self) -> str:
         ...
-    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+    def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
@@ -55,7 +55,7 @@ class LinearDamping:
         ...
 class ResistiveMedium:
     kind: typing.ClassVar[str] = 'resistive_medium'
-    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
@@ -63,9 +63,9 @@ class ResistiveMedium:
         ...
     def __repr__(self) -> str:
         ...
-    def at(self, t: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+    def at(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
         ...
-    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+    def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
@@ -75,17 +75,17 @@ class ResistiveMedium:
 class ViscousCavity:
     kind: typing.ClassVar[str] = 'viscous_cavity'
     @staticmethod
-    def sphere(density: typing.SupportsFloat | typing.SupportsIndex, viscosity: typing.SupportsFloat | typing.SupportsIndex, radius: typing.SupportsFloat | typing.SupportsIndex) -> ViscousCavity:
+    def sphere(density: typing.Any, viscosity: typing.Any, radius: typing.Any) -> ViscousCavity:
         ...
-    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, density: typing.SupportsFloat | typing.SupportsIndex, viscosity: typing.SupportsFloat | typing.SupportsIndex, p0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def __init__(self, density: typing.Any, viscosity: typing.Any, p0: typing.Any) -> None:
         ...
     def __repr__(self) -> str:
         ...
-    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+    def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
@@ -106,17 +106,17 @@ class ViscousCavity:
         ...
 class MovingMassDamper:
     kind: typing.ClassVar[str] = 'moving_mass_damper'
-    def S(self, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    def S(self, A: typing.Any, C: typing.Any) -> float:
         ...
-    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], moments: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, arm: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def __init__(self, mass: typing.Any, arm: typing.Any, frequency: typing.Any, damping: typing.Any) -> None:
         ...
     def __repr__(self) -> str:
         ...
-    def averaged(self, t: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex, r: typing.SupportsFloat | typing.SupportsIndex, A: typing.SupportsFloat | typing.SupportsIndex, C: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
+    def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
@@ -318,6 +318,11 @@ class Result:
     def dim(self) -> int:
         ...
     @property
+    def error_estimate(self) -> float:
+        """
+        The run's own global error estimate relative to max|y_i| (splitting); NaN: none.
+        """
+    @property
     def event_names(self) -> list[str]:
         ...
     @property
@@ -338,6 +343,11 @@ class Result:
     def methods_used(self) -> list[str]:
         """
         The integrators that carried the run, in order of first use.
+        """
+    @property
+    def notes(self) -> list[str]:
+        """
+        What the run says about its own answer (information).
         """
     @property
     def output_conserved(self) -> list[bool]:
@@ -379,6 +389,11 @@ class Result:
     @property
     def terminal_event(self) -> int:
         ...
+    @property
+    def warnings(self) -> list[str]:
+        """
+        What the run doubts about its own answer (warned in Python).
+        """
     @property
     def y(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
@@ -487,7 +502,7 @@ def mean_sn_squared(m: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
 def methods() -> list[str]:
     ...
-def moving_mass_model(body: Body, mass: typing.SupportsFloat | typing.SupportsIndex, arm: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, damping: typing.SupportsFloat | typing.SupportsIndex, torques: collections.abc.Iterable) -> Model:
+def moving_mass_model(body: Body, mass: typing.Any, arm: typing.Any, frequency: typing.Any, damping: typing.Any, torques: collections.abc.Iterable) -> Model:
     ...
 def orthogonal_model(body: Body, law: MagnitudeLaw, torques: collections.abc.Iterable, attitude: bool, eta: typing.SupportsFloat | typing.SupportsIndex, smooth: bool) -> Model:
     ...
@@ -513,6 +528,7 @@ def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0:
 def torque_free_model(body: Body, attitude: bool = False) -> Model:
     ...
 __version__: str = '0.1.0'
+max_output_bytes: float = 2147483648.0
 simd_instruction_set: str = 'sse2'
 simd_lanes: int = 4
-taylor_kernel: str  # 'avx2+fma' or 'portable': chosen when the module is loaded
+taylor_kernel: str = 'avx2+fma'

@@ -51,6 +51,8 @@ def _print_report(report: dict) -> None:
             print(f"  averaged vs full: {text}")
     for broken in report.get("broken_assumptions", []):
         print(f"  WARNING assumption broken: {broken}")
+    for doubt in report.get("accuracy_warnings", []):
+        print(f"  WARNING accuracy: {doubt}")
     for plot in report.get("plots_skipped", []):
         print(f"  WARNING plot '{plot['plot']}' not drawn: {plot['reason']}")
     if "max_error_vs_closed_form" in report:

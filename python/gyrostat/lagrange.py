@@ -31,7 +31,7 @@ import numpy as np
 
 from gyrostat import _core, attitude
 from gyrostat.events import Event
-from gyrostat.model import ModelBase, check_torques
+from gyrostat.model import ModelBase, check_torques, number
 from gyrostat.validity import SMALL, Assumption, ValidityWarning
 
 SEPARATRIX_LIMIT = 1e-3
@@ -53,7 +53,7 @@ def paper_torque(epsilon: float, a: Sequence[float] = (1.0, 1.0), b: Sequence[fl
 
 class _TopModel(ModelBase):
     def __init__(self, A: float, C: float, mu: float, torques: Sequence = ()):
-        self.A, self.C, self.mu = float(A), float(C), float(mu)
+        self.A, self.C, self.mu = number(A, "A"), number(C, "C"), number(mu, "mu")
         self.body = _core.Body([self.A, self.A, self.C])
         self.torques = check_torques(torques)
         self._core = self._make(self.body, self.mu, self.torques)

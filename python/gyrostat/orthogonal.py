@@ -29,7 +29,7 @@ import numpy as np
 
 from gyrostat import _core, attitude
 from gyrostat.events import Event
-from gyrostat.model import Model, ModelBase, check_torques
+from gyrostat.model import Model, ModelBase, check_torques, flag
 from gyrostat.solve import solve
 
 ETA = 1e-3
@@ -120,7 +120,7 @@ class OrthogonalModel(ModelBase):
         if regularisation not in ("threshold", "smooth"):
             raise ValueError(f"regularisation = {regularisation!r}: choose 'threshold' or 'smooth'")
         self.regularisation = regularisation
-        self._core = _core.orthogonal_model(body, law, self.torques, bool(attitude), self.eta,
+        self._core = _core.orthogonal_model(body, law, self.torques, flag(attitude, "attitude"), self.eta,
                                             regularisation == "smooth")
 
     @property

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,7 +18,7 @@ from gyrostat import ladder as _ladder
 from gyrostat import progress as _bars
 from gyrostat.averaged import slow_variables
 from gyrostat.scene import Scene, SceneError
-from gyrostat.solution import Solution
+from gyrostat.solution import AccuracyWarning, Solution
 from gyrostat.solve import solve, torque_free
 
 
@@ -26,14 +27,16 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     kind's analysis derived for its plots (references, comparisons)."""
     started = time.perf_counter()
     solutions: dict[str, Solution] = {}
-    choice = _solve_ladder(scene, solutions, progress) if scene.ladder is not None else None
-    for run in scene.runs if choice is None else ():
-        report = _bars.resolve(None if progress else False, description=f"{scene.name}: {run.name}")
-        try:  # a bar in a terminal for a run longer than the engine's first poll (0.1 s)
-            solutions[run.name] = solve(run.model, run.y0, run.t_span, **run.options, check_validity=False,
-                                        progress=report if report is not None else False)
-        finally:
-            _bars.close(report)
+    with warnings.catch_warnings():  # the runs' own doubts go to the report (below), not to stderr
+        warnings.simplefilter("ignore", AccuracyWarning)
+        choice = _solve_ladder(scene, solutions, progress) if scene.ladder is not None else None
+        for run in scene.runs if choice is None else ():
+            report = _bars.resolve(None if progress else False, description=f"{scene.name}: {run.name}")
+            try:  # a bar in a terminal for a run longer than the engine's first poll (0.1 s)
+                solutions[run.name] = solve(run.model, run.y0, run.t_span, **run.options, check_validity=False,
+                                            progress=report if report is not None else False)
+            finally:
+                _bars.close(report)
     elapsed = time.perf_counter() - started
     report = {
         "scene": scene.name,
@@ -62,6 +65,8 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
         unique.setdefault(str(assumption), assumption)
     report["assumptions"] = [output.assumption_entry(a) for a in unique.values()]
     report["broken_assumptions"] = [str(a) for a in unique.values() if not a.holds]
+    report["accuracy_warnings"] = [f"{name}: {doubt}" for name, solution in solutions.items()
+                                   for doubt in getattr(solution, "accuracy_warnings", ())]
     derived: dict = {}
     if choice is not None:
         report["ladder"] = _ladder_report(choice, solutions)

@@ -231,6 +231,12 @@ class Solution:
         return self._result.message
 
     @property
+    def accuracy_warnings(self) -> tuple[str, ...]:
+        """What the run doubts about its own answer (each one an :class:`AccuracyWarning` when
+        :func:`gyrostat.solve` returned, and in ``notes``)."""
+        return tuple(self._result.warnings)
+
+    @property
     def error_estimate(self) -> float:
         """The run's own global error estimate relative to max|y_i| (``splitting``); NaN: none."""
         return self._result.error_estimate

@@ -362,7 +362,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
 
 
-RUN_MEMORY_LIMIT = 2 * 2**30
+RUN_MEMORY_LIMIT = _core.max_output_bytes
 """The bytes of output one run may record: the engine refuses a run above it (``Recorder`` in
 cpp/include/gyrostat/integrate/recorder.hpp); :func:`solve_ensemble` applies it to all members together."""
 

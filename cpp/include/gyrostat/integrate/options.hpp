@@ -40,6 +40,10 @@ struct Event {
     std::function<double(double t, const double* y, int dim)> function;  ///< Quantity::Function
 };
 
+/// The most memory one run's outputs may take (times, states and named outputs, 8 bytes each):
+/// a run, a scene or an ensemble member asking for more is refused before it starts.
+constexpr double kMaxOutputBytes = 2.0 * 1024 * 1024 * 1024;
+
 /// Every option of every integrator, with its default: the one place where defaults live
 /// (the Python layer reads them from here).
 struct Options {

@@ -53,7 +53,7 @@ public:
     Recorder(const System& system, Result& result, std::size_t expected) : system_(system), result_(result) {
         describe<System>(result_);
         const double bytes = static_cast<double>(expected) * (1 + System::dim + n_outputs) * sizeof(double);
-        if (bytes > 2.0 * 1024 * 1024 * 1024)
+        if (bytes > kMaxOutputBytes)
             throw std::invalid_argument(std::to_string(expected) + " output times would take " +
                                         format_value(bytes / (1024.0 * 1024 * 1024)) + " GiB for this model's " +
                                         std::to_string(System::dim) + " state components and " +
