@@ -525,8 +525,13 @@ int main() {
         }
         integrate::Options s;
         s.method = Method::Splitting;
+        s.step = -1.0;
         CHECK(throws_invalid([&] { integrate::solve(full, 0.0, model::Gyrostat<true>::State::Unit(3), 1.0, s); }),
-              "splitting without a step");
+              "splitting with a negative step");
+        s.step = 0.0;  // chosen from rtol: the free flow alone is exact, so the estimate stays at rounding
+        const auto chosen = integrate::solve(full, 0.0, model::Gyrostat<true>::State::Unit(3), 1.0, s);
+        CHECK(chosen.success() && chosen.error_estimate < s.rtol && !chosen.notes.empty() && chosen.warnings.empty(),
+              "splitting with the step chosen from rtol");
         s.step = 0.1;
         const AnyModel averaged = model::AveragedSymmetric(Body(Vec3(2.0, 2.0, 1.0)), TorqueSet{});
         CHECK(throws_invalid([&] { solve(averaged, 0.0, Eigen::VectorXd::Constant(dim(averaged), 0.1), 1.0, s); }),

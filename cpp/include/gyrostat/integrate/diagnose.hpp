@@ -39,6 +39,12 @@ std::complex<double> dominant_eigenvalue(const System& system, double t, const t
     return solver.eigenvalues()[k];
 }
 
+/// λ as "a + bi" (or "a − bi") with `precision` significant digits, for messages.
+inline std::string format_eigenvalue(std::complex<double> lambda, int precision = 6) {
+    return format_number(lambda.real(), precision) + (lambda.imag() >= 0 ? " + " : " − ") +
+           format_number(std::abs(lambda.imag()), precision) + "i";
+}
+
 /// Whether the eigenvalue λ is mainly decaying (Re λ < −|λ|/2): the mode an implicit method
 /// damps at any step, and an explicit one only below its stability boundary in h·|λ|. (An
 /// oscillatory mode limits BDF too: its orders 3–5 lose stability near the imaginary axis.)
@@ -56,8 +62,7 @@ std::string stiffness_hint(const System& system, double t, const typename System
     if (!std::isfinite(rho) || h <= 0.0) return "";
     const double h_rho = h * rho;
     std::string s = " Last step h = " + format_number(h) + "; dominant eigenvalue of the Jacobian λ = " +
-                    format_number(lambda.real()) + (lambda.imag() >= 0 ? " + " : " - ") +
-                    format_number(std::abs(lambda.imag())) + "i, h·|λ| = " + format_number(h_rho, 3) + ".";
+                    format_eigenvalue(lambda) + ", h·|λ| = " + format_number(h_rho, 3) + ".";
     if (decaying(lambda) && h_rho >= 0.1 && rho * span >= 1e3)
         s += " The step is held by the explicit stability limit, not by accuracy: the problem is stiff; "
              "use method='cvode_bdf'.";

@@ -71,7 +71,7 @@ public:
             return false;
         reason_ = "stiff: DOP853's step h = " + format_number(std::abs(h)) + " is held at its stability boundary (h·ρ > " +
                   format_number(kBoundary) + " in Hairer's test on " + std::to_string(kStiffTests) +
-                  " steps); dominant eigenvalue λ = " + describe(lambda) + ", h·|λ| = " + format_number(h_lambda, 3);
+                  " steps); dominant eigenvalue λ = " + format_eigenvalue(lambda) + ", h·|λ| = " + format_number(h_lambda, 3);
         implicit_steps_ = 0;
         return true;
     }
@@ -84,7 +84,7 @@ public:
         const double threshold = kBackFraction * kBoundary / static_cast<double>(1L << std::min(returns_, 20));
         if (!(h_lambda <= threshold)) return false;
         reason_ = "not stiff: BDF's step h = " + format_number(std::abs(h)) + " with dominant eigenvalue λ = " +
-                  describe(lambda) + " gives h·|λ| = " + format_number(h_lambda, 3) + " ≤ " +
+                  format_eigenvalue(lambda) + " gives h·|λ| = " + format_number(h_lambda, 3) + " ≤ " +
                   format_number(threshold, 3) + ", well inside DOP853's stability boundary " + format_number(kBoundary);
         ++returns_;
         stiff_ = non_stiff_ = 0;
@@ -100,10 +100,6 @@ private:
     std::complex<double> eigenvalue(double t, const State& y) {
         ++evaluations_;
         return dominant_eigenvalue(system_, t, y);
-    }
-    static std::string describe(std::complex<double> lambda) {
-        return format_number(lambda.real()) + (lambda.imag() >= 0 ? " + " : " − ") + format_number(std::abs(lambda.imag())) +
-               "i";
     }
 
     const System& system_;
@@ -143,8 +139,7 @@ public:
         warned_ = true;
         result.warnings.push_back(
             "cvode_bdf steps over oscillations it damps away: at t = " + format_number(t) + " the Jacobian's dominant "
-            "eigenvalue λ = " + format_number(lambda.real(), 3) + (lambda.imag() >= 0 ? " + " : " - ") +
-            format_number(std::abs(lambda.imag()), 3) + "i is oscillatory with step h = " + format_number(h, 3) +
+            "eigenvalue λ = " + format_eigenvalue(lambda, 3) + " is oscillatory with step h = " + format_number(h, 3) +
             " (h·|Im λ| = " + format_number(over, 3) + " > " + format_number(kStepsOver, 2) +
             ", h·|Re λ| = " + format_number(std::abs(decay), 3) +
             "): the oscillation of that mode is lost; use method 'auto' or 'dop853'");
