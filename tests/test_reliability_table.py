@@ -270,6 +270,7 @@ CASES = {
         [1e-8, 1.0, 1e-8]),
     "splitting, step = 10 over (0, 5) (was 9.1 % off, success)": lambda: _big_step_case(),
     "scene: splitting with step = 100 over [0, 5] (was 2.8 % off, exit 0)": lambda: _big_step_scene_case(),
+    "sweep of splitting members with step = 10 over [0, 5]": lambda: _big_step_sweep_case(),
     "cvode_bdf from (1e100, 0.5, -0.3): steps over the oscillation": lambda: _bdf_oscillation_case(),
     "explicit moving mass on a soft spring (Omega = 0.5)": lambda: _soft_spring_case(),
     "orthogonal torque at rest with a rotor, and at a permanent rotation": lambda: _orthogonal_one_rule_case(),
@@ -329,6 +330,16 @@ def _big_step_scene_case():
     assert "exceeds the span" in doubts and "exceeds rtol" in doubts, report["accuracy_warnings"]
     assert "WARNING accuracy" in out and any("estimated global error" in n for r in report["runs"].values()
                                              for n in r["notes"])
+
+
+def _big_step_sweep_case():
+    """Each member's doubt is recorded in the Dataset (not printed once per process)."""
+    import tomllib
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", g.AccuracyWarning)  # none escapes
+        ds = g.sweep(tomllib.loads(_splitting_scene(10.0)), {"body.moments[0]": [1.9, 2.1]}, progress=False)
+    assert all("exceeds the span" in w for w in ds["accuracy_warning"].values), ds["accuracy_warning"].values
 
 
 def _splitting_scene(step):

@@ -71,6 +71,9 @@ def _print_sweep(report: dict) -> None:
     if report["members_with_broken_assumptions"]:
         print(f"  WARNING {report['members_with_broken_assumptions']} member(s) break an assumption of their model: "
               + "; ".join(report["broken_assumptions"][:3]) + (" ..." if len(report["broken_assumptions"]) > 3 else ""))
+    if report["members_with_accuracy_warnings"]:
+        print(f"  WARNING {report['members_with_accuracy_warnings']} member(s) doubt their own answer: "
+              + report["accuracy_warnings"][0] + (" ..." if len(report["accuracy_warnings"]) > 1 else ""))
     if report["interrupted"]:
         print("  interrupted: the members not finished have status 'interrupted'")
     for f in report["files"]:

@@ -300,7 +300,9 @@ def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, sa
               if np.isfinite(values.values).any() else None,
               "parameters": json.loads(ds.attrs["plan"])["parameters"],
               "members_with_broken_assumptions": int((ds["broken_assumptions"] > 0).sum()),
-              "broken_assumptions": sorted({str(a) for a in np.unique(ds["first_broken_assumption"].values) if a})}
+              "broken_assumptions": sorted({str(a) for a in np.unique(ds["first_broken_assumption"].values) if a}),
+              "members_with_accuracy_warnings": int((ds["accuracy_warning"] != "").sum()),
+              "accuracy_warnings": sorted({str(a) for a in np.unique(ds["accuracy_warning"].values) if a})[:5]}
     files = [target, plots.sweep(ds, expression, f"{scene.title}: sweep", folder / "sweep.png",
                                  contour=job.contour, lines=job.lines)]
     report["files"] = [str(f) for f in files] + [str(folder / "sweep.json")]

@@ -54,6 +54,7 @@ import numpy as np
 from gyrostat import _core, output
 from gyrostat import progress as _bars
 from gyrostat.model import shown
+from gyrostat.solution import AccuracyWarning
 from gyrostat.schema import SceneError, locate
 
 __all__ = ["Uniform", "Normal", "LogUniform", "Parameter", "Plan", "sweep", "open_sweep", "summary",
@@ -498,6 +499,7 @@ def _blank(plan: Plan, count: int, trajectories: bool, extrema: tuple[str, ...])
         "terminal_event": np.full(count, "", dtype=object),
         "broken_assumptions": np.zeros(count, dtype=np.int64),
         "first_broken_assumption": np.full(count, "", dtype=object),
+        "accuracy_warning": np.full(count, "", dtype=object),
     }
     for name in STATS:
         arrays[name] = np.zeros(count, dtype=np.int64)
@@ -592,11 +594,14 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
         def report(fraction, before=done / count, share=share):
             progress(before + share * fraction)
 
-        solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
-                                   threads=threads, events=list(events) or None, check_validity=False,
-                                   progress=report if progress is not None else False, **dict(options))
+        with warnings.catch_warnings():  # each member's doubts are recorded (accuracy_warning), not printed
+            warnings.simplefilter("ignore", AccuracyWarning)
+            solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
+                                       threads=threads, events=list(events) or None, check_validity=False,
+                                       progress=report if progress is not None else False, **dict(options))
         for (j, run), solution in zip(members, solutions):
             _record(arrays, j, solution, plan, trajectories, extrema)
+            arrays["accuracy_warning"][j] = solution.accuracy_warnings[0] if solution.accuracy_warnings else ""
             if check_validity and len(solution) and type(run.model).check is not ModelBase.check:
                 broken = [str(a) for a in run.model.check(solution) if not a.holds]  # the averaging's assumptions
                 arrays["broken_assumptions"][j] = len(broken)
@@ -696,7 +701,9 @@ def _attributes(plan: Plan, name: str) -> dict:
              "terminal_event": {"description": "the event that ended the run, or empty"},
              "broken_assumptions": {"description": "how many of the model's assumptions (an averaged model's "
                                                    "validity checks) fail along the member's run"},
-             "first_broken_assumption": {"description": "the first of them, in words (empty: all hold)"}}
+             "first_broken_assumption": {"description": "the first of them, in words (empty: all hold)"},
+             "accuracy_warning": {"description": "the first doubt the run had about its own answer (the splitting's "
+                                                 "estimated error above rtol, BDF over oscillations); empty: none"}}
     if name in fixed:
         return fixed[name]
     if name in STATS:
