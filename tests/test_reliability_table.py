@@ -368,6 +368,17 @@ def _soft_spring_case():
     with pytest.warns(g.ValidityWarning, match=r"displacement \|u\|/ρ"):
         sol = g.solve(model, model.quasi_static_state([1, 0, 1]), (0, 50), method="cvode_bdf")
     assert sol["displacement_ratio"].max() > 1.0 and any("displacement" in n for n in sol.notes)
+    # the same through a moving_mass scene: its report names the broken assumption
+    import tomllib
+
+    from gyrostat.runner import solve_scene
+    from gyrostat.scene import SCENES, Scene
+
+    doc = tomllib.loads((SCENES / "p001_explicit_moving_mass.toml").read_text())
+    doc["damper"].update(frequency=0.5, damping=1.0)
+    doc["integration"].update(method="cvode_bdf", t_span=[0.0, 50.0], n_out=51)
+    _, report, _ = solve_scene(Scene.from_dict(doc), progress=False)
+    assert any("displacement |u|/ρ" in broken for broken in report["broken_assumptions"]), report["broken_assumptions"]
 
 
 def _orthogonal_one_rule_case():

@@ -226,7 +226,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         the composition (2: Strang, 4 (default), 6: Yoshida's triple jumps). The free flow is
         exact (elliptic functions); constant and linear torques have an exact flow too, the
         others are integrated over each sub-step by one 8th-order step. The run estimates its
-        own global error (steps of h against h/2 at up to 32 steps: ``solution.error_estimate``,
+        own global error (steps of h against h/2 at up to 32 steps, at most one in three:
+        ``solution.error_estimate``,
         ``solution.notes``) and warns (:class:`gyrostat.AccuracyWarning`) when it exceeds
         ``rtol``, or when a step above the span was clamped to it.
     events:
