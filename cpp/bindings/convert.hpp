@@ -38,8 +38,7 @@ inline std::vector<AnyTorque> torques_from(const py::iterable& objects) {
     for (const py::handle& obj : objects) {
         if (!detail::append_torque(obj, torques, static_cast<AnyTorque*>(nullptr)))
             throw py::type_error("not a torque: " + std::string(py::str(py::type::of(obj).attr("__name__"))) +
-                                 " (torques are gyrostat.ConstantTorque, LinearDamping, ResistiveMedium, "
-                                 "ViscousCavity, MovingMassDamper)");
+                                 " (torques are gyrostat." + torque_python_names() + ")");
     }
     return torques;
 }

@@ -6,6 +6,11 @@
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/set.hpp"
 
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
 namespace py = pybind11;
 
 namespace gyrostat::bindings {
@@ -21,12 +26,122 @@ std::string matrix_text(const Mat3& m) {
            vector_text(m.row(2).transpose()) + "]";
 }
 
-/// What every torque shares in Python: evaluation, its averaged contribution, its name. Every
-/// argument is converted here, so that a wrong one is a ValueError naming it (convert.hpp).
+const char* shape_name(torque::Shape shape) {
+    switch (shape) {
+        case torque::Shape::Vector3: return "vector3";
+        case torque::Shape::Matrix3: return "matrix3";
+        case torque::Shape::Matrices: return "matrices";
+        case torque::Shape::Scalar: break;
+    }
+    return "scalar";
+}
+const char* constraint_name(torque::Constraint c) {
+    switch (c) {
+        case torque::Constraint::Positive: return "positive";
+        case torque::Constraint::NonNegative: return "non_negative";
+        case torque::Constraint::Finite: break;
+    }
+    return "finite";
+}
+
+/// A Python value → the parameter's shape, or a ValueError naming "<Torque>: <name>".
+torque::Value value_from(const py::handle& obj, const torque::Parameter& p, const std::string& torque) {
+    const std::string what = torque + ": " + p.name;
+    switch (p.shape) {
+        case torque::Shape::Scalar: return scalar(obj, what);
+        case torque::Shape::Vector3: return vec3(obj, what);
+        case torque::Shape::Matrix3: return mat3(obj, what);
+        case torque::Shape::Matrices: {
+            if (!py::isinstance<py::iterable>(obj) || py::isinstance<py::str>(obj))
+                throw py::value_error(what + " must be a list of 3x3 matrices, got " + shown(obj));
+            std::vector<Mat3> matrices;
+            for (const py::handle& c : py::iter(obj))
+                matrices.push_back(mat3(c, torque + ": " + p.label + " " + std::to_string(matrices.size())));
+            return matrices;
+        }
+    }
+    return 0.0;
+}
+
+py::object python_value(const torque::Value& value) {
+    return std::visit([](const auto& x) -> py::object { return py::cast(x); }, value);
+}
+
+std::string value_text(const torque::Value& value) {
+    struct Text {
+        std::string operator()(double x) const { return format_value(x); }
+        std::string operator()(const Vec3& v) const { return vector_text(v); }
+        std::string operator()(const Mat3& d) const { return matrix_text(d); }
+        std::string operator()(const std::vector<Mat3>& list) const {
+            std::string s = "[";
+            for (std::size_t k = 0; k < list.size(); ++k) s += (k ? ", " : "") + matrix_text(list[k]);
+            return s + "]";
+        }
+    };
+    return std::visit(Text{}, value);
+}
+
+/// The named values of a call T(*args, **kwargs): positional arguments in the declared order,
+/// keywords by name; every parameter converted and a wrong one named (TypeError for a missing,
+/// unknown or doubled one; ValueError for a bad value or not exactly one of a choice).
 template <class Torque>
-py::class_<Torque> expose_torque(py::module_& m, const char* python_name) {
-    const std::string name = python_name;
-    return py::class_<Torque>(m, python_name)
+torque::Values values_from(const py::args& args, const py::kwargs& kwargs) {
+    const std::string torque = Torque::python_name;
+    const auto& parameters = Torque::parameters;
+    std::string names;
+    for (const auto& p : parameters) names += (names.empty() ? "" : ", ") + std::string(p.name);
+    if (args.size() > parameters.size())
+        throw py::type_error(torque + " takes at most " + std::to_string(parameters.size()) + " arguments (" + names +
+                             "), got " + std::to_string(args.size()));
+    std::map<std::string, py::object> given;
+    for (std::size_t i = 0; i < args.size(); ++i) given[parameters[i].name] = py::reinterpret_borrow<py::object>(args[i]);
+    for (const auto& item : kwargs) {
+        const std::string key = py::str(item.first);
+        bool known = false;
+        for (const auto& p : parameters) known = known || key == p.name;
+        if (!known) throw py::type_error(torque + ": unknown parameter '" + key + "' (parameters: " + names + ")");
+        if (given.count(key)) throw py::type_error(torque + ": " + key + " is given twice");
+        given[key] = py::reinterpret_borrow<py::object>(item.second);
+    }
+    torque::Values values;
+    for (const auto& p : parameters) {
+        const auto it = given.find(p.name);
+        if (it != given.end()) values.set(p.name, value_from(it->second, p, torque));
+    }
+    for (const auto& p : parameters) {
+        if (p.choice == 0) {
+            if (!values.has(p.name)) throw py::type_error(torque + ": missing parameter '" + p.name + "'");
+            continue;
+        }
+        std::string choice;
+        int count = 0;
+        for (const auto& q : parameters)
+            if (q.choice == p.choice) choice += (choice.empty() ? "" : " or ") + std::string(q.name), count += values.has(q.name);
+        if (count != 1) throw py::value_error(torque + ": give exactly one of " + choice + " (got " + std::to_string(count) + ")");
+    }
+    return values;
+}
+
+/// The Python class of one torque, generated from its declaration (torque/parameter.hpp): the
+/// constructor T(*args, **kwargs) over its parameters, a read-only property per kept parameter,
+/// evaluation, its averaged contribution, its validity numbers, its repr, and the declaration
+/// itself (kind, description, parameters) for the scene schema and the docs.
+template <class Torque>
+void expose_torque(py::module_& m) {
+    const std::string name = Torque::python_name;
+    std::string doc = std::string(Torque::description) + " (scene type \"" + Torque::name + "\").\n\nParameters:\n";
+    py::list parameters;
+    for (const auto& p : Torque::parameters) {
+        doc += std::string("    ") + p.name + " [" + p.unit + "]: " + p.description + " (" +
+               torque::constraint_text(p.constraint) + (p.choice ? "; one of a choice" : "") + ")\n";
+        py::dict entry;
+        entry["name"] = p.name, entry["label"] = p.label, entry["shape"] = shape_name(p.shape), entry["unit"] = p.unit;
+        entry["description"] = p.description, entry["constraint"] = constraint_name(p.constraint);
+        entry["choice"] = p.choice, entry["stored"] = p.stored;
+        parameters.append(entry);
+    }
+    py::class_<Torque> cls(m, Torque::python_name, doc.c_str());
+    cls.def(py::init([](const py::args& args, const py::kwargs& kwargs) { return Torque::from(values_from<Torque>(args, kwargs)); }))
         .def("__call__",
              [name](const Torque& x, const py::object& t, const py::object& omega, const py::object& moments) {
                  return x(scalar(t, name + ": t"), vec3(omega, name + ": omega"), vec3(moments, name + ": moments"));
@@ -40,7 +155,43 @@ py::class_<Torque> expose_torque(py::module_& m, const char* python_name) {
              },
              py::arg("t"), py::arg("a"), py::arg("r"), py::arg("A"), py::arg("C"),
              "Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.")
-        .def_property_readonly_static("kind", [](py::object) { return std::string(Torque::name); });
+        .def("assumptions", [](const Torque& x, const torque::Motion& motion) { return assumptions_of(x, motion); },
+             py::arg("motion"), "Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).")
+        .def("__repr__",
+             [name](const Torque& x) {
+                 const torque::Values kept = x.values();
+                 std::string s = name + "(";
+                 bool first = true;
+                 for (const auto& p : Torque::parameters) {
+                     if (!p.stored) continue;
+                     s += (first ? "" : ", ") + std::string(p.name) + "=" + value_text(kept.all().at(p.name));
+                     first = false;
+                 }
+                 return s + ")";
+             })
+        .def_property_readonly_static("kind", [](py::object) { return std::string(Torque::name); })
+        .def_property_readonly_static("description", [](py::object) { return std::string(Torque::description); })
+        .def_property_readonly_static("parameters", [parameters](py::object) { return parameters; });
+    for (const auto& p : Torque::parameters) {
+        if (!p.stored) continue;
+        const std::string key = p.name;
+        cls.def_property_readonly(p.name, [key](const Torque& x) { return python_value(x.values().all().at(key)); },
+                                  (std::string(p.description) + " [" + p.unit + "]").c_str());
+    }
+}
+
+template <class... Torques>
+py::list expose_torques(py::module_& m, std::variant<Torques...>*) {
+    (expose_torque<Torques>(m), ...);
+    py::list classes;
+    (classes.append(m.attr(Torques::python_name)), ...);
+    return classes;
+}
+
+/// The class bound for T, to add what only that torque has.
+template <class T>
+py::class_<T> bound(py::module_& m) {
+    return py::reinterpret_borrow<py::class_<T>>(m.attr(T::python_name));
 }
 }  // namespace
 
@@ -54,42 +205,35 @@ void expose_body(py::module_& m) {
         .def_property_readonly("rotor", &Body::rotor)
         .def("__repr__", &Body::describe);
 
-    expose_torque<torque::Constant>(m, "ConstantTorque")
-        .def(py::init([](const py::object& moment) { return torque::Constant(vec3(moment, "ConstantTorque: moment")); }),
-             py::arg("moment"))
-        .def_readonly("moment", &torque::Constant::moment)
-        .def("__repr__", [](const torque::Constant& x) { return "ConstantTorque(moment=" + vector_text(x.moment) + ")"; });
-
-    expose_torque<torque::LinearDamping>(m, "LinearDamping")
-        .def(py::init([](const py::object& matrix) { return torque::LinearDamping(mat3(matrix, "LinearDamping: matrix")); }),
-             py::arg("matrix"))
-        .def_readonly("matrix", &torque::LinearDamping::matrix)
-        .def("__repr__", [](const torque::LinearDamping& x) { return "LinearDamping(matrix=" + matrix_text(x.matrix) + ")"; });
-
-    expose_torque<torque::ResistiveMedium>(m, "ResistiveMedium")
-        .def(py::init([](const py::iterable& coefficients) {
-                 std::vector<Mat3> matrices;
-                 for (const py::handle& c : coefficients)
-                     matrices.push_back(mat3(c, "ResistiveMedium: coefficient " + std::to_string(matrices.size())));
-                 return torque::ResistiveMedium(std::move(matrices));
+    py::class_<torque::Motion>(m, "Motion",
+                               "The motion a validity check looks at: the largest |omega|, |J omega| and |(C - A) r / A| "
+                               "over the angular velocities given (rows).")
+        .def(py::init([](const py::object& moments, const Eigen::MatrixX3d& omegas) {
+                 return torque::Motion::of(vec3(moments, "Motion: moments"), omegas);
              }),
-             py::arg("coefficients"))
-        .def_readonly("coefficients", &torque::ResistiveMedium::coefficients)
-        .def(
-            "at", [](const torque::ResistiveMedium& x, const py::object& t) { return x.at(scalar(t, "ResistiveMedium.at: t")); },
-            py::arg("t"))
-        .def("__repr__", [](const torque::ResistiveMedium& x) {
-            std::string s = "ResistiveMedium(coefficients=[";
-            for (std::size_t k = 0; k < x.coefficients.size(); ++k) s += (k ? ", " : "") + matrix_text(x.coefficients[k]);
-            return s + "])";
-        });
+             py::arg("moments"), py::arg("omegas"))
+        .def_readonly("moments", &torque::Motion::moments)
+        .def_readonly("speed", &torque::Motion::speed)
+        .def_readonly("momentum", &torque::Motion::momentum)
+        .def_readonly("axial_frequency", &torque::Motion::axial_frequency);
+    py::class_<torque::Assumption>(m, "TorqueAssumption", "One assumption of a torque, measured (torque/parameter.hpp).")
+        .def_readonly("part", &torque::Assumption::part)
+        .def_readonly("statement", &torque::Assumption::statement)
+        .def_readonly("value", &torque::Assumption::value)
+        .def_readonly("limit", &torque::Assumption::limit)
+        .def_readonly("holds", &torque::Assumption::holds)
+        .def_readonly("note", &torque::Assumption::note);
+    m.attr("small") = torque::kSmall;
+    m.attr("large") = torque::kLarge;
 
-    expose_torque<torque::ViscousCavity>(m, "ViscousCavity")
-        .def(py::init([](const py::object& density, const py::object& viscosity, const py::object& p0) {
-                 return torque::ViscousCavity(scalar(density, "ViscousCavity: density"),
-                                              scalar(viscosity, "ViscousCavity: viscosity"), scalar(p0, "ViscousCavity: p0"));
-             }),
-             py::arg("density"), py::arg("viscosity"), py::arg("p0"))
+    // Every alternative of AnyTorque, from its declaration: a new torque needs nothing here.
+    m.attr("torque_types") = expose_torques(m, static_cast<AnyTorque*>(nullptr));
+
+    // What only some torques have: derived quantities users and the papers' analyses ask for.
+    bound<torque::ResistiveMedium>(m).def(
+        "at", [](const torque::ResistiveMedium& x, const py::object& t) { return x.at(scalar(t, "ResistiveMedium.at: t")); },
+        py::arg("t"), "D(t).");
+    bound<torque::ViscousCavity>(m)
         .def_static(
             "sphere",
             [](const py::object& density, const py::object& viscosity, const py::object& radius) {
@@ -97,39 +241,16 @@ void expose_body(py::module_& m) {
                                                      scalar(viscosity, "ViscousCavity.sphere: viscosity"),
                                                      scalar(radius, "ViscousCavity.sphere: radius"));
             },
-            py::arg("density"), py::arg("viscosity"), py::arg("radius"))
-        .def_readonly("density", &torque::ViscousCavity::density)
-        .def_readonly("viscosity", &torque::ViscousCavity::viscosity)
-        .def_readonly("p0", &torque::ViscousCavity::p0)
-        .def_property_readonly("kappa", &torque::ViscousCavity::kappa)
-        .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius)
-        .def("__repr__", [](const torque::ViscousCavity& x) {
-            return "ViscousCavity(density=" + format_value(x.density) + ", viscosity=" + format_value(x.viscosity) +
-                   ", p0=" + format_value(x.p0) + ")";
-        });
-
-    expose_torque<torque::MovingMassDamper>(m, "MovingMassDamper")
-        .def(py::init([](const py::object& mass, const py::object& arm, const py::object& frequency,
-                         const py::object& damping) {
-                 return torque::MovingMassDamper(scalar(mass, "MovingMassDamper: mass"), scalar(arm, "MovingMassDamper: arm"),
-                                                 scalar(frequency, "MovingMassDamper: frequency"),
-                                                 scalar(damping, "MovingMassDamper: damping"));
-             }),
-             py::arg("mass"), py::arg("arm"), py::arg("frequency"), py::arg("damping"))
-        .def_readonly("mass", &torque::MovingMassDamper::mass)
-        .def_readonly("arm", &torque::MovingMassDamper::arm)
-        .def_readonly("frequency", &torque::MovingMassDamper::frequency)
-        .def_readonly("damping", &torque::MovingMassDamper::damping)
-        .def(
-            "S",
-            [](const torque::MovingMassDamper& x, const py::object& A, const py::object& C) {
-                return x.S(scalar(A, "MovingMassDamper.S: A"), scalar(C, "MovingMassDamper.S: C"));
-            },
-            py::arg("A"), py::arg("C"))
-        .def("__repr__", [](const torque::MovingMassDamper& x) {
-            return "MovingMassDamper(mass=" + format_value(x.mass) + ", arm=" + format_value(x.arm) +
-                   ", frequency=" + format_value(x.frequency) + ", damping=" + format_value(x.damping) + ")";
-        });
+            py::arg("density"), py::arg("viscosity"), py::arg("radius"), "A spherical cavity of this radius.")
+        .def_property_readonly("kappa", &torque::ViscousCavity::kappa, "kappa = rho P0 / nu")
+        .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius,
+                               "the radius of the sphere with this P0");
+    bound<torque::MovingMassDamper>(m).def(
+        "S",
+        [](const torque::MovingMassDamper& x, const py::object& A, const py::object& C) {
+            return x.S(scalar(A, "MovingMassDamper.S: A"), scalar(C, "MovingMassDamper.S: C"));
+        },
+        py::arg("A"), py::arg("C"), "S of paper 001 eq. (3) for a symmetric body (A, A, C).");
 }
 
 }  // namespace gyrostat::bindings

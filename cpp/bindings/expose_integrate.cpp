@@ -153,6 +153,9 @@ void expose_integrate(py::module_& m) {
         .def_readwrite("dense_output", &Options::dense_output)
         .def_readwrite("step", &Options::step)
         .def_readwrite("splitting_order", &Options::splitting_order)
+        .def_static("check", &integrate::check_option, py::arg("name"), py::arg("value"),
+                    "The engine's rule for one scalar option (rtol, atol, n_out, max_steps, first_step, max_step, step, "
+                    "splitting_order): ValueError naming the value when it breaks it. The scene schema applies it too.")
         .def(
             "validate", [](const Options& o, double t0, double t1) { integrate::validate(o, t0, t1); }, py::arg("t0"),
             py::arg("t1"), "The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.")
@@ -179,8 +182,13 @@ void expose_integrate(py::module_& m) {
         .def_readonly("method", &Result::method)
         .def_readonly("dim", &Result::dim)
         .def_readonly("state_names", &Result::state_names)
+        .def_readonly("state_units", &Result::state_units)
+        .def_readonly("state_descriptions", &Result::state_descriptions)
         .def_readonly("output_names", &Result::output_names)
+        .def_readonly("output_units", &Result::output_units)
+        .def_readonly("output_descriptions", &Result::output_descriptions)
         .def_readonly("output_conserved", &Result::output_conserved)
+        .def_readonly("options", &Result::options, "The options the run was made with (without t_eval and events).")
         .def_property_readonly("t",
                                [](py::object self) {
                                    const auto& r = self.cast<const Result&>();

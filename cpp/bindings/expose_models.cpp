@@ -28,6 +28,26 @@ void expose_models(py::module_& m) {
         .def_property_readonly("dim", [](const BoundModel& b) { return dim(b.model); })
         .def_property_readonly("state_names", [](const BoundModel& b) { return state_names(b.model); })
         .def_property_readonly("output_names", [](const BoundModel& b) { return output_names(b.model); })
+        .def_property_readonly(
+            "quantities",
+            [](const BoundModel& b) {
+                const integrate::Result r = described(b.model);
+                py::list all;
+                auto add = [&](const std::string& name, const std::string& unit, const std::string& description,
+                               const char* role, bool conserved) {
+                    py::dict q;
+                    q["name"] = name, q["unit"] = unit, q["description"] = description, q["role"] = role;
+                    q["conserved"] = conserved;
+                    all.append(q);
+                };
+                for (std::size_t i = 0; i < r.state_names.size(); ++i)
+                    add(r.state_names[i], r.state_units[i], r.state_descriptions[i], "state", false);
+                for (std::size_t i = 0; i < r.output_names.size(); ++i)
+                    add(r.output_names[i], r.output_units[i], r.output_descriptions[i], "output", r.output_conserved[i]);
+                return all;
+            },
+            "What the model declares about its state and outputs: name, unit, description, role ('state' or "
+            "'output') and whether it is conserved without perturbation.")
         .def("rhs", [](const BoundModel& b, double t, const Eigen::VectorXd& y) { return rhs(b.model, t, y); }, py::arg("t"),
              py::arg("y"))
         .def("initial_state", [](const BoundModel& b, const Eigen::VectorXd& y) { return initial_state(b.model, y); },

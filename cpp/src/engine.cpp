@@ -9,37 +9,6 @@ namespace gyrostat {
 
 namespace {
 
-template <class T>
-struct Family;
-template <bool A>
-struct Family<model::Gyrostat<A>> {
-    static constexpr const char* name = "gyrostat";
-};
-template <>
-struct Family<model::AveragedSymmetric> {
-    static constexpr const char* name = "averaged_symmetric";
-};
-template <>
-struct Family<model::MovingMass> {
-    static constexpr const char* name = "moving_mass";
-};
-template <>
-struct Family<model::LagrangeTop> {
-    static constexpr const char* name = "lagrange_top";
-};
-template <>
-struct Family<model::LagrangeAveraged> {
-    static constexpr const char* name = "lagrange_averaged";
-};
-template <bool A>
-struct Family<model::OrthogonalTorque<A>> {
-    static constexpr const char* name = "orthogonal_torque";
-};
-template <bool A>
-struct Family<model::TorqueFreeBody<A>> {
-    static constexpr const char* name = "torque_free";
-};
-
 template <class Visitor>
 decltype(auto) visit(const AnyModel& model, Visitor&& visitor) {
     return std::visit(std::forward<Visitor>(visitor), model);
@@ -48,7 +17,7 @@ decltype(auto) visit(const AnyModel& model, Visitor&& visitor) {
 }  // namespace
 
 const char* family(const AnyModel& model) {
-    return visit(model, [](const auto& m) { return Family<std::decay_t<decltype(m)>>::name; });
+    return visit(model, [](const auto& m) { return std::decay_t<decltype(m)>::family; });
 }
 
 int dim(const AnyModel& model) {
@@ -58,17 +27,21 @@ int dim(const AnyModel& model) {
 std::vector<std::string> state_names(const AnyModel& model) {
     return visit(model, [](const auto& m) {
         using S = std::decay_t<decltype(m)>;
-        return std::vector<std::string>(S::state_names.begin(), S::state_names.end());
+        std::vector<std::string> names;
+        for (const auto& q : S::states) names.emplace_back(q.name);
+        return names;
     });
 }
 
-std::vector<std::string> output_names(const AnyModel& model) {
+integrate::Result described(const AnyModel& model) {
     return visit(model, [](const auto& m) {
         integrate::Result r;
         integrate::describe<std::decay_t<decltype(m)>>(r);
-        return r.output_names;
+        return r;
     });
 }
+
+std::vector<std::string> output_names(const AnyModel& model) { return described(model).output_names; }
 
 Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y) {
     return visit(model, [&](const auto& m) -> Eigen::VectorXd {
@@ -76,7 +49,7 @@ Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y) {
         if (y.size() != S::dim)
             throw std::invalid_argument("rhs: the state has " + std::to_string(y.size()) + " components; this model needs " +
                                         std::to_string(S::dim) + " (" +
-                                        model::system::join_names(S::state_names.data(), S::dim) + ")");
+                                        model::system::join_names(S::states) + ")");
         typename S::State dy;
         m.rhs(t, typename S::State(y), dy);
         return dy;
@@ -94,12 +67,12 @@ Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, d
             if (slow.size() != S::dim)
                 throw std::invalid_argument("full_state: the slow state has " + std::to_string(slow.size()) +
                                             " components; this model needs " + std::to_string(S::dim) + " (" +
-                                            model::system::join_names(S::state_names.data(), S::dim) + ")");
+                                            model::system::join_names(S::states) + ")");
             if (!std::isfinite(phase)) throw std::invalid_argument("full_state: the phase must be finite");
             return m.full_state(typename S::State(slow), phase);
         } else {
             (void)phase;
-            throw std::invalid_argument(std::string("full_state: the '") + Family<S>::name +
+            throw std::invalid_argument(std::string("full_state: the '") + S::family +
                                         "' model is not an averaged model (it has no full state to lift to)");
         }
     });
@@ -122,7 +95,7 @@ integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const
         using S = std::decay_t<decltype(m)>;
         if constexpr (!integrate::has_splitting<S>::value && !model::system::is_closed_form<S>::value) {
             if (options.method == integrate::Method::Splitting)
-                throw std::invalid_argument(std::string("method 'splitting': the '") + Family<S>::name +
+                throw std::invalid_argument(std::string("method 'splitting': the '") + S::family +
                                             "' model does not split into the exact free-body flow and a perturbation "
                                             "(splitting is offered for the gyrostat Model, the Lagrange top and the orthogonal-torque model); "
                                             "choose another method");
@@ -183,6 +156,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
     }
     for (std::size_t i = 0; i < n; ++i) {  // members that never ran still say what they would hold
         auto& r = results[i];
+        r.options = integrate::recorded(options);
         if (!r.state_names.empty()) continue;
         visit(*(models.size() == 1 ? models[0] : models[i]),
               [&](const auto& m) { integrate::describe<std::decay_t<decltype(m)>>(r); });

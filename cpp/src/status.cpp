@@ -60,35 +60,54 @@ const char* status_name(Status s) {
     return "unknown";
 }
 
+void check_option(const std::string& name, double x) {
+    const bool count = name == "n_out" || name == "max_steps" || name == "splitting_order";
+    const bool whole = count && std::isfinite(x) && x == std::floor(x) && std::abs(x) < 9e18;
+    const std::string shown = name + " = " + (whole ? std::to_string(static_cast<long long>(x)) : format_value(x));
+    if (name == "rtol") {
+        // Below ~50 machine epsilons no double-precision integrator can honour a relative tolerance.
+        constexpr double kSmallestRtol = 1e-14;
+        if (!std::isfinite(x) || !(x > 0.0)) throw std::invalid_argument(shown + " must be a finite positive number");
+        if (x < kSmallestRtol)
+            throw std::invalid_argument(shown + " is below 1e-14 (about 50 machine epsilons): not attainable in double precision");
+        if (x >= 1.0) throw std::invalid_argument(shown + " must be below 1");
+    } else if (name == "atol") {
+        if (!std::isfinite(x) || x < 0.0) throw std::invalid_argument(shown + " must be finite and non-negative");
+    } else if (name == "n_out") {
+        // Each output row holds t and at least two state components: n_out·24 bytes at the least.
+        if (x * 24.0 > kMaxOutputBytes)
+            throw std::invalid_argument(shown + " output times would take at least " +
+                                        format_value(x * 24.0 / (1024.0 * 1024 * 1024)) +
+                                        " GiB (limit 2 GiB for one run): ask for fewer outputs");
+        if (!(x >= 0.0) || x == 1.0 || x != std::floor(x))
+            throw std::invalid_argument(shown + " must be at least 2 (or 0: t0 and t1 only)");
+    } else if (name == "max_steps") {
+        if (!(x > 0.0) || x != std::floor(x)) throw std::invalid_argument(shown + " must be positive");
+    } else if (name == "first_step") {
+        if (!std::isfinite(x) || x < 0.0) throw std::invalid_argument(shown + " must be finite and >= 0 (0: automatic)");
+    } else if (name == "max_step") {
+        if (std::isnan(x) || !(x > 0.0)) throw std::invalid_argument(shown + " must be positive");
+    } else if (name == "step") {
+        if (!std::isfinite(x) || x < 0.0)
+            throw std::invalid_argument(shown + " must be finite and >= 0 (the splitting step; 0: not set)");
+    } else if (name == "splitting_order") {
+        if (x != 2 && x != 4 && x != 6) throw std::invalid_argument(shown + " must be 2, 4 or 6");
+    } else {
+        throw std::invalid_argument("no option '" + name + "' (rtol, atol, n_out, max_steps, first_step, max_step, step, splitting_order)");
+    }
+}
+
 void validate(const Options& o, double t0, double t1) {
-    // Below ~50 machine epsilons no double-precision integrator can honour a relative tolerance.
-    constexpr double kSmallestRtol = 1e-14;
-    if (!std::isfinite(o.rtol) || !(o.rtol > 0.0))
-        throw std::invalid_argument("rtol = " + format_value(o.rtol) + " must be a finite positive number");
-    if (o.rtol < kSmallestRtol)
-        throw std::invalid_argument("rtol = " + format_value(o.rtol) +
-                                    " is below 1e-14 (about 50 machine epsilons): not attainable in double precision");
-    if (o.rtol >= 1.0) throw std::invalid_argument("rtol = " + format_value(o.rtol) + " must be below 1");
-    if (!std::isfinite(o.atol) || o.atol < 0.0)
-        throw std::invalid_argument("atol = " + format_value(o.atol) + " must be finite and non-negative");
+    check_option("rtol", o.rtol);
+    check_option("atol", o.atol);
     if (!std::isfinite(t0)) throw std::invalid_argument("t0 = " + format_value(t0) + " is not finite");
     if (!std::isfinite(t1)) throw std::invalid_argument("t1 = " + format_value(t1) + " is not finite");
-    // Each output row holds t and at least two state components: n_out·24 bytes at the least.
-    if (static_cast<double>(o.n_out) * 24.0 > kMaxOutputBytes)
-        throw std::invalid_argument("n_out = " + std::to_string(o.n_out) + " output times would take at least " +
-                                    format_value(static_cast<double>(o.n_out) * 24.0 / (1024.0 * 1024 * 1024)) +
-                                    " GiB (limit 2 GiB for one run): ask for fewer outputs");
-    if (o.n_out < 0 || o.n_out == 1)
-        throw std::invalid_argument("n_out = " + std::to_string(o.n_out) + " must be at least 2 (or 0: t0 and t1 only)");
-    if (o.max_steps <= 0) throw std::invalid_argument("max_steps = " + std::to_string(o.max_steps) + " must be positive");
-    if (!std::isfinite(o.first_step) || o.first_step < 0.0)
-        throw std::invalid_argument("first_step = " + format_value(o.first_step) + " must be finite and >= 0 (0: automatic)");
-    if (std::isnan(o.max_step) || !(o.max_step > 0.0))
-        throw std::invalid_argument("max_step = " + format_value(o.max_step) + " must be positive");
-    if (!std::isfinite(o.step) || o.step < 0.0)
-        throw std::invalid_argument("step = " + format_value(o.step) + " must be finite and >= 0 (the splitting step; 0: not set)");
-    if (o.splitting_order != 2 && o.splitting_order != 4 && o.splitting_order != 6)
-        throw std::invalid_argument("splitting_order = " + std::to_string(o.splitting_order) + " must be 2, 4 or 6");
+    check_option("n_out", static_cast<double>(o.n_out));
+    check_option("max_steps", static_cast<double>(o.max_steps));
+    check_option("first_step", o.first_step);
+    check_option("max_step", o.max_step);
+    check_option("step", o.step);
+    check_option("splitting_order", o.splitting_order);
     const double direction = t1 >= t0 ? 1.0 : -1.0;
     for (std::size_t i = 0; i < o.t_eval.size(); ++i) {
         const double t = o.t_eval[i];
@@ -115,4 +134,14 @@ std::vector<double> output_times(const Options& o, double t0, double t1) {
     return {t0, t1};
 }
 
+}  // namespace gyrostat::integrate
+
+namespace gyrostat::integrate {
+Options recorded(const Options& o) {
+    Options r;
+    r.method = o.method, r.rtol = o.rtol, r.atol = o.atol, r.n_out = o.n_out, r.every_step = o.every_step;
+    r.max_steps = o.max_steps, r.first_step = o.first_step, r.max_step = o.max_step, r.dense_output = o.dense_output;
+    r.step = o.step, r.splitting_order = o.splitting_order;
+    return r;
+}
 }  // namespace gyrostat::integrate

@@ -5,14 +5,6 @@
 
 namespace gyrostat::model {
 
-namespace system {
-std::string join_names(const char* const* names, int n) {
-    std::string joined;
-    for (int i = 0; i < n; ++i) joined += std::string(i ? ", " : "") + names[i];
-    return joined;
-}
-}  // namespace system
-
 void check_quaternion(const Eigen::Vector4d& q, const char* model) {
     if (!q.allFinite() || q.squaredNorm() == 0.0)
         throw std::invalid_argument(std::string(model) + ": the attitude quaternion (q_w, q_x, q_y, q_z) = (" +

@@ -32,6 +32,9 @@ const char* family(const AnyModel& model);
 int dim(const AnyModel& model);
 std::vector<std::string> state_names(const AnyModel& model);
 std::vector<std::string> output_names(const AnyModel& model);
+/// An empty Result that says what a run of `model` holds: the names, units and descriptions of
+/// its state and outputs (model/system.hpp's declarations).
+integrate::Result described(const AnyModel& model);
 /// f(t, y) (for checks, not for speed).
 Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y);
 /// The full initial state from what was given (e.g. ω alone for a model with attitude).

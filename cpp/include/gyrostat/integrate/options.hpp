@@ -115,9 +115,14 @@ struct MethodSwitch {
 struct Result {
     std::string method;
     int dim = 0;
-    std::vector<std::string> state_names;
-    std::vector<std::string> output_names;
+    /// The model's declarations (model/system.hpp: Quantity, OutputInfo): names, SI units and
+    /// one line each for the state's components and the named outputs.
+    std::vector<std::string> state_names, state_units, state_descriptions;
+    std::vector<std::string> output_names, output_units, output_descriptions;
     std::vector<bool> output_conserved;   ///< per output: a first integral of the unperturbed model
+    /// The options the run was made with (recorded(): every scalar option; t_eval and events are
+    /// the outputs' times and event_names).
+    Options options;
     std::vector<double> t;
     std::vector<double> y;
     std::vector<double> outputs;
@@ -158,6 +163,15 @@ struct Result {
 /// Checks rtol, atol, t0, t1, t_eval, max_steps, first_step, max_step; throws
 /// std::invalid_argument naming the bad value.
 void validate(const Options& options, double t0, double t1);
+
+/// The rule of one scalar option ("rtol", "atol", "n_out", "max_steps", "first_step",
+/// "max_step", "step", "splitting_order"): throws std::invalid_argument "<name> = <value> must
+/// be …" when `value` breaks it. validate() and the scene schema both apply these rules.
+void check_option(const std::string& name, double value);
+
+/// Every scalar option of `options` (the method, tolerances, output count, step limits,
+/// splitting, flags), without t_eval and events: what a Result records.
+Options recorded(const Options& options);
 
 /// The output times: t_eval, or n_out evenly spaced times, or {t0, t1}.
 std::vector<double> output_times(const Options& options, double t0, double t1);

@@ -22,12 +22,19 @@ template <class System>
 void describe(Result& result) {
     namespace sys = model::system;
     result.dim = System::dim;
-    result.state_names.assign(System::state_names.begin(), System::state_names.end());
-    result.output_names.clear();
+    result.state_names.clear(), result.state_units.clear(), result.state_descriptions.clear();
+    for (const auto& q : System::states) {
+        result.state_names.emplace_back(q.name);
+        result.state_units.emplace_back(q.unit);
+        result.state_descriptions.emplace_back(q.description);
+    }
+    result.output_names.clear(), result.output_units.clear(), result.output_descriptions.clear();
     result.output_conserved.clear();
     if constexpr (sys::has_outputs<System>::value) {
         for (const auto& info : System::outputs_info) {
             result.output_names.emplace_back(info.name);
+            result.output_units.emplace_back(info.unit);
+            result.output_descriptions.emplace_back(info.description);
             result.output_conserved.push_back(info.conserved);
         }
     }
@@ -40,7 +47,7 @@ std::shared_ptr<DenseOutput> make_dense(const Options& options) {
     if (!options.dense_output) return nullptr;
     int quaternion = -1;
     for (int i = 0; i < System::dim; ++i)
-        if (std::string(System::state_names[i]) == "q_w") quaternion = i;
+        if (std::string(System::states[i].name) == "q_w") quaternion = i;
     return std::make_shared<DenseOutput>(System::dim, quaternion);
 }
 

@@ -104,13 +104,14 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
                         throw std::invalid_argument(
                             "method 'splitting' needs a model that splits into the exact free-body flow and a "
                             "perturbation (the gyrostat Model, the Lagrange top, the orthogonal-torque model); this model (state " +
-                            model::system::join_names(System::state_names.data(), System::dim) + ") does not");
+                            model::system::join_names(System::states) + ") does not");
             }
             throw std::invalid_argument("unknown integration method");
         }
     }();
     complete_last(system, result, t0, y0);
     if (result.methods_used.empty()) result.methods_used.push_back(result.method);
+    result.options = recorded(options);
     return result;
 }
 

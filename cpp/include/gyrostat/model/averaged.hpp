@@ -30,7 +30,8 @@ class AveragedSymmetric {
 public:
     static constexpr int dim = 2;
     using State = Eigen::Vector2d;
-    static constexpr std::array<const char*, dim> state_names{"a", "r"};
+    static constexpr const char* family = "averaged_symmetric";
+    static constexpr std::array<Quantity, dim> states{{{"a", "rad/s", "a = sqrt(p^2 + q^2), the transverse amplitude"}, {"r", "rad/s", "angular velocity about body z"}}};
 
     AveragedSymmetric(Body body, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)) {
         if (body_.rotor().squaredNorm() != 0.0)
@@ -84,12 +85,12 @@ public:
                                         format_value(y[0]));
     }
 
-    static constexpr std::array<OutputInfo, 6> outputs_info{{{"angular_momentum_norm", true},
-                                                             {"kinetic_energy", true},
-                                                             {"x", false},
-                                                             {"y", false},
-                                                             {"fast_frequency", false},
-                                                             {"slow_to_fast", false}}};
+    static constexpr std::array<OutputInfo, 6> outputs_info{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
+                                                             {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true},
+                                                             {"x", "rad^2/s^2", "x = a^2 (papers 000/001; paper 002 calls it y)", false},
+                                                             {"y", "rad^2/s^2", "y = r^2 (papers 000/001; paper 002 calls it x)", false},
+                                                             {"fast_frequency", "rad/s", "|(C - A) r / A|, the frequency of the averaged-out motion", false},
+                                                             {"slow_to_fast", "1", "the slow variables' relative rate over the fast frequency (averaging needs it << 1)", false}}};
     void outputs(double t, const State& y, double* out) const {
         out[0] = std::sqrt(A_ * A_ * y[0] * y[0] + C_ * C_ * y[1] * y[1]);
         out[1] = 0.5 * (A_ * y[0] * y[0] + C_ * y[1] * y[1]);

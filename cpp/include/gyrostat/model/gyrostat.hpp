@@ -39,7 +39,8 @@ public:
     static constexpr int dim = WithAttitude ? 7 : 3;
     using State = Eigen::Matrix<double, dim, 1>;
     using Jacobian = Eigen::Matrix<double, dim, dim>;
-    static constexpr auto state_names = rate_state_names<WithAttitude>();
+    static constexpr const char* family = "gyrostat";
+    static constexpr auto states = rate_states<WithAttitude>();
 
     Gyrostat(Body body, TorqueSet torques)
         : body_(std::move(body)), torques_(std::move(torques)), affine_(AffineEuler<double>::of(body_, torques_)) {}
@@ -162,10 +163,10 @@ public:
     }
     /// ω alone starts from the identity attitude.
     State initial_state(const Eigen::VectorXd& given) const {
-        return complete_rate_state<State>(given, WithAttitude, state_names.data());
+        return complete_rate_state<State>(given, WithAttitude, states);
     }
 
-    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", true}, {"kinetic_energy", true}}};
+    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     void outputs(double /*t*/, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();

@@ -43,7 +43,8 @@ class LagrangeAveraged {
 public:
     static constexpr int dim = 3;
     using State = Eigen::Vector3d;
-    static constexpr std::array<const char*, dim> state_names{"G_z", "H", "r"};
+    static constexpr const char* family = "lagrange_averaged";
+    static constexpr std::array<Quantity, dim> states{{{"G_z", "kg m^2/s", "the angular momentum about the vertical"}, {"H", "J", "the top's energy, rotation plus gravity"}, {"r", "rad/s", "angular velocity about body z"}}};
 
     LagrangeAveraged(Body body, double mu, TorqueSet torques)
         : top_(std::move(body), mu, torques), torques_(std::move(torques)) {
@@ -130,13 +131,13 @@ public:
         return full;
     }
 
-    static constexpr std::array<OutputInfo, 7> outputs_info{{{"u1", false},
-                                                             {"u2", false},
-                                                             {"u3", false},
-                                                             {"m", false},
-                                                             {"v", false},
-                                                             {"T_nut", false},
-                                                             {"adiabaticity", false}}};
+    static constexpr std::array<OutputInfo, 7> outputs_info{{{"u1", "1", "the smallest root of the nutation cubic (u = cos theta)", false},
+                                                             {"u2", "1", "the middle root: the top of the nutation", false},
+                                                             {"u3", "1", "the largest root", false},
+                                                             {"m", "1", "the parameter of the nutation's sn", false},
+                                                             {"v", "1", "the nutation's phase variable", false},
+                                                             {"T_nut", "s", "the nutation period", false},
+                                                             {"adiabaticity", "1", "the torque's relative rate times the nutation period (averaging needs it << 1)", false}}};
     void outputs(double t, const State& x, double* out) const {
         const Nutation n = nutation(top_.A(), top_.C(), top_.mu(), x[0], x[1], x[2]);
         const double values[] = {n.u1, n.u2, n.u3, n.m, n.v, n.period, rate(t) * n.period};

@@ -95,7 +95,8 @@ class LagrangeTop {
 public:
     static constexpr int dim = 7;
     using State = Eigen::Matrix<double, 7, 1>;
-    static constexpr auto state_names = rate_state_names<true>();
+    static constexpr const char* family = "lagrange_top";
+    static constexpr auto states = rate_states<true>();
 
     LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)), mu_(mu) {
         const Vec3& J = body_.moments();
@@ -193,17 +194,17 @@ public:
                 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2], y[2]};
     }
 
-    static constexpr std::array<OutputInfo, 11> own_outputs{{{"G_z", true},
-                                                             {"H", true},
-                                                             {"kinetic_energy", false},
-                                                             {"u1", false},
-                                                             {"u2", false},
-                                                             {"u3", false},
-                                                             {"m", false},
-                                                             {"v", false},
-                                                             {"T_nut", false},
-                                                             {"cos_theta", false},
-                                                             {"cos_theta_rate", false}}};
+    static constexpr std::array<OutputInfo, 11> own_outputs{{{"G_z", "kg m^2/s", "the angular momentum about the vertical", true},
+                                                             {"H", "J", "the top's energy, rotation plus gravity", true},
+                                                             {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", false},
+                                                             {"u1", "1", "the smallest root of the nutation cubic (u = cos theta)", false},
+                                                             {"u2", "1", "the middle root: the top of the nutation", false},
+                                                             {"u3", "1", "the largest root", false},
+                                                             {"m", "1", "the parameter of the nutation's sn", false},
+                                                             {"v", "1", "the nutation's phase variable", false},
+                                                             {"T_nut", "s", "the nutation period", false},
+                                                             {"cos_theta", "1", "cos theta, the cosine of the nutation angle", false},
+                                                             {"cos_theta_rate", "1/s", "d cos theta / dt", false}}};
     static constexpr auto outputs_info = with_euler_outputs<true>(own_outputs);
     void outputs(double /*t*/, const State& y, double* out) const;
 

@@ -31,7 +31,16 @@ class MovingMass {
 public:
     static constexpr int dim = 9;
     using State = Eigen::Matrix<double, 9, 1>;
-    static constexpr std::array<const char*, dim> state_names{"p", "q", "r", "u_1", "u_2", "u_3", "v_1", "v_2", "v_3"};
+    static constexpr const char* family = "moving_mass";
+    static constexpr std::array<Quantity, dim> states{{{"p", "rad/s", "angular velocity about body x"},
+                                                        {"q", "rad/s", "angular velocity about body y"},
+                                                        {"r", "rad/s", "angular velocity about body z"},
+                                                        {"u_1", "m", "the mass's displacement from its attachment, body x"},
+                                                        {"u_2", "m", "the displacement, body y"},
+                                                        {"u_3", "m", "the displacement, body z"},
+                                                        {"v_1", "m/s", "the displacement's rate, body x"},
+                                                        {"v_2", "m/s", "the displacement's rate, body y"},
+                                                        {"v_3", "m/s", "the displacement's rate, body z"}}};
 
     MovingMass(Body system_body, double mass, double arm, double frequency, double damping, TorqueSet external)
         : body_(std::move(system_body)), torques_(std::move(external)), mu_(mass), rho_(arm),
@@ -109,7 +118,7 @@ public:
     /// spring, Ω near the spin rate, lets the mass drift metres on a 1 m arm; the validity check
     /// reports it like every other assumption).
     static constexpr std::array<OutputInfo, 3> outputs_info{
-        {{"angular_momentum_norm", true}, {"energy", false}, {"displacement_ratio", false}}};
+        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}}};
     void outputs(double, const State& y, double* out) const {
         const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
         const Vec3 d = Vec3(0, 0, rho_) + u;

@@ -180,12 +180,8 @@ public:
     static constexpr int dim = WithAttitude ? 8 : 4;
     static constexpr int tau_index = dim - 1;
     using State = Eigen::Matrix<double, dim, 1>;
-    static constexpr auto state_names = [] {
-        if constexpr (WithAttitude)
-            return std::array<const char*, 8>{"p", "q", "r", "q_w", "q_x", "q_y", "q_z", "tau"};
-        else
-            return std::array<const char*, 4>{"p", "q", "r", "tau"};
-    }();
+    static constexpr const char* family = "orthogonal_torque";
+    static constexpr auto states = concat(rate_states<WithAttitude>(), std::array<Quantity, 1>{{{"tau", "s", "the servo's clock tau (d tau/dt = g)"}}});
 
     /// smooth = true selects the form n_δ = √(|Q|² + δ²) of the docs' first recommendation
     /// (smooth everywhere, but the applied L is off by a relative δ²/2|Q|² at every |Q|).
@@ -349,18 +345,18 @@ public:
     }
     /// ω (or ω and the quaternion) alone: identity attitude, τ(t0) = 0.
     State initial_state(const Eigen::VectorXd& given) const {
-        return complete_rate_state<State>(given, WithAttitude, state_names.data());
+        return complete_rate_state<State>(given, WithAttitude, states);
     }
 
-    static constexpr std::array<OutputInfo, 9> own_outputs{{{"angular_momentum_norm", true},
-                                                            {"h", true},
-                                                            {"g", false},
-                                                            {"L", false},
-                                                            {"Q_norm", false},
-                                                            {"delta", false},
-                                                            {"regularised", false},
-                                                            {"theta_G", false},
-                                                            {"phi_G", false}}};
+    static constexpr std::array<OutputInfo, 9> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
+                                                            {"h", "kg m^2/s^2", "omega . J omega (= 2T)", true},
+                                                            {"g", "1", "d tau/dt, the servo's gain", false},
+                                                            {"L", "N m", "the torque's magnitude law L(t)", false},
+                                                            {"Q_norm", "kg m^2/s^2", "|omega x G|, the norm of the torque's direction before normalising", false},
+                                                            {"delta", "kg m^2/s^2", "eta |omega| |G|, the regularisation threshold", false},
+                                                            {"regularised", "1", "1 where |omega x G| is below delta and the torque is regularised, else 0", false},
+                                                            {"theta_G", "rad", "the polar angle of G in body axes", false},
+                                                            {"phi_G", "rad", "the azimuth of G in body axes", false}}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     void outputs(double t, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();

@@ -15,9 +15,19 @@
 
 namespace gyrostat::model {
 
+/// A named component of a model's state: its name, SI unit ("1": dimensionless) and one line
+/// saying what it is. The units in files, plots and docs come from here.
+struct Quantity {
+    const char* name;
+    const char* unit;
+    const char* description;
+};
+
 /// A named quantity a model records at every output time (invariants and derived quantities).
 struct OutputInfo {
     const char* name;
+    const char* unit;         ///< SI unit ("1": dimensionless)
+    const char* description;  ///< one line: what it is
     /// A first integral of the model without perturbation (|G|, T, G_z, H, …). Its relative
     /// change along a run measures the perturbation's work, or the integration error where
     /// nothing perturbs it. Derived quantities (angles, roots, rates) are not conserved.
@@ -27,7 +37,8 @@ struct OutputInfo {
 /// A System must give
 ///   static constexpr int dim;                                    state size
 ///   using State = Eigen::Matrix<double, dim, 1>;
-///   static constexpr std::array<const char*, dim> state_names;   one name per component
+///   static constexpr const char* family;                         the model family's name
+///   static constexpr std::array<Quantity, dim> states;          name, unit, description per component
 ///   void rhs(double t, const State& y, State& dy) const;         the right-hand side
 /// and may give (detected below; each line names the default when it is absent)
 ///   void jacobian(double t, const State& y, Jacobian& J) const;  analytic ∂f/∂y
@@ -158,7 +169,13 @@ void check_state(const S& s, const typename S::State& y) {
     if constexpr (has_state_check<S>::value) s.check_state(y);
 }
 
-std::string join_names(const char* const* names, int n);
+/// "p, q, r": the names of quantities, for messages.
+template <class Q, std::size_t N>
+std::string join_names(const std::array<Q, N>& quantities) {
+    std::string joined;
+    for (std::size_t i = 0; i < N; ++i) joined += std::string(i ? ", " : "") + quantities[i].name;
+    return joined;
+}
 
 /// The full initial state from what the user gave: the model's own completion, or the state itself.
 template <class S>
@@ -168,7 +185,7 @@ typename S::State initial_state(const S& s, const Eigen::VectorXd& given) {
     }
     if (given.size() != S::dim)
         throw std::invalid_argument("initial state has " + std::to_string(given.size()) + " components; this model needs " +
-                                    std::to_string(S::dim) + " (" + join_names(S::state_names.data(), S::dim) + ")");
+                                    std::to_string(S::dim) + " (" + join_names(S::states) + ")");
     return given;
 }
 
@@ -178,29 +195,33 @@ typename S::State initial_state(const S& s, const Eigen::VectorXd& given) {
 /// std::invalid_argument naming the value and the model.
 void check_quaternion(const Eigen::Vector4d& q, const char* model);
 
-/// State names of the models that may integrate the attitude: ω, then the quaternion.
-template <bool WithAttitude>
-constexpr auto rate_state_names() {
-    if constexpr (WithAttitude)
-        return std::array<const char*, 7>{"p", "q", "r", "q_w", "q_x", "q_y", "q_z"};
-    else
-        return std::array<const char*, 3>{"p", "q", "r"};
-}
 
 /// The z-x-z Euler angles (ψ, θ, φ) recorded by every model that integrates the attitude.
-inline constexpr std::array<OutputInfo, 3> euler_outputs_info{{{"psi", false}, {"theta", false}, {"phi", false}}};
+inline constexpr std::array<OutputInfo, 3> euler_outputs_info{{{"psi", "rad", "the z-x-z Euler angle psi (precession)", false}, {"theta", "rad", "the z-x-z Euler angle theta (nutation)", false}, {"phi", "rad", "the z-x-z Euler angle phi (proper rotation)", false}}};
 inline void euler_outputs(const Eigen::Vector4d& q, double* out) {
     const Vec3 angles = euler_angles(q, EulerConvention::ZXZ);
     out[0] = angles[0], out[1] = angles[1], out[2] = angles[2];
 }
 
-/// `first` followed by `second` (to append the Euler angles to a model's own outputs).
-template <std::size_t N, std::size_t M>
-constexpr std::array<OutputInfo, N + M> concat(const std::array<OutputInfo, N>& first, const std::array<OutputInfo, M>& second) {
-    std::array<OutputInfo, N + M> all{};
+/// `first` followed by `second` (to append the Euler angles to a model's own outputs, the
+/// quaternion to ω).
+template <class T, std::size_t N, std::size_t M>
+constexpr std::array<T, N + M> concat(const std::array<T, N>& first, const std::array<T, M>& second) {
+    std::array<T, N + M> all{};
     for (std::size_t i = 0; i < N; ++i) all[i] = first[i];
     for (std::size_t i = 0; i < M; ++i) all[N + i] = second[i];
     return all;
+}
+
+/// The state of the models that may integrate the attitude: ω, then the quaternion.
+inline constexpr std::array<Quantity, 3> omega_states{{{"p", "rad/s", "angular velocity about body x"}, {"q", "rad/s", "angular velocity about body y"}, {"r", "rad/s", "angular velocity about body z"}}};
+inline constexpr std::array<Quantity, 4> quaternion_states{{{"q_w", "1", "attitude quaternion, scalar part (body to inertial)"}, {"q_x", "1", "attitude quaternion, x"}, {"q_y", "1", "attitude quaternion, y"}, {"q_z", "1", "attitude quaternion, z"}}};
+template <bool WithAttitude>
+constexpr auto rate_states() {
+    if constexpr (WithAttitude)
+        return concat(omega_states, quaternion_states);
+    else
+        return omega_states;
 }
 
 /// A model's own outputs, followed by the Euler angles when it integrates the attitude.
@@ -215,8 +236,8 @@ constexpr auto with_euler_outputs(const std::array<OutputInfo, N>& own) {
 /// The completion of a short initial state for the models whose state starts with ω (and the
 /// quaternion when `attitude`): ω alone (3), or ω and the quaternion (7) when the state has more
 /// after them. The quaternion defaults to the identity, what follows (e.g. τ(0)) to zero.
-template <class State>
-State complete_rate_state(const Eigen::VectorXd& given, bool attitude, const char* const* names) {
+template <class State, std::size_t N>
+State complete_rate_state(const Eigen::VectorXd& given, bool attitude, const std::array<Quantity, N>& names) {
     constexpr int dim = State::RowsAtCompileTime;
     State y = State::Zero();
     if (attitude) y[3] = 1.0;
@@ -225,7 +246,7 @@ State complete_rate_state(const Eigen::VectorXd& given, bool attitude, const cha
         return y;
     }
     throw std::invalid_argument("initial state has " + std::to_string(given.size()) + " components; this model needs " +
-                                std::to_string(dim) + " (" + system::join_names(names, dim) + ") or omega alone (3)" +
+                                std::to_string(dim) + " (" + system::join_names(names) + ") or omega alone (3)" +
                                 (attitude && dim > 7 ? " or omega and the quaternion (7)" : ""));
 }
 

@@ -221,7 +221,8 @@ class TorqueFreeBody {
 public:
     static constexpr int dim = WithAttitude ? 7 : 3;
     using State = Eigen::Matrix<double, dim, 1>;
-    static constexpr auto state_names = rate_state_names<WithAttitude>();
+    static constexpr const char* family = "torque_free";
+    static constexpr auto states = rate_states<WithAttitude>();
 
     /// Throws std::invalid_argument for a gyrostat without a closed form here.
     explicit TorqueFreeBody(Body body) : body_(std::move(body)) {
@@ -261,10 +262,10 @@ public:
         check_quaternion(y.template segment<4>(3), "TorqueFree");
     }
     State initial_state(const Eigen::VectorXd& given) const {
-        return complete_rate_state<State>(given, WithAttitude, state_names.data());
+        return complete_rate_state<State>(given, WithAttitude, states);
     }
 
-    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", true}, {"kinetic_energy", true}}};
+    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     void outputs(double, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
 
@@ -14,9 +16,22 @@ namespace gyrostat::torque {
 /// (φ̇ = (C − A) r / A):  ȧ = 0,  ṙ = M3 / C.  M1, M2 average out; in the full motion they shift
 /// the (p, q) circle by |M⊥|/(A |ν|), ν = (C − A) r / A, so the averaging fails as r → 0.
 struct Constant {
+    static constexpr const char* name = "constant";
+    static constexpr const char* python_name = "ConstantTorque";
+    static constexpr const char* description = "a constant torque in body axes";
+    static constexpr std::array<Parameter, 1> parameters{{
+        {"moment", "moment", Shape::Vector3, "N m", "M in body axes"},
+    }};
+
     Vec3 moment = Vec3::Zero();
 
-    explicit Constant(const Vec3& m) : moment(m) { require_finite(m, "ConstantTorque: moment"); }
+    explicit Constant(const Vec3& m) : moment(m) { require(python_name, parameters[0], m); }
+    static Constant from(const Values& v) { return Constant(v.vector("moment")); }
+    Values values() const {
+        Values v;
+        v.set("moment", moment);
+        return v;
+    }
 
     Vec3 operator()(double /*t*/, const Vec3& /*omega*/, const Vec3& /*moments*/) const { return moment; }
     /// ∂M/∂ω = 0.
@@ -25,7 +40,6 @@ struct Constant {
     Eigen::Vector2d averaged(double /*t*/, double /*a*/, double /*r*/, double /*A*/, double C) const {
         return {0.0, moment.z() / C};
     }
-    static constexpr const char* name = "constant";
 };
 
 }  // namespace gyrostat::torque

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
 
@@ -16,10 +18,29 @@ namespace gyrostat::torque {
 ///   ȧ = −(D11 + D22) a / (2A),   ṙ = −D33 r / C;
 /// the off-diagonal entries and D11 − D22 average out (docs/papers/000_002_cavity_and_medium.md).
 struct LinearDamping {
+    static constexpr const char* name = "linear_damping";
+    static constexpr const char* python_name = "LinearDamping";
+    static constexpr const char* description = "M = -D omega";
+    static constexpr std::array<Parameter, 2> parameters{{
+        {"matrix", "matrix D (column-major)", Shape::Matrix3, "N m s", "D (M = -D omega)", Constraint::Finite, 1},
+        {"diagonal", "diagonal of D", Shape::Vector3, "N m s", "the diagonal of D", Constraint::Finite, 1, false},
+    }};
+
     Mat3 matrix = Mat3::Zero();
 
-    explicit LinearDamping(const Mat3& d) : matrix(d) {
-        require_finite(Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data()), "LinearDamping: matrix D (column-major)");
+    explicit LinearDamping(const Mat3& d) : matrix(d) { require(python_name, parameters[0], d); }
+    /// D itself, or a diagonal D from its diagonal.
+    static LinearDamping from(const Values& v) {
+        if (v.has("diagonal")) {
+            require(python_name, parameters[1], v.vector("diagonal"));
+            return LinearDamping(Mat3(v.vector("diagonal").asDiagonal()));
+        }
+        return LinearDamping(v.matrix("matrix"));
+    }
+    Values values() const {
+        Values v;
+        v.set("matrix", matrix);
+        return v;
     }
 
     Vec3 operator()(double /*t*/, const Vec3& omega, const Vec3& /*moments*/) const { return -matrix * omega; }
@@ -30,7 +51,6 @@ struct LinearDamping {
     Eigen::Vector2d averaged(double /*t*/, double a, double r, double A, double C) const {
         return {-(matrix(0, 0) + matrix(1, 1)) * a / (2.0 * A), -matrix(2, 2) * r / C};
     }
-    static constexpr const char* name = "linear_damping";
 };
 
 }  // namespace gyrostat::torque

@@ -2,10 +2,14 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <vector>
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
 
@@ -29,6 +33,16 @@ namespace gyrostat::torque {
 /// reduction's error grows like these, docs/papers/001_moving_mass.md §E); the paper's own
 /// condition (4), Ω² ≫ λ|ω| ≫ |ω|², is reported as printed.
 struct MovingMassDamper {
+    static constexpr const char* name = "moving_mass_damper";
+    static constexpr const char* python_name = "MovingMassDamper";
+    static constexpr const char* description = "Chernousko's quasi-static moving-mass damper";
+    static constexpr std::array<Parameter, 4> parameters{{
+        {"mass", "mass m", Shape::Scalar, "kg", "mass m", Constraint::Positive},
+        {"arm", "arm rho", Shape::Scalar, "m", "distance rho of the mass on the z axis", Constraint::NonNegative},
+        {"frequency", "frequency Omega", Shape::Scalar, "rad/s", "Omega = sqrt(c/m)", Constraint::Positive},
+        {"damping", "damping lambda", Shape::Scalar, "1/s", "lambda = delta/m", Constraint::NonNegative},
+    }};
+
     double mass = 0.0;       ///< μ (reduced mass; m when the carrier is much heavier)
     double arm = 0.0;        ///< ρ, distance of the attachment point along z
     double frequency = 0.0;  ///< Ω, natural frequency of the spring (Ω² = c/μ)
@@ -36,10 +50,18 @@ struct MovingMassDamper {
 
     MovingMassDamper(double m, double rho, double omega, double lambda)
         : mass(m), arm(rho), frequency(omega), damping(lambda) {
-        check("mass m", m, false);
-        check("arm rho", rho, true);
-        check("frequency Omega", omega, false);
-        check("damping lambda", lambda, true);
+        require(python_name, parameters[0], m);
+        require(python_name, parameters[1], rho);
+        require(python_name, parameters[2], omega);
+        require(python_name, parameters[3], lambda);
+    }
+    static MovingMassDamper from(const Values& v) {
+        return MovingMassDamper(v.scalar("mass"), v.scalar("arm"), v.scalar("frequency"), v.scalar("damping"));
+    }
+    Values values() const {
+        Values v;
+        v.set("mass", mass), v.set("arm", arm), v.set("frequency", frequency), v.set("damping", damping);
+        return v;
     }
     double kL() const { return mass * arm * arm / (frequency * frequency); }
     /// S of paper 001 eq. (3) for a symmetric body (A, A, C).
@@ -108,13 +130,21 @@ struct MovingMassDamper {
         const double s = S(A, C), r3 = r * r * r;
         return {s * r3 * r * a / A, -(A / (C * C)) * s * r3 * a * a};
     }
-    static constexpr const char* name = "moving_mass_damper";
 
-private:
-    static void check(const char* what, double value, bool zero_allowed) {
-        if (!std::isfinite(value) || value < 0.0 || (!zero_allowed && value == 0.0))
-            throw std::invalid_argument(std::string("MovingMassDamper: ") + what + " = " + format_value(value) +
-                                        (zero_allowed ? " must be finite and non-negative" : " must be finite and positive"));
+    /// The quasi-static reduction's conditions λ|ν|/Ω² ≪ 1 and |G|²/(A²Ω²) ≪ 1, and paper 001's
+    /// condition (4) as printed (Ω² ≫ λ|ω| ≫ |ω|², not needed for (a, r)).
+    std::vector<Assumption> assumptions(const Motion& motion) const {
+        const double omega2 = frequency * frequency, A = motion.moments[0];
+        const double lag = damping * motion.axial_frequency / omega2;
+        const double inertial = motion.momentum * motion.momentum / (A * A * omega2);
+        const double inf = std::numeric_limits<double>::infinity();
+        const double first = damping * motion.speed > 0 ? omega2 / (damping * motion.speed) : inf;
+        const double second = motion.speed > 0 ? damping / motion.speed : inf;
+        const char* printed = "as printed; not needed for (a, r)";
+        return {{"moving-mass damper", "λ|ν|/Ω² ≪ 1 (quasi-static lag, ν = (C−A)r/A)", lag, kSmall, lag <= kSmall, ""},
+                {"moving-mass damper", "|G|²/(A²Ω²) ≪ 1 (inertial corrections)", inertial, kSmall, inertial <= kSmall, ""},
+                {"moving-mass damper", "paper 001 condition (4): Ω²/(λ|ω|) ≫ 1", first, kLarge, first >= kLarge, printed},
+                {"moving-mass damper", "paper 001 condition (4): λ|ω|/|ω|² ≫ 1", second, kLarge, second >= kLarge, printed}};
     }
 };
 

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <stdexcept>
 #include <vector>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
 
@@ -19,13 +21,26 @@ namespace gyrostat::torque {
 /// Assumptions: D varies slowly against the fast frequency |(C − A) r / A| (reported by the
 /// validity check); the symmetric part of D decides dissipation.
 struct ResistiveMedium {
+    static constexpr const char* name = "resistive_medium";
+    static constexpr const char* python_name = "ResistiveMedium";
+    static constexpr const char* description = "a resistive medium whose resistance varies with time";
+    static constexpr std::array<Parameter, 1> parameters{{
+        {"coefficients", "coefficient", Shape::Matrices, "N m s^(k+1)",
+         "D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)"},
+    }};
+
     std::vector<Mat3> coefficients;  ///< D_0, D_1, … (t^0, t^1, …)
 
     explicit ResistiveMedium(std::vector<Mat3> c) : coefficients(std::move(c)) {
         if (coefficients.empty()) throw std::invalid_argument("ResistiveMedium: at least one coefficient matrix is needed");
         for (std::size_t k = 0; k < coefficients.size(); ++k)
-            require_finite(Eigen::Map<const Eigen::Matrix<double, 9, 1>>(coefficients[k].data()),
-                           "ResistiveMedium: coefficient D_" + std::to_string(k));
+            require(python_name, parameters[0], coefficients[k], static_cast<int>(k));
+    }
+    static ResistiveMedium from(const Values& v) { return ResistiveMedium(v.matrices("coefficients")); }
+    Values values() const {
+        Values v;
+        v.set("coefficients", coefficients);
+        return v;
     }
 
     /// D(t) by Horner's rule.
@@ -42,7 +57,6 @@ struct ResistiveMedium {
         const Mat3 d = at(t);
         return {-(d(0, 0) + d(1, 1)) * a / (2.0 * A), -d(2, 2) * r / C};
     }
-    static constexpr const char* name = "resistive_medium";
 };
 
 }  // namespace gyrostat::torque

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 #include <type_traits>
+#include <utility>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -15,13 +17,20 @@
 
 namespace gyrostat {
 
-/// Every torque the library knows. Each is a small value type with
+/// Every torque the library knows: adding a torque is its header and its line here. Each is a
+/// small value type with
 ///   Vec3 operator()(t, ω, J)                       the torque in body axes (J: principal moments),
 ///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω,
 ///   Vector2d averaged(t, a, r, A, C)               its contribution (ȧ, ṙ) to the system averaged
 ///                                                  over the symmetric Euler–Poinsot motion,
-///   static name,
+/// and declares beside its equations (torque/parameter.hpp)
+///   static name, python_name, description          its scene type, its Python class, one line,
+///   static std::array<Parameter, n> parameters     name, shape, unit, description, constraint,
+///   static T from(const Values&)                   itself from named values (a scene table),
+///   Values values() const                          the parameters it keeps,
+///   std::vector<Assumption> assumptions(const Motion&) const   its validity numbers,
 /// and may declare `static constexpr bool keeps_momentum_norm = true` when Jω·M ≡ 0.
+/// The Python classes, the scene schema and every list of torques are generated from these.
 using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
                                torque::ViscousCavity, torque::MovingMassDamper>;
 
@@ -29,6 +38,33 @@ template <class T, class = void>
 struct keeps_momentum_norm : std::false_type {};
 template <class T>
 struct keeps_momentum_norm<T, std::enable_if_t<T::keeps_momentum_norm>> : std::true_type {};
+
+template <class T, class = void>
+struct has_assumptions : std::false_type {};
+template <class T>
+struct has_assumptions<T, std::void_t<decltype(std::declval<const T&>().assumptions(std::declval<const torque::Motion&>()))>>
+    : std::true_type {};
+
+/// A torque's validity numbers over a motion (none for a torque that assumes nothing).
+template <class T>
+std::vector<torque::Assumption> assumptions_of(const T& x, const torque::Motion& motion) {
+    if constexpr (has_assumptions<T>::value)
+        return x.assumptions(motion);
+    else
+        return {};
+}
+
+namespace detail {
+template <class... Torques>
+std::string python_names(std::variant<Torques...>*) {
+    std::string names;
+    ((names += (names.empty() ? "" : ", ") + std::string(Torques::python_name)), ...);
+    return names;
+}
+}  // namespace detail
+
+/// "ConstantTorque, LinearDamping, …": the Python names of every torque, for error messages.
+inline std::string torque_python_names() { return detail::python_names(static_cast<AnyTorque*>(nullptr)); }
 
 inline const char* torque_name(const AnyTorque& t) {
     return std::visit([](const auto& x) { return std::decay_t<decltype(x)>::name; }, t);

@@ -2,10 +2,14 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <vector>
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
 
@@ -22,19 +26,38 @@ namespace gyrostat::torque {
 /// Assumptions: Reynolds number Re = |ω| b²/ν ≪ 1 (ν large, κ|ω|/A small); the validity check
 /// reports Re with b the radius of the sphere of the same P0.
 struct ViscousCavity {
+    static constexpr const char* name = "viscous_cavity";
+    static constexpr const char* python_name = "ViscousCavity";
+    static constexpr const char* description = "a cavity filled with a highly viscous fluid";
+    static constexpr std::array<Parameter, 4> parameters{{
+        {"density", "density ρ", Shape::Scalar, "kg/m^3", "rho", Constraint::Positive},
+        {"viscosity", "kinematic viscosity ν", Shape::Scalar, "m^2/s", "kinematic viscosity nu", Constraint::Positive},
+        {"p0", "cavity coefficient P0", Shape::Scalar, "m^5", "P0 of the cavity tensor P = P0 I", Constraint::Positive, 1},
+        {"radius", "cavity radius b", Shape::Scalar, "m", "radius of a spherical cavity", Constraint::Positive, 1, false},
+    }};
+
     double density = 0.0;    ///< ρ
     double viscosity = 0.0;  ///< ν (kinematic)
     double p0 = 0.0;         ///< P0 of P = P0·I
 
     ViscousCavity(double rho, double nu, double p) : density(rho), viscosity(nu), p0(p) {
-        check("density ρ", rho);
-        check("kinematic viscosity ν", nu);
-        check("cavity coefficient P0", p);
+        require(python_name, parameters[0], rho);
+        require(python_name, parameters[1], nu);
+        require(python_name, parameters[2], p);
     }
     /// A spherical cavity of radius b: P0 = 8π b⁷ / 525.
     static ViscousCavity sphere(double rho, double nu, double radius) {
-        check("cavity radius b", radius);
+        require(python_name, parameters[3], radius);
         return ViscousCavity(rho, nu, 8.0 * M_PI * std::pow(radius, 7) / 525.0);
+    }
+    static ViscousCavity from(const Values& v) {
+        if (v.has("radius")) return sphere(v.scalar("density"), v.scalar("viscosity"), v.scalar("radius"));
+        return ViscousCavity(v.scalar("density"), v.scalar("viscosity"), v.scalar("p0"));
+    }
+    Values values() const {
+        Values v;
+        v.set("density", density), v.set("viscosity", viscosity), v.set("p0", p0);
+        return v;
     }
     /// Radius of the sphere with this P0.
     double equivalent_radius() const { return std::pow(525.0 * p0 / (8.0 * M_PI), 1.0 / 7.0); }
@@ -60,9 +83,21 @@ struct ViscousCavity {
         const double k = kappa();
         return {k * C * (A - C) * r * r * a / (A * A * A), k * (C - A) * a * a * r / (A * C)};
     }
-    static constexpr const char* name = "viscous_cavity";
     /// Jω·M ≡ 0: |Jω| is kept (TorqueSet::keeps_momentum_norm; the splitting projects on it).
     static constexpr bool keeps_momentum_norm = true;
+
+    /// Small Reynolds number Re = |ω| b²/ν (b: the sphere of the same P0) and a small
+    /// perturbation κ|ω|/A_min, both against kSmall.
+    std::vector<Assumption> assumptions(const Motion& motion) const {
+        const double b = equivalent_radius();
+        const double reynolds = motion.speed * b * b / viscosity;
+        const double strength = kappa() * motion.speed / motion.moments.minCoeff();
+        char note[64];
+        std::snprintf(note, sizeof note, "b = %.4g (sphere of the same P0)", b);
+        return {{"viscous cavity", "Reynolds number |ω| b²/ν ≪ 1", reynolds, kSmall, reynolds <= kSmall, note},
+                {"viscous cavity", "cavity rate κ|ω|/A_min ≪ 1 (perturbation small)", strength, kSmall,
+                 strength <= kSmall, ""}};
+    }
 
 private:
     using Coefficients = Eigen::Matrix<double, 6, 1>;
@@ -73,11 +108,6 @@ private:
         c << C * (A - C) * (A + C - B), B * (A - B) * (A + B - C), A * (B - A) * (B + A - C), C * (B - C) * (B + C - A),
             B * (C - B) * (C + B - A), A * (C - A) * (C + A - B);
         return c;
-    }
-    static void check(const char* what, double value) {
-        if (!std::isfinite(value) || !(value > 0.0))
-            throw std::invalid_argument(std::string("ViscousCavity: ") + what + " = " + format_value(value) +
-                                        " must be finite and positive");
     }
 };
 
