@@ -64,6 +64,11 @@ void expose_models(py::module_& m) {
                  return as<model::AveragedSymmetric>(b.model, "fast_frequency is for the averaged model").fast_frequency(r);
              },
              py::arg("r"))
+        .def("exact_reduction",
+             [](const BoundModel& b) {
+                 return as<model::AveragedSymmetric>(b.model, "exact_reduction is for the averaged model").exact_reduction();
+             },
+             "Whether the (a, r) system is exact (a symmetric body without rotor under axisymmetric torques).")
         .def("slow_rate",
              [](const BoundModel& b, double t, const Eigen::Vector2d& y) {
                  return as<model::AveragedSymmetric>(b.model, "slow_rate is for the averaged model").slow_rate(t, y);

@@ -1,13 +1,14 @@
 """Type stubs for the C++ extension gyrostat._core: bodies, torques, models, integrators, ensembles
-(the bindings only translate types). Generated from the built module by pybind11-stubgen
-(`pybind11-stubgen gyrostat._core`); regenerate after changing a binding.
+(the bindings only translate types). Generated from the built module by docs/stubs.py
+(pybind11-stubgen); `python docs/stubs.py` regenerates it after a binding changes, and
+tests/test_generated.py fails while it is stale.
 """
 from __future__ import annotations
 import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'max_output_bytes', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model']
+__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
 class Body:
     def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
@@ -19,119 +20,256 @@ class Body:
     @property
     def rotor(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         ...
+class Motion:
+    """
+    The motion a validity check looks at: the largest |omega|, |J omega| and |(C - A) r / A| over the angular velocities given (rows).
+    """
+    def __init__(self, moments: typing.Any, omegas: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 3]"]) -> None:
+        ...
+    @property
+    def axial_frequency(self) -> float:
+        ...
+    @property
+    def moments(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def momentum(self) -> float:
+        ...
+    @property
+    def speed(self) -> float:
+        ...
+class TorqueAssumption:
+    """
+    One assumption of a torque, measured (torque/parameter.hpp).
+    """
+    @property
+    def holds(self) -> bool:
+        ...
+    @property
+    def limit(self) -> float:
+        ...
+    @property
+    def note(self) -> str:
+        ...
+    @property
+    def part(self) -> str:
+        ...
+    @property
+    def statement(self) -> str:
+        ...
+    @property
+    def value(self) -> float:
+        ...
 class ConstantTorque:
+    """
+    a constant torque in body axes (scene type "constant").
+    
+    Parameters:
+        moment [N m]: M in body axes (finite)
+    """
+    description: typing.ClassVar[str] = 'a constant torque in body axes'
     kind: typing.ClassVar[str] = 'constant'
+    parameters: typing.ClassVar[list] = [{'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M in body axes', 'constraint': 'finite', 'choice': 0, 'stored': True}]
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, moment: typing.Any) -> None:
+    def __init__(self, *args, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
     @property
-    def moment(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
+    def moment(self) -> typing.Any:
+        """
+        M in body axes [N m]
+        """
 class LinearDamping:
+    """
+    M = -D omega (scene type "linear_damping").
+    
+    Parameters:
+        matrix [N m s]: D (M = -D omega) (finite; one of a choice)
+        diagonal [N m s]: the diagonal of D (finite; one of a choice)
+    """
+    description: typing.ClassVar[str] = 'M = -D omega'
     kind: typing.ClassVar[str] = 'linear_damping'
+    parameters: typing.ClassVar[list] = [{'name': 'matrix', 'label': 'matrix D (column-major)', 'shape': 'matrix3', 'unit': 'N m s', 'description': 'D (M = -D omega)', 'constraint': 'finite', 'choice': 1, 'stored': True}, {'name': 'diagonal', 'label': 'diagonal of D', 'shape': 'vector3', 'unit': 'N m s', 'description': 'the diagonal of D', 'constraint': 'finite', 'choice': 1, 'stored': False}]
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, matrix: typing.Any) -> None:
+    def __init__(self, *args, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
     @property
-    def matrix(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
-        ...
+    def matrix(self) -> typing.Any:
+        """
+        D (M = -D omega) [N m s]
+        """
 class ResistiveMedium:
+    """
+    a resistive medium whose resistance varies with time (scene type "resistive_medium").
+    
+    Parameters:
+        coefficients [N m s^(k+1)]: D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega) (finite)
+    """
+    description: typing.ClassVar[str] = 'a resistive medium whose resistance varies with time'
     kind: typing.ClassVar[str] = 'resistive_medium'
+    parameters: typing.ClassVar[list] = [{'name': 'coefficients', 'label': 'coefficient', 'shape': 'matrices', 'unit': 'N m s^(k+1)', 'description': 'D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)', 'constraint': 'finite', 'choice': 0, 'stored': True}]
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, coefficients: collections.abc.Iterable) -> None:
+    def __init__(self, *args, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
     def at(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
-        ...
+        """
+        D(t).
+        """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
     @property
-    def coefficients(self) -> list[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]]:
-        ...
+    def coefficients(self) -> typing.Any:
+        """
+        D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega) [N m s^(k+1)]
+        """
 class ViscousCavity:
+    """
+    a cavity filled with a highly viscous fluid (scene type "viscous_cavity").
+    
+    Parameters:
+        density [kg/m^3]: rho (finite and positive)
+        viscosity [m^2/s]: kinematic viscosity nu (finite and positive)
+        p0 [m^5]: P0 of the cavity tensor P = P0 I (finite and positive; one of a choice)
+        radius [m]: radius of a spherical cavity (finite and positive; one of a choice)
+    """
+    description: typing.ClassVar[str] = 'a cavity filled with a highly viscous fluid'
     kind: typing.ClassVar[str] = 'viscous_cavity'
+    parameters: typing.ClassVar[list] = [{'name': 'density', 'label': 'density ρ', 'shape': 'scalar', 'unit': 'kg/m^3', 'description': 'rho', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'viscosity', 'label': 'kinematic viscosity ν', 'shape': 'scalar', 'unit': 'm^2/s', 'description': 'kinematic viscosity nu', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'p0', 'label': 'cavity coefficient P0', 'shape': 'scalar', 'unit': 'm^5', 'description': 'P0 of the cavity tensor P = P0 I', 'constraint': 'positive', 'choice': 1, 'stored': True}, {'name': 'radius', 'label': 'cavity radius b', 'shape': 'scalar', 'unit': 'm', 'description': 'radius of a spherical cavity', 'constraint': 'positive', 'choice': 1, 'stored': False}]
     @staticmethod
     def sphere(density: typing.Any, viscosity: typing.Any, radius: typing.Any) -> ViscousCavity:
-        ...
+        """
+        A spherical cavity of this radius.
+        """
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, density: typing.Any, viscosity: typing.Any, p0: typing.Any) -> None:
+    def __init__(self, *args, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
     @property
-    def density(self) -> float:
-        ...
+    def density(self) -> typing.Any:
+        """
+        rho [kg/m^3]
+        """
     @property
     def equivalent_radius(self) -> float:
-        ...
+        """
+        the radius of the sphere with this P0
+        """
     @property
     def kappa(self) -> float:
-        ...
+        """
+        kappa = rho P0 / nu
+        """
     @property
-    def p0(self) -> float:
-        ...
+    def p0(self) -> typing.Any:
+        """
+        P0 of the cavity tensor P = P0 I [m^5]
+        """
     @property
-    def viscosity(self) -> float:
-        ...
+    def viscosity(self) -> typing.Any:
+        """
+        kinematic viscosity nu [m^2/s]
+        """
 class MovingMassDamper:
+    """
+    Chernousko's quasi-static moving-mass damper (scene type "moving_mass_damper").
+    
+    Parameters:
+        mass [kg]: mass m (finite and positive)
+        arm [m]: distance rho of the mass on the z axis (finite and non-negative)
+        frequency [rad/s]: Omega = sqrt(c/m) (finite and positive)
+        damping [1/s]: lambda = delta/m (finite and non-negative)
+    """
+    description: typing.ClassVar[str] = "Chernousko's quasi-static moving-mass damper"
     kind: typing.ClassVar[str] = 'moving_mass_damper'
+    parameters: typing.ClassVar[list] = [{'name': 'mass', 'label': 'mass m', 'shape': 'scalar', 'unit': 'kg', 'description': 'mass m', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'arm', 'label': 'arm rho', 'shape': 'scalar', 'unit': 'm', 'description': 'distance rho of the mass on the z axis', 'constraint': 'non_negative', 'choice': 0, 'stored': True}, {'name': 'frequency', 'label': 'frequency Omega', 'shape': 'scalar', 'unit': 'rad/s', 'description': 'Omega = sqrt(c/m)', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'damping', 'label': 'damping lambda', 'shape': 'scalar', 'unit': '1/s', 'description': 'lambda = delta/m', 'constraint': 'non_negative', 'choice': 0, 'stored': True}]
     def S(self, A: typing.Any, C: typing.Any) -> float:
-        ...
+        """
+        S of paper 001 eq. (3) for a symmetric body (A, A, C).
+        """
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments.
         """
-    def __init__(self, mass: typing.Any, arm: typing.Any, frequency: typing.Any, damping: typing.Any) -> None:
+    def __init__(self, *args, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
         """
     @property
-    def arm(self) -> float:
-        ...
+    def arm(self) -> typing.Any:
+        """
+        distance rho of the mass on the z axis [m]
+        """
     @property
-    def damping(self) -> float:
-        ...
+    def damping(self) -> typing.Any:
+        """
+        lambda = delta/m [1/s]
+        """
     @property
-    def frequency(self) -> float:
-        ...
+    def frequency(self) -> typing.Any:
+        """
+        Omega = sqrt(c/m) [rad/s]
+        """
     @property
-    def mass(self) -> float:
-        ...
+    def mass(self) -> typing.Any:
+        """
+        mass m [kg]
+        """
 class MagnitudeLaw:
     """
     The magnitude L(t) of paper 004's servo torque, evaluated in C++.
@@ -161,6 +299,10 @@ class Model:
     """
     A model of any family, as the engine integrates it.
     """
+    def exact_reduction(self) -> bool:
+        """
+        Whether the (a, r) system is exact (a symmetric body without rotor under axisymmetric torques).
+        """
     def fast_frequency(self, r: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
     def full_state(self, slow: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], phase: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -188,6 +330,11 @@ class Model:
     @property
     def output_names(self) -> list[str]:
         ...
+    @property
+    def quantities(self) -> list:
+        """
+        What the model declares about its state and outputs: name, unit, description, role ('state' or 'output') and whether it is conserved without perturbation.
+        """
     @property
     def state_names(self) -> list[str]:
         ...
@@ -219,6 +366,11 @@ class Options:
     dense_output: bool
     every_step: bool
     method: str
+    @staticmethod
+    def check(name: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        The engine's rule for one scalar option (rtol, atol, n_out, max_steps, first_step, max_step, step, splitting_order): ValueError naming the value when it breaks it. The scene schema applies it too.
+        """
     def __init__(self) -> None:
         ...
     def __repr__(self) -> str:
@@ -350,16 +502,33 @@ class Result:
         What the run says about its own answer (information).
         """
     @property
+    def options(self) -> Options:
+        """
+        The options the run was made with (without t_eval and events).
+        """
+    @property
     def output_conserved(self) -> list[bool]:
+        ...
+    @property
+    def output_descriptions(self) -> list[str]:
         ...
     @property
     def output_names(self) -> list[str]:
         ...
     @property
+    def output_units(self) -> list[str]:
+        ...
+    @property
     def outputs(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def state_descriptions(self) -> list[str]:
+        ...
+    @property
     def state_names(self) -> list[str]:
+        ...
+    @property
+    def state_units(self) -> list[str]:
         ...
     @property
     def stats(self) -> Stats:
@@ -528,7 +697,10 @@ def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0:
 def torque_free_model(body: Body, attitude: bool = False) -> Model:
     ...
 __version__: str = '0.1.0'
+large: float = 10.0
 max_output_bytes: float = 2147483648.0
-simd_instruction_set: str = 'sse2'
-simd_lanes: int = 4
-taylor_kernel: str = 'avx2+fma'
+simd_instruction_set: str
+simd_lanes: int
+small: float = 0.1
+taylor_kernel: str
+torque_types: list = [ConstantTorque, LinearDamping, ResistiveMedium, ViscousCavity, MovingMassDamper]

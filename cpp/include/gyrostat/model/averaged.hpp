@@ -48,6 +48,11 @@ public:
     const TorqueSet& torques() const { return torques_; }
     double A() const { return A_; }
     double C() const { return C_; }
+    /// Whether the (a, r) system is exact rather than averaged: a symmetric body (A = B) without
+    /// rotor under torques that commute with rotations about z; then r = 0 is no limit.
+    bool exact_reduction() const {
+        return body_.moments()[0] == body_.moments()[1] && body_.rotor().squaredNorm() == 0.0 && torques_.axisymmetric();
+    }
     /// |φ̇| = |(C − A) r / A|.
     double fast_frequency(double r) const { return std::abs((C_ - A_) * r / A_); }
     /// max(|ȧ/a|, |ṙ/r|): the rate at which the slow variables change.

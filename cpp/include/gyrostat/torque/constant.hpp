@@ -40,6 +40,8 @@ struct Constant {
     Eigen::Vector2d averaged(double /*t*/, double /*a*/, double /*r*/, double /*A*/, double C) const {
         return {0.0, moment.z() / C};
     }
+    /// Commutes with rotations about body z (then the (a, r) reduction is exact): M1 = M2 = 0.
+    bool axisymmetric() const { return moment.x() == 0.0 && moment.y() == 0.0; }
 };
 
 }  // namespace gyrostat::torque

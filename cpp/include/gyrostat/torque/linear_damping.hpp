@@ -51,6 +51,8 @@ struct LinearDamping {
     Eigen::Vector2d averaged(double /*t*/, double a, double r, double A, double C) const {
         return {-(matrix(0, 0) + matrix(1, 1)) * a / (2.0 * A), -matrix(2, 2) * r / C};
     }
+    /// Commutes with rotations about body z: D diagonal with D11 = D22.
+    bool axisymmetric() const { return is_axisymmetric(matrix); }
 };
 
 }  // namespace gyrostat::torque

@@ -130,6 +130,8 @@ struct MovingMassDamper {
         const double s = S(A, C), r3 = r * r * r;
         return {s * r3 * r * a / A, -(A / (C * C)) * s * r3 * a * a};
     }
+    /// Commutes with rotations about body z (the mass sits on the z axis, the spring is isotropic).
+    bool axisymmetric() const { return true; }
 
     /// The quasi-static reduction's conditions λ|ν|/Ω² ≪ 1 and |G|²/(A²Ω²) ≪ 1, and paper 001's
     /// condition (4) as printed (Ω² ≫ λ|ω| ≫ |ω|², not needed for (a, r)).

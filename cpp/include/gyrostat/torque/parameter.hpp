@@ -109,6 +109,12 @@ inline void require(const char* torque, const Parameter& p, const Eigen::Ref<con
                                         format_value(m.data()[i]) + " must be " + constraint_text(p.constraint));
 }
 
+/// D diagonal with D11 = D22: a linear torque −Dω that commutes with rotations about body z.
+inline bool is_axisymmetric(const Mat3& d) {
+    return d(0, 1) == 0.0 && d(0, 2) == 0.0 && d(1, 0) == 0.0 && d(1, 2) == 0.0 && d(2, 0) == 0.0 && d(2, 1) == 0.0 &&
+           d(0, 0) == d(1, 1);
+}
+
 /// The motion a validity check looks at: the largest values over the states checked.
 struct Motion {
     Vec3 moments = Vec3::Ones();  ///< (A, B, C)

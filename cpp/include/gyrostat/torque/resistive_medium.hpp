@@ -57,6 +57,12 @@ struct ResistiveMedium {
         const Mat3 d = at(t);
         return {-(d(0, 0) + d(1, 1)) * a / (2.0 * A), -d(2, 2) * r / C};
     }
+    /// Commutes with rotations about body z: every D_k diagonal with equal first two entries.
+    bool axisymmetric() const {
+        for (const Mat3& d : coefficients)
+            if (!is_axisymmetric(d)) return false;
+        return true;
+    }
 };
 
 }  // namespace gyrostat::torque

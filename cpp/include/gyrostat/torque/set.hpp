@@ -23,6 +23,7 @@ namespace gyrostat {
 ///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω,
 ///   Vector2d averaged(t, a, r, A, C)               its contribution (ȧ, ṙ) to the system averaged
 ///                                                  over the symmetric Euler–Poinsot motion,
+///   bool axisymmetric()                            it commutes with rotations about body z,
 /// and declares beside its equations (torque/parameter.hpp)
 ///   static name, python_name, description          its scene type, its Python class, one line,
 ///   static std::array<Parameter, n> parameters     name, shape, unit, description, constraint,
@@ -91,6 +92,13 @@ public:
         for (const auto& part : parts_)
             if (!std::visit([](const auto& x) { return gyrostat::keeps_momentum_norm<std::decay_t<decltype(x)>>::value; }, part))
                 return false;
+        return true;
+    }
+
+    /// Every torque commutes with rotations about body z (none at all counts).
+    bool axisymmetric() const {
+        for (const auto& part : parts_)
+            if (!std::visit([](const auto& x) { return x.axisymmetric(); }, part)) return false;
         return true;
     }
 

@@ -83,6 +83,8 @@ struct ViscousCavity {
         const double k = kappa();
         return {k * C * (A - C) * r * r * a / (A * A * A), k * (C - A) * a * a * r / (A * C)};
     }
+    /// Commutes with rotations about body z (the cavity tensor is isotropic, P = P0 I).
+    bool axisymmetric() const { return true; }
     /// Jω·M ≡ 0: |Jω| is kept (TorqueSet::keeps_momentum_norm; the splitting projects on it).
     static constexpr bool keeps_momentum_norm = true;
 
