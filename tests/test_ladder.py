@@ -17,7 +17,6 @@ import pytest
 
 import gyrostat as g
 from gyrostat import lagrange, runner
-from gyrostat.ladder import SwitchedSolution
 from gyrostat.scene import SCENES, Scene, SceneError
 
 TIGHT = dict(rtol=1e-12, atol=1e-14)
@@ -104,7 +103,7 @@ def test_switching_through_r_zero_matches_the_full_model():
     doc = _switching_doc()
     scene, solution, report = _solve(doc)
     assert report["model"] == "averaged"
-    assert isinstance(solution, SwitchedSolution)
+    assert isinstance(solution, g.Solution) and solution.pieces
     switches = report["ladder"]["switches"]
     assert [s["to"] for s in switches[:2]] == ["full", "averaged"], switches
     up, down = switches[0]["t"], switches[1]["t"]
@@ -112,7 +111,7 @@ def test_switching_through_r_zero_matches_the_full_model():
     on_top = solution.t[(solution.t > up) & (solution.t < down)]
     assert np.all(solution.rung[np.isin(solution.t, on_top)] == 1)
     # at the switch up the averaged model's slow/fast ratio is the limit 0.1
-    segment = solution.segments[0][1]
+    segment = solution.pieces[0][1]
     assert segment.terminal_event == 0
     assert averaged._core.outputs_at(up, segment.y_last)[-1] == pytest.approx(0.1, rel=1e-6)
     full = g.solve(scene.ladder[-1].model, doc["initial"]["omega"], (0.0, 4000.0), t_eval=solution.t, **TIGHT)
@@ -301,11 +300,11 @@ def test_lagrange_top_switches_up_where_the_adiabaticity_reaches_its_fitted_limi
     doc["integration"].update(model="auto", accuracy=3e-4, n_out=2001)
     doc["outputs"] = {"plots": ["slow", "roots"]}
     scene, solution, report = _solve(doc)
-    assert report["model"] == "averaged" and isinstance(solution, SwitchedSolution)
+    assert report["model"] == "averaged" and isinstance(solution, g.Solution) and solution.pieces
     switch = report["ladder"]["switches"][0]
     assert switch["to"] == "full" and "N << 1" in switch["reason"]
     lower = next(r for r in scene.ladder if r.name == "averaged")
-    first = solution.segments[0][1]
+    first = solution.pieces[0][1]
     limit = float(switch["reason"].rsplit("reached ", 1)[1])
     N = lower.model._core.outputs_at(first.t_last, first.y_last)[list(lower.model.output_names).index("adiabaticity")]
     assert N == pytest.approx(limit, rel=1e-6)

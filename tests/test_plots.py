@@ -7,6 +7,7 @@ import re
 import numpy as np
 import pytest
 
+from gyrostat import figures as drawing
 from gyrostat import plots
 from gyrostat.cli import main
 
@@ -15,7 +16,7 @@ from gyrostat.cli import main
 def figures(tmp_path_factory):
     """{(scene, plot file name): [axes facts]} of every figure `gyrostat examples` draws."""
     recorded = {}
-    finish = plots._finish
+    finish = drawing.finish
 
     def record(fig, path):
         fig.canvas.draw()
@@ -29,7 +30,7 @@ def figures(tmp_path_factory):
         return finish(fig, path)
 
     patch = pytest.MonkeyPatch()
-    patch.setattr(plots, "_finish", record)
+    patch.setattr(drawing, "finish", record)
     try:
         assert main(["examples", "--out", str(tmp_path_factory.mktemp("plots")), "--quiet"]) == 0
     finally:

@@ -13,10 +13,12 @@ over a grid or a seeded dispersion of its entries (locally or on Dask) into an x
 from gyrostat import _core
 from gyrostat._core import (Body, ConstantTorque, LinearDamping, MovingMassDamper, ResistiveMedium,
                             TorqueFreeSolution, ViscousCavity)
-from gyrostat.model import AveragedModel, Model, ModelBase, MovingMassModel, TorqueFreeModel
+from gyrostat.assumptions import ValidityWarning
+from gyrostat.families.moving_mass import MovingMassModel
+from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel, torque_free
+from gyrostat.modelbase import ModelBase
 from gyrostat.solution import AccuracyWarning, Solution
-from gyrostat.solve import METHODS, Options, solve, solve_ensemble, torque_free
-from gyrostat.validity import ValidityWarning
+from gyrostat.solve import METHODS, Options, solve, solve_ensemble
 from gyrostat.sweeps import LogUniform, Normal, Parameter, Uniform, sweep
 from gyrostat import attitude, averaged, lagrange, orthogonal, scene, sweeps, validity  # noqa: E402
 

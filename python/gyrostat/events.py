@@ -24,6 +24,7 @@ Events the papers need ship with their families: :func:`gyrostat.orthogonal.g_ze
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -112,3 +113,8 @@ def to_core(events, state_names, output_names) -> list:
             raise TypeError(f"event {i} must be a gyrostat.events.Event or a callable f(t, y), "
                             f"not {type(event).__name__}")
     return core
+
+
+def variable_name(label: str) -> str:
+    """A variable name for an event's label (``"g = 0"`` → ``g_0``): in NetCDF files and Datasets."""
+    return re.sub(r"[^0-9A-Za-z_.]+", "_", label).strip("_") or "event"

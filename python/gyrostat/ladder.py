@@ -1,17 +1,7 @@
 """The model ladder: a scene gets no more model than it needs.
 
-Each family has rungs, cheapest first; the last is the scene's most complete model (the *top*):
-
-=================  =====================================================================================
-family             rungs
-=================  =====================================================================================
-rigid_body         closed form (nothing perturbs a rigid body) → averaged (a, r) → full (Euler's equations)
-moving_mass        averaged (a, r) with the damper's quasi-static torque → reduced (the rigid body with the
-                   quasi-static damper torque) → explicit (carrier, point mass, spring and damper)
-lagrange_top       averaged over the nutation (G_z, H, r) → full top (ω, quaternion)
-orthogonal_torque  full only: its exact solution, the torque-free gyrostat at τ(t), needs τ(t) from the
-                   full run; the nearly spherical approximations of §4 are compared in the plots, not a rung
-=================  =====================================================================================
+Each family has rungs, cheapest first (its scene kind's ``ladder``, listed in its family module
+under ``gyrostat/families/``); the last is the scene's most complete model (the *top*).
 
 ``model = "auto"`` with a requested accuracy (``integration.accuracy``: the largest relative error
 accepted on the quantities the scene's outputs need) takes the cheapest rung that
@@ -30,8 +20,9 @@ The chosen lower rung then runs with terminal events on its assumptions (:class:
 stops holding (r near zero, the nutation period long against the slow time, k² near 1), the run
 continues on the top from the state lifted back (C++ ``full_state``: the slow variables at the fast
 phase ``integration.phase``, default 0) and comes back down when the assumption holds again with a
-margin (hysteresis). :class:`SwitchedSolution` joins the pieces in the lower rung's variables; the
-report lists every switch with its time and reason. The closed form needs no estimate (it is exact to
+margin (hysteresis). The run is one :class:`gyrostat.Solution` joined from its pieces in the lower
+rung's variables (:meth:`gyrostat.Solution.join`); the report lists every switch with its time
+and reason. The closed form needs no estimate (it is exact to
 rounding). The integrator is part of the choice too: ``method = "auto"`` (the scenes' default) picks
 DOP853 or CVODE BDF by the stiffness measured along the run.
 """
@@ -50,7 +41,7 @@ from gyrostat import _core
 from gyrostat.events import Event
 from gyrostat.solution import Solution
 from gyrostat.solve import solve
-from gyrostat.validity import SMALL, Assumption
+from gyrostat.assumptions import Assumption
 
 ACCURACY = 1e-3
 """Default of ``integration.accuracy``: the relative error accepted on the compared quantities."""
@@ -111,6 +102,9 @@ class Rung:
     """The compared quantities include the fast motion itself (ω(t), not only slow variables):
     its phase error is the integral of a frequency error that grows like the slow one, so the
     error grows quadratically, not linearly."""
+    run: str = "full"
+    """The name of the scene run this rung's solution stands for (the name its kind's analysis
+    and plots look for)."""
 
 
 @dataclass
@@ -153,21 +147,9 @@ class Choice:
 
 
 # ------------------------------------------------------------------------------------ compared quantities
-def slow_variables(solution) -> np.ndarray:
-    """(a, r) of a rigid-body solution, full or averaged: (n, 2)."""
-    from gyrostat.averaged import slow_variables as a_r
-
-    return np.column_stack(a_r(solution))
-
-
 def rates(solution) -> np.ndarray:
     """ω = (p, q, r): (n, 3)."""
     return np.column_stack([solution["p"], solution["q"], solution["r"]])
-
-
-def top_slow_variables(solution) -> np.ndarray:
-    """(G_z, H, r) of a heavy top, full (outputs) or averaged (state): (n, 3)."""
-    return np.column_stack([solution["G_z"], solution["H"], solution["r"]])
 
 
 # ------------------------------------------------------------------------------------ the probe
@@ -304,80 +286,27 @@ def _rest(rungs: list[Rung], chosen: Rung) -> list[dict]:
 
 
 # ------------------------------------------------------------------------------------ switching
-class SwitchedSolution:
-    """A run that went up and down the ladder, in the lower rung's variables: the pieces run on
-    the top are mapped down by the lower model's own projection (C++ ``initial_state``) and its
-    outputs evaluated there (C++ ``outputs_at``). ``segments``: (rung name, Solution) in order;
-    ``switches``: (t, from, to, reason); ``rung``: per output time, 0 on the lower rung, 1 on the top."""
-
-    def __init__(self, lower: Rung, top: Rung, segments: list[tuple[str, Solution]], switches: list[tuple]):
-        self.model = lower.model
-        self.segments, self.switches = segments, switches
-        self.notes: list[str] = []
-        core = lower.model._core
-        ts, ys, outs, rung = [], [], [], []
-        for name, sol in segments:
-            if not len(sol):
-                continue
-            ts.append(sol.t)
-            if name == lower.name:
-                ys.append(sol.y)
-                outs.append(np.column_stack([sol[n] for n in core.output_names]) if core.output_names else
-                            np.zeros((len(sol), 0)))
-            else:
-                projected = np.array([core.initial_state(row) for row in sol.y])
-                ys.append(projected)
-                outs.append(np.array([core.outputs_at(float(t), row) for t, row in zip(sol.t, projected)]))
-            rung.append(np.full(len(sol), 0.0 if name == lower.name else 1.0))
-        dim, n_out = len(core.state_names), len(core.output_names)
-        self.t = np.concatenate(ts) if ts else np.zeros(0)
-        self.y = np.vstack(ys) if ys else np.zeros((0, dim))
-        self._outputs = np.vstack(outs) if outs else np.zeros((0, n_out))
-        self.rung = np.concatenate(rung) if rung else np.zeros(0)
-        self.state_names = tuple(core.state_names)
-        self.output_names = tuple(core.output_names)
-        last = segments[-1][1]
-        self.status, self.message, self.success = last.status, last.message, last.success
-        self.method = "+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in segments))
-        self.t_last = last.t_last
-        self.y_last = (last.y_last if segments[-1][0] == lower.name else np.asarray(core.initial_state(last.y_last)))
-        self.h_next = last.h_next
-        self.stats = {k: sum(sol.stats[k] for _, sol in segments) for k in last.stats if k != "last_step"}
-        self.stats["last_step"] = last.stats["last_step"]
-        self.event_names, self.t_events, self.terminal_event = (), [], None
-
-    @property
-    def outputs(self) -> dict[str, np.ndarray]:
-        return {name: self._outputs[:, i] for i, name in enumerate(self.output_names)}
-
-    @property
-    def conserved(self) -> tuple[str, ...]:
-        return ()
-
-    def __len__(self) -> int:
-        return len(self.t)
-
-    def __contains__(self, name: str) -> bool:
-        return name in self.state_names or name in self.output_names
-
-    def __getitem__(self, name: str) -> np.ndarray:
-        if name == "t":
-            return self.t
-        if name in self.state_names:
-            return self.y[:, self.state_names.index(name)]
-        if name in self.output_names:
-            return self._outputs[:, self.output_names.index(name)]
-        raise KeyError(f"{name!r} is neither a state component ({', '.join(self.state_names)}) nor an output "
-                       f"({', '.join(self.output_names)}) of this solution")
-
-    def columns(self) -> dict[str, np.ndarray]:
-        columns = {"t": self.t, **{n: self[n] for n in self.state_names}, **self.outputs}
-        columns["rung"] = self.rung
-        return columns
-
-    def __repr__(self) -> str:
-        return (f"SwitchedSolution({len(self)} times, {len(self.switches)} switches, status={self.status!r}, "
-                f"method={self.method!r})")
+def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tuple]) -> Solution:
+    """A run that went up and down the ladder as one Solution in the lower rung's variables: the
+    pieces run on the top are mapped down by the lower model's own projection (C++
+    ``initial_state``) and its outputs evaluated there (C++ ``outputs_at``); ``rung`` is 0 where
+    the lower rung ran, 1 on the top."""
+    core = lower.model._core
+    parts = []
+    for name, sol in segments:
+        if not len(sol):
+            continue
+        if name == lower.name:
+            outputs = (np.column_stack([sol[n] for n in core.output_names]) if core.output_names else
+                       np.zeros((len(sol), 0)))
+            parts.append((sol.t, sol.y, outputs, 0))
+        else:
+            projected = np.array([core.initial_state(row) for row in sol.y])
+            parts.append((sol.t, projected, np.array([core.outputs_at(float(t), row)
+                                                      for t, row in zip(sol.t, projected)]), 1))
+    name, last = segments[-1]
+    y_last = last.y_last if name == lower.name else np.asarray(core.initial_state(last.y_last))
+    return Solution.join(lower.model, segments, parts, switches, y_last)
 
 
 def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
@@ -401,8 +330,8 @@ def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
 
 def run(choice: Choice, span: tuple[float, float], options: dict, phase: float = 0.0, progress=None):
     """Solves the chosen rung over the span; a lower rung with watched assumptions switches up to
-    the top where one stops holding and back down where all hold again. Returns a Solution, or a
-    :class:`SwitchedSolution` when the run switched."""
+    the top where one stops holding and back down where all hold again. Returns a Solution (one
+    joined from its pieces when the run switched: :meth:`gyrostat.Solution.join`)."""
     rung, top = choice.chosen, choice.rungs[-1]
     t0, t1 = span
     kept = {k: v for k, v in options.items() if k not in ("n_out", "t_eval", "events")}
@@ -449,7 +378,7 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
             break
     if not switches:
         return segments[0][1]
-    return SwitchedSolution(rung, top, segments, switches)
+    return _join(rung, segments, switches)
 
 
 # ------------------------------------------------------------------------------------ the chart
@@ -479,5 +408,5 @@ def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[di
         estimate = next((e.get("estimate") for e in choice.entries if e["rung"] == rung.name), None)
         rows.append({"rung": rung.name, "seconds": seconds, "error": error, "chosen": rung is choice.chosen,
                      "estimate": estimate["value"] if estimate else None, "steps": int(solution.stats["steps"]),
-                     "switches": len(getattr(solution, "switches", []))})
+                     "switches": len(solution.switches)})
     return rows

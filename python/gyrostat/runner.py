@@ -1,7 +1,7 @@
-"""Runs a scene of any kind: solves its runs with :func:`gyrostat.solve`, writes the results
-(CSV/NPZ with units), the report and the kind's plots. The analysis a paper asks for (the
-averaged against the full model, the exact r of paper 003, the torque-free gyrostat at τ(t) of
-paper 004) is done here from the recorded outputs; no physics is recomputed."""
+"""Runs a scene of any kind: solves its runs with :func:`gyrostat.solve` (or the model ladder),
+checks the assumptions, has the kind analyse the runs (the analysis a paper asks for lives in
+its family module, from the recorded outputs; no physics is recomputed), writes the results
+(CSV/NPZ with units), the report and the kind's plots; and runs a scene's sweep."""
 
 from __future__ import annotations
 
@@ -13,13 +13,12 @@ from pathlib import Path
 
 import numpy as np
 
-from gyrostat import _core, lagrange, orthogonal, output, plots, validity
+from gyrostat import _core, output, plots, validity
 from gyrostat import ladder as _ladder
 from gyrostat import progress as _bars
-from gyrostat.averaged import slow_variables
-from gyrostat.scene import Scene, SceneError
+from gyrostat.scene import Run, Scene, SceneError
 from gyrostat.solution import AccuracyWarning, Solution
-from gyrostat.solve import solve, torque_free
+from gyrostat.solve import solve
 
 
 def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution], dict, dict]:
@@ -53,27 +52,26 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     checks = []
     for run in scene.runs:
         solution = solutions[run.name]
-        if isinstance(solution, _ladder.SwitchedSolution):  # checked where the lower rung ran
+        if solution.pieces:  # a run that switched models: checked where the lower rung ran
             keep = solution.rung == 0
             checks += validity.check(run.model, solution.y[keep], solution.t[keep], warn=False,
                                      outputs={k: v[keep] for k, v in solution.outputs.items()})
         elif len(solution):
-            checks += validity.check(run.model, solution.y, solution.t, warn=False, outputs=solution.outputs) \
-                if scene.kind.name in ("rigid_body", "averaged", "moving_mass") else run.model.check(solution)
+            checks += scene.kind.assumptions(run, solution)
     unique = {}
     for assumption in checks:  # torques checked under several models appear once
         unique.setdefault(str(assumption), assumption)
     report["assumptions"] = [output.assumption_entry(a) for a in unique.values()]
     report["broken_assumptions"] = [str(a) for a in unique.values() if not a.holds]
     report["accuracy_warnings"] = [f"{name}: {doubt}" for name, solution in solutions.items()
-                                   for doubt in getattr(solution, "accuracy_warnings", ())]
+                                   for doubt in solution.accuracy_warnings]
     derived: dict = {}
     if choice is not None:
         report["ladder"] = _ladder_report(choice, solutions)
         if "ladder" in scene.plots:
             derived["ladder"] = _ladder.measure(choice, scene.runs[0].t_span, scene.runs[0].options)
             report["ladder"]["measured"] = derived["ladder"]
-    ANALYSES.get(scene.kind.name, lambda *_: None)(scene, solutions, report, derived)
+    scene.kind.analyse(scene, solutions, report, derived)
     statuses = {s.status for s in solutions.values()}
     report["status"] = ("success" if statuses == {"success"} else
                         "interrupted" if "interrupted" in statuses else "failed")
@@ -85,13 +83,11 @@ def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Cho
     """model = "auto": the ladder's choice (probes included), then the run on the chosen rung,
     switching up and down where its assumptions stop and start holding. The scene's runs become
     the one run solved (named as the kind's plots expect it)."""
-    from gyrostat.scene import Run
-
     template = scene.runs[0]
     integration = scene.doc["integration"]
     choice = _ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"])
     rung = choice.chosen
-    name = rung.name if rung.name in ("closed_form", "averaged") else "full"
+    name = rung.run
     events = [e for e in template.options.get("events", ()) if getattr(e, "quantity", None) in
               rung.model.state_names + rung.model.output_names]
     options = {**template.options, "events": events}
@@ -109,89 +105,8 @@ def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Cho
 def _ladder_report(choice: "_ladder.Choice", solutions: dict) -> dict:
     entry = choice.report()
     solution = next(iter(solutions.values()))
-    switches = getattr(solution, "switches", [])
-    entry["switches"] = [{"t": t, "from": a, "to": b, "reason": why} for t, a, b, why in switches]
+    entry["switches"] = [{"t": t, "from": a, "to": b, "reason": why} for t, a, b, why in solution.switches]
     return entry
-
-
-# ------------------------------------------------------------------------------------ analyses
-def _rigid_body(scene: Scene, solutions: dict, report: dict, derived: dict) -> None:
-    if "full" in solutions and "averaged" in solutions:
-        a_full, r_full = slow_variables(solutions["full"])
-        a_avg, r_avg = slow_variables(solutions["averaged"])
-        n = min(len(a_full), len(a_avg))
-        report["averaged_vs_full"] = {"max_abs_error_a": float(np.max(np.abs(a_full[:n] - a_avg[:n]))),
-                                      "max_abs_error_r": float(np.max(np.abs(r_full[:n] - r_avg[:n])))}
-    main = solutions.get("full", solutions.get("closed_form"))
-    if scene.doc["outputs"].get("reference") == "closed_form" and main is not None and len(main):
-        reference = torque_free(scene.runs[0].model.body, scene.doc["initial"]["omega"], main.t)
-        derived["reference"] = reference
-        report["max_error_vs_closed_form"] = float(np.max(np.linalg.norm(main.omega - reference.omega, axis=1)))
-
-
-def _lagrange(scene: Scene, solutions: dict, report: dict, derived: dict) -> None:
-    full, averaged = solutions.get("full"), solutions.get("averaged")
-    tq = scene.doc["torque"]
-    main = full if full is not None else averaged
-    n = min(len(s) for s in (full, averaged) if s is not None)
-    r0 = scene.runs[0].y0[2]
-    exact_r = lagrange.r_exact(r0, scene.doc["body"]["C"], tq["epsilon"], tq["b"], main.t[:n])
-    derived["exact_r"] = exact_r
-    if averaged is not None and len(averaged):
-        report["initial_nutation"] = {k: float(averaged[k][0]) for k in ("u1", "u2", "u3", "m", "v", "T_nut")}
-    if full is not None and averaged is not None:
-        report["averaged_vs_full_slow"] = {f"max_abs_error_{k}": float(np.max(np.abs(full[k][:n] - averaged[k][:n])))
-                                           for k in ("G_z", "H", "r", "u1", "u2", "u3", "v")}
-    report["r_vs_exact_3_3"] = {name: float(np.max(np.abs(s["r"][:n] - exact_r)))
-                                for name, s in (("full", full), ("averaged", averaged)) if s is not None}
-
-
-def _orthogonal(scene: Scene, solutions: dict, report: dict, derived: dict) -> None:
-    kind = scene.kind
-    spherical = kind.spherical(scene.doc)
-    for run in scene.runs:
-        sol, model = solutions[run.name], run.model
-        entry = report["runs"][run.name]
-        if not len(sol):
-            continue
-        omega0, q0 = run.y0[:3], run.y0[3:7]
-        g_report = orthogonal.tau_report(model, sol)  # from the g = 0 events the run watched
-        sol.notes.extend(g_report["messages"])
-        regime = orthogonal.constant_law_regime(model, omega0)
-        if regime:
-            sol.notes.append(regime)
-        entry["notes"] = list(sol.notes)
-        entry["g_report"] = {k: v for k, v in g_report.items() if k != "messages"}
-        if g_report["crossings"] or g_report["min_g"] <= 0:
-            report["broken_assumptions"].append(
-                f"{run.name}: g = 1 - L/|Q| reaches {g_report['min_g']:.3g} <= 0: tau(t) is not a homeomorphism "
-                "(the paper's (10) assumes g > 0)")
-        if g_report["regularised_times"]:
-            report["broken_assumptions"].append(f"{run.name}: |Q| < delta at some times: the prescribed L was not "
-                                                "applied there")
-        tau = sol["tau"]
-        zv = orthogonal.torque_free_at_tau(model, omega0, tau)
-        zv_angles = orthogonal.attitude.euler_angles(orthogonal.torque_free_at_tau(model, omega0, tau, q0)[:, 3:7])
-        entry["max_error_vs_torque_free_at_tau"] = float(np.max(np.abs(sol.omega - zv)))
-        entry["tau_end"] = float(tau[-1])
-        entry["min_g"] = g_report["min_g"]
-        entry["max_psi_full_minus_zv"] = float(np.max(np.abs(orthogonal.wrap(sol["psi"] - zv_angles[:, 0]))))
-        approx = {"exact": zv_angles}
-        if spherical is not None:
-            approx["zeroth"], approx["first"] = spherical.zeroth(tau), spherical.first(tau)
-            for label in ("zeroth", "first"):
-                a = approx[label]
-                entry[f"max_error_{label}_theta"] = float(np.max(np.abs(sol["theta_G"] - a[:, 1])))
-                entry[f"max_error_{label}_phi"] = float(np.max(np.abs(orthogonal.wrap(sol["phi_G"] - a[:, 2]))))
-                entry[f"max_error_{label}_psi_vs_zv"] = float(np.max(np.abs(orthogonal.wrap(zv_angles[:, 0] - a[:, 0]))))
-            if not np.any(spherical.k):
-                entry["mean_precession_rate_corrected_34"] = spherical.mean_precession_rate()
-                entry["mean_spin_rate_quadrature"] = spherical.mean_spin_rate()
-        derived[run.name] = {"torque_free": zv, "approximations": approx, "g_report": g_report}
-
-
-ANALYSES = {"rigid_body": _rigid_body, "averaged": _rigid_body, "lagrange_top": _lagrange,
-            "orthogonal_torque": _orthogonal}
 
 
 # ------------------------------------------------------------------------------------ a scene on disk
@@ -200,14 +115,10 @@ def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = Tr
     kind; returns its report (also written as report.json; ``plots_skipped`` names the plots
     asked for that could not be drawn, with the reason). Scene errors raise
     :class:`gyrostat.schema.SceneError` (one line)."""
-    import warnings
-
-    from gyrostat.validity import ValidityWarning
-
     scene = path if isinstance(path, Scene) else Scene.from_toml(path)
     solutions, report, derived = solve_scene(scene, progress=progress)
     for broken in report["broken_assumptions"]:
-        warnings.warn(f"{scene.name}: {broken}", ValidityWarning, stacklevel=2)
+        warnings.warn(f"{scene.name}: {broken}", validity.ValidityWarning, stacklevel=2)
     folder = Path(out_dir) / scene.name
     folder.mkdir(parents=True, exist_ok=True)
     files: list[Path] = []
@@ -215,9 +126,7 @@ def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = Tr
     for name in runs:
         solution = solutions[name]
         stem = "result" if len(runs) == 1 or name == "full" else f"result_{name}"
-        # the slow time τ = εt of paper 003, beside t
-        extra = {"tau": scene.doc["torque"]["epsilon"] * solution.t} if scene.kind.name == "lagrange_top" else None
-        files += output.write_solution(solution, folder, stem, extra)
+        files += output.write_solution(solution, folder, stem, scene.kind.extra_columns(scene, solution))
         report["units"].update({column: output.unit(column) for column in solution.columns()})
     drawn = plots.draw_scene(scene, solutions, derived, folder)
     report["plots_skipped"] = plots.skipped(scene, drawn)

@@ -43,9 +43,12 @@ from __future__ import annotations
 import copy
 import difflib
 import json
+import math
 import re
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
+
+import numpy as np
 
 __all__ = [
     "SceneError",
@@ -66,6 +69,10 @@ __all__ = [
     "non_negative",
     "at_least",
     "increasing",
+    "finite",
+    "all_finite",
+    "span_order",
+    "nonzero_quaternion",
 ]
 
 _LIMIT = 60  # values shown in messages are cut to this many characters
@@ -656,6 +663,31 @@ def increasing(value: Any) -> None:
     """A list of numbers is strictly increasing."""
     if not all(a < b for a, b in zip(value, value[1:])):
         raise ValueError("must be increasing")
+
+
+def finite(value: Any, _: Any = None) -> None:
+    """A number is finite."""
+    if not math.isfinite(value):
+        raise ValueError("must be finite")
+
+
+def all_finite(values: Any) -> None:
+    """Every number is finite."""
+    if not np.all(np.isfinite(np.asarray(values, float))):
+        raise ValueError("must be finite numbers")
+
+
+def span_order(values: Any) -> None:
+    """A time span (t0, t1) of two finite times."""
+    if not (math.isfinite(values[0]) and math.isfinite(values[1])):
+        raise ValueError("must be two finite times")
+
+
+def nonzero_quaternion(values: Any) -> None:
+    """A finite, non-zero quaternion (w, x, y, z)."""
+    q = np.asarray(values, float)
+    if not np.all(np.isfinite(q)) or not np.any(q):
+        raise ValueError("must be a finite, non-zero quaternion (w, x, y, z)")
 
 
 # ---------------------------------------------------------------------------------------------

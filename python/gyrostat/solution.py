@@ -1,4 +1,6 @@
-"""The result of a run of any model: times, states and named outputs, statistics, status."""
+"""The result of a run of any model: times, states and named outputs, statistics, status. One
+type for every run: a run joined from pieces (the model ladder's switches) is a
+:class:`Solution` too (:meth:`Solution.join`, ``pieces``, ``switches``, ``rung``)."""
 
 from __future__ import annotations
 
@@ -6,8 +8,14 @@ import numpy as np
 
 from gyrostat import _core
 
+from types import SimpleNamespace
+
 _RATES = ("p", "q", "r")
 _QUATERNION = ("q_w", "q_x", "q_y", "q_z")
+
+
+def _no_dense_output(times):
+    raise ValueError("a run joined from pieces keeps no dense output: evaluate its pieces (solution.pieces)")
 
 
 class AccuracyWarning(UserWarning):
@@ -43,18 +51,54 @@ class Solution:
     notes: what the run says about its own answer (the splitting's chosen step and estimated
        error; every :class:`AccuracyWarning`), then remarks added after the run (assumptions
        checked, paper-specific analysis).
+    pieces, switches, rung: a run joined from pieces (:meth:`join`: a run that switched models
+       along the way): the pieces as (name, Solution) in order, each switch as (t, from, to,
+       reason), and per output time the index of the model that made it (0: the solution's own
+       model; also the column ``rung``). Empty, empty and None for a run of one model.
 
     The arrays are views of the engine's memory, made on first access: no copy, no physics
     recomputed in Python.
     """
 
-    __slots__ = ("_result", "_columns", "notes", "model")
+    __slots__ = ("_result", "_columns", "notes", "model", "pieces", "switches", "rung")
 
     def __init__(self, result: _core.Result, model=None):
         self._result = result
         self._columns = None
         self.notes: list[str] = list(result.notes) + list(result.warnings) if result.notes or result.warnings else []
         self.model = model
+        self.pieces: tuple[tuple[str, Solution], ...] = ()
+        self.switches: list[tuple] = []
+        self.rung: np.ndarray | None = None
+
+    @classmethod
+    def join(cls, model, pieces: list[tuple[str, "Solution"]], parts: list[tuple], switches: list[tuple],
+             y_last) -> "Solution":
+        """One solution of ``model`` from the pieces of a run that switched models: ``pieces``
+        (name, Solution) in order, ``parts`` (t, y, outputs, index) of each non-empty piece
+        already in ``model``'s state and outputs (index: 0 where ``model`` itself ran), the
+        ``switches`` (t, from, to, reason), and the last state in ``model``'s variables. The
+        statistics add up; status, message and the step to continue with are the last piece's;
+        no output is marked conserved (the pieces' models differ)."""
+        core = model._core
+        dim, n_out = len(core.state_names), len(core.output_names)
+        last = pieces[-1][1]
+        stats = {k: sum(sol.stats[k] for _, sol in pieces) for k in last.stats if k != "last_step"}
+        result = SimpleNamespace(
+            t=np.concatenate([p[0] for p in parts]) if parts else np.zeros(0),
+            y=np.vstack([p[1] for p in parts]) if parts else np.zeros((0, dim)),
+            outputs=np.vstack([p[2] for p in parts]) if parts else np.zeros((0, n_out)),
+            state_names=tuple(core.state_names), output_names=tuple(core.output_names),
+            output_conserved=(False,) * n_out,
+            stats=SimpleNamespace(**stats, last_step=last.stats["last_step"]),
+            t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status, message=last.message,
+            success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
+            methods_used=(), switches=[], warnings=(), notes=(), t_events=[], y_events=[], event_names=(),
+            terminal_event=-1, error_estimate=float("nan"), dense=_no_dense_output)
+        joined = cls(result, model)
+        joined.pieces, joined.switches = tuple(pieces), list(switches)
+        joined.rung = np.concatenate([np.full(len(p[0]), float(p[3])) for p in parts]) if parts else np.zeros(0)
+        return joined
 
     # ---- arrays
     @property
@@ -111,6 +155,8 @@ class Solution:
         y = self.y
         columns.update({name: y[:, i] for i, name in enumerate(self._result.state_names)})
         columns.update(self.outputs)
+        if self.rung is not None:
+            columns["rung"] = self.rung
         return columns
 
     @property
@@ -165,7 +211,7 @@ class Solution:
         """The solution at t (a number or an array of times anywhere in the span), from the
         stored continuous extension of each step (solve with ``dense_output=True``; memory grows
         with the steps taken). The attitude part stays a unit quaternion."""
-        from gyrostat.model import floats
+        from gyrostat.modelbase import floats
 
         times = floats(t, "t", "a time or times (numbers)")
         values = self._result.dense(times.ravel())
@@ -179,13 +225,13 @@ class Solution:
         ``"auto"``), status, message and statistics as attributes; ``to_netcdf`` writes it."""
         import xarray as xr
 
-        from gyrostat.output import unit
-        from gyrostat.sweeps import _variable
+        from gyrostat.events import variable_name
+        from gyrostat.units import unit
 
         variables = {name: ("time", values, {"units": unit(name)}) for name, values in self.columns().items()
                      if name != "t"}
         for label, times in zip(self.event_names, self.t_events):
-            key = _variable(label)
+            key = variable_name(label)
             variables[f"t_event_{key}"] = (f"crossing_{key}", np.asarray(times),
                                            {"units": "s", "long_name": f"crossings of {label}"})
         attrs = {"method": self.method, "methods_used": ", ".join(self.methods_used),

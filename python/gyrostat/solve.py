@@ -10,7 +10,7 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat import progress as _bars
-from gyrostat.model import ModelBase, flag, floats, shown
+from gyrostat.modelbase import ModelBase, flag, floats, shown
 from gyrostat.solution import AccuracyWarning, Solution
 
 METHODS: tuple[str, ...] = tuple(_core.methods())
@@ -60,7 +60,7 @@ def make_options(options: Options | None = None, **given) -> Options:
                     "(measured; see docs/integrators.md): expect global errors far above rtol; prefer dop853",
                     UserWarning, stacklevel=3)
         elif name == "t_eval":
-            value = _times(value)
+            value = output_times(value)
         elif name in _NUMBER_OPTIONS:
             kind = _NUMBER_OPTIONS[name]
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
@@ -83,7 +83,7 @@ def make_options(options: Options | None = None, **given) -> Options:
     return result
 
 
-def _times(t_eval) -> np.ndarray:
+def output_times(t_eval) -> np.ndarray:
     """The output times as a 1-D array of floats, at least one; ValueError naming t_eval otherwise."""
     t = floats(t_eval, "t_eval", "output times (numbers)")
     if t.ndim != 1:
@@ -183,7 +183,7 @@ def _checked(solution: Solution, model, check_validity: bool) -> Solution:
     for doubt in solution._result.warnings:
         warnings.warn(doubt, AccuracyWarning, stacklevel=3)
     if check_validity and type(model).check is not _BASE_CHECK and len(solution):
-        from gyrostat.validity import ValidityWarning
+        from gyrostat.assumptions import ValidityWarning
 
         for assumption in model.check(solution):
             if not assumption.holds:
@@ -389,15 +389,3 @@ def check_run(model, t_span, options: dict) -> None:
     outputs = len(opts.t_eval) or opts.n_out
     check_output_memory([model], 1, outputs, f"n_out = {outputs} output times")
     opts.validate(*_span(t_span))
-
-
-def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
-    """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no
-    integration. The same as ``solve(TorqueFreeModel(body), omega0, (t_eval[0], t_eval[-1]),
-    t_eval=t_eval)``."""
-    from gyrostat.model import TorqueFreeModel
-
-    t = _times(t_eval)
-    if np.any(np.diff(t) < 0):
-        raise ValueError(f"t_eval = {shown(t_eval)} is unsorted: the times must be increasing")
-    return solve(TorqueFreeModel(body), omega0, (t[0], t[-1]), t_eval=t)

@@ -53,7 +53,8 @@ import numpy as np
 
 from gyrostat import _core, output
 from gyrostat import progress as _bars
-from gyrostat.model import shown
+from gyrostat.events import variable_name
+from gyrostat.modelbase import shown
 from gyrostat.solution import AccuracyWarning
 from gyrostat.schema import SceneError, locate
 
@@ -350,11 +351,6 @@ def _scene(scene):
     raise TypeError(f"scene must be a gyrostat Scene, a scene file or a dict, not {type(scene).__name__}")
 
 
-def _variable(label: str) -> str:
-    """A variable name for an event's label (``"g = 0"`` → ``g_0``)."""
-    return re.sub(r"[^0-9A-Za-z_.]+", "_", label).strip("_") or "event"
-
-
 class Plan:
     """What a sweep solves: the scene (validated, with ``model = "auto"`` resolved), the run it
     sweeps, the parameters and how member i gets its values. Pure data, so that a chunk solves
@@ -415,7 +411,7 @@ class Plan:
 
     # -- paths
     def _targets(self):
-        from gyrostat.scene import KINDS
+        from gyrostat.families import KINDS
 
         schema, targets = KINDS[self.kind_name].schema, []
         for parameter in self.parameters:
@@ -468,11 +464,12 @@ class Plan:
     def member(self, values: Sequence[float]):
         """The run (model, initial state, span, options) of the member with these values; raises
         SceneError or ValueError naming the value when the physics refuses it."""
-        from gyrostat.scene import KINDS, _add_events
+        from gyrostat.families import KINDS
+        from gyrostat.scene import add_events
 
         doc = self.document(values)
         runs, _, _ = KINDS[self.kind_name].runs(doc)
-        _add_events(doc, runs)
+        add_events(doc, runs)
         return next(r for r in runs if r.name == self.run)
 
     def scene(self, i: int):
@@ -511,8 +508,8 @@ def _blank(plan: Plan, count: int, trajectories: bool, extrema: tuple[str, ...])
         arrays[f"min_{name}"] = np.full(count, np.nan)
         arrays[f"max_{name}"] = np.full(count, np.nan)
     for label in plan.event_labels:
-        arrays[f"first_{_variable(label)}"] = np.full(count, np.nan)
-        arrays[f"count_{_variable(label)}"] = np.zeros(count, dtype=np.int64)
+        arrays[f"first_{variable_name(label)}"] = np.full(count, np.nan)
+        arrays[f"count_{variable_name(label)}"] = np.zeros(count, dtype=np.int64)
     if trajectories:
         arrays["t"] = np.full((count, plan.n_out), np.nan)
         for name in plan.names:
@@ -551,7 +548,7 @@ def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extr
                 arrays[name][j, :m] = table[:m, k]
     for label, times in zip(solution.event_names, solution.t_events):
         if label in plan.event_labels:
-            key = _variable(label)
+            key = variable_name(label)
             arrays[f"count_{key}"][j] = len(times)
             if len(times):
                 arrays[f"first_{key}"][j] = times[0]
@@ -567,7 +564,7 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
     ``check_validity``, the assumptions of an averaged model are checked along each member (the
     count of broken ones and the first, per member). The same on every machine: a Dask task
     runs exactly this."""
-    from gyrostat.model import ModelBase
+    from gyrostat.modelbase import ModelBase
     from gyrostat.solve import solve_ensemble
 
     count = stop - start
@@ -677,7 +674,7 @@ def _attributes(plan: Plan, name: str) -> dict:
     """Units and a description of a variable of the sweep's Dataset."""
     for parameter in plan.parameters:
         if name == parameter.name:
-            from gyrostat.scene import KINDS
+            from gyrostat.families import KINDS
 
             located = locate(KINDS[plan.kind_name].schema, plan.base, parse_path(parameter.paths[0]), plan.scene_name)
             unit = located.field.unit

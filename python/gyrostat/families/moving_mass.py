@@ -1,0 +1,176 @@
+"""The moving-mass family (paper 001): a carrier and a point mass on a damped spring.
+
+A family module provides its models (``ModelBase`` subclasses with their own assumptions), its
+paper helpers and analysis, its plots (drawn with :mod:`gyrostat.figures`), its scene kind(s)
+(:class:`gyrostat.kind.Kind`: schema and defaults, runs, ladder rungs, checks, analysis, plots)
+and one ``register(...)`` line; see :mod:`gyrostat.families.rigid_body` for the full recipe.
+
+Here: :class:`MovingMassModel` (the explicit model, 9 states; its displacement |u|/ρ ≪ 1
+checked), the plot ``mass`` and the kind ``moving_mass``, whose ladder is: averaged (a, r) with
+the damper's quasi-static torque -> reduced (the rigid body with the quasi-static damper torque,
+Chernousko) -> explicit (carrier, point mass, spring and damper). Its rigid-body plots and the
+averaged rung are the rigid body family's.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from gyrostat import _core
+from gyrostat import ladder as _ladder
+from gyrostat.assumptions import SMALL, Assumption, check
+from gyrostat.families.rigid_body import Model, averaged_rung, draw, initial_assumptions, slow_columns
+from gyrostat.figures import curves
+from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, T_SPAN, Kind, Run, build, integration,
+                           make_body, make_torques, outputs_field, register, title_fields)
+from gyrostat.modelbase import ModelBase, check_body, check_torques, floats
+from gyrostat.schema import ArrayOf, Choice, Field, SceneError, Table, Vector, all_finite
+from gyrostat.solution import Solution
+from gyrostat.torques import TORQUE, TORQUES
+
+
+class MovingMassModel(ModelBase):
+    """The explicit model behind the damper reduction: a carrier plus a point mass on a spring
+    (Ω² = c/μ) with a viscous damper (λ = δ/μ), attached on the z axis at distance ρ.
+
+    State (9): ω, the mass's displacement u and its velocity v relative to the carrier (body
+    axes). ``body`` holds the whole system's moments with the mass at rest; the carrier's own are
+    (A1 − μρ², A2 − μρ², A3). Extra torques act on the carrier. Stiff for a strong damper: solve
+    it with ``method="cvode_bdf"``. :meth:`quasi_static_state` gives (u, v) for a start without
+    free oscillation of the mass. Outputs: |K| (conserved) and the energy E (dissipated).
+    """
+
+    kind = "moving_mass"
+
+    def __init__(self, body: _core.Body, mass: float, arm: float, frequency: float, damping: float,
+                 torques: Sequence = ()):
+        self.body = check_body(body)
+        self.torques = check_torques(torques)
+        self._core = _core.moving_mass_model(body, mass, arm, frequency, damping, self.torques)  # checks the numbers
+        self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
+
+    def damper(self) -> _core.MovingMassDamper:
+        """The reduced (quasi-static) torque of the same mass, spring and damper."""
+        return _core.MovingMassDamper(self.mass, self.arm, self.frequency, self.damping)
+
+    def quasi_static_state(self, omega) -> np.ndarray:
+        return np.asarray(self._core.quasi_static_state(floats(omega, "omega")))
+
+    def check(self, solution) -> list:
+        """The model's assumptions along a solution: the mass's displacement |u|/ρ ≪ 1 (and the
+        damper torque's, for the reduction it stands behind)."""
+        return check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
+
+    def assumptions(self, states, times, outputs=None) -> list:
+        """A point mass on a linear spring next to its attachment (C++ output displacement_ratio
+        = |u|/ρ)."""
+        results = []
+        # the explicit model: a point mass on a linear spring next to its attachment (C++ output
+        # displacement_ratio = |u|/ρ)
+        if outputs is not None and "displacement_ratio" in outputs:
+            ratios = np.asarray(outputs["displacement_ratio"], float)
+        else:
+            index = list(self.output_names).index("displacement_ratio")
+            ratios = np.array([self._core.outputs_at(float(t), y)[index] for t, y in zip(times, states)])
+        worst = int(np.argmax(ratios))
+        results.append(Assumption("moving mass", "displacement |u|/ρ ≪ 1 (the mass stays near its attachment)",
+                                  float(ratios[worst]), SMALL, ratios[worst] <= SMALL,
+                                  f"worst at t = {times[worst]:.4g}, |u| = {ratios[worst] * self.arm:.3g} on an arm "
+                                  f"ρ = {self.arm:.3g}"))
+        return results
+    def __repr__(self) -> str:
+        return (f"MovingMassModel({self.body!r}, mass={self.mass}, arm={self.arm}, frequency={self.frequency}, "
+                f"damping={self.damping}, torques={list(self.torques)!r})")
+
+
+def mass(solution: Solution, title: str, path: Path) -> Path:
+    """The moving mass's displacement u relative to the carrier (the explicit damper model)."""
+    return curves(solution.t, {name: solution[name] for name in ("u_1", "u_2", "u_3")},
+                   "displacement of the mass in body axes [m]", f"{title}: moving mass", path)
+
+
+class MovingMass(Kind):
+    name = "moving_mass"
+    doc = ("The explicit moving-mass model (paper 001): a carrier and a point mass on a damped spring, "
+           "9 states, stiff for a strong damper (method auto by default: CVODE BDF where it is stiff).")
+    plots = ("omega", "invariants", "mass", "ladder")
+
+    @property
+    def schema(self) -> Table:
+        damper_table, _ = TORQUES["moving_mass_damper"]
+        return Table({
+            **title_fields(),
+            "body": Field(BODY, required=True, doc="the system's moments with the mass at rest"),
+            "damper": Field(damper_table, required=True, doc="the mass, its arm, spring and damper"),
+            "torques": Field(ArrayOf(TORQUE), default=[], doc="external torques on the carrier"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), required=True, doc="angular velocity", unit="rad/s", check=all_finite),
+                "start": Field(Choice("quasi_static", "at_rest"), default="quasi_static",
+                               doc="quasi_static: the mass on its forced motion; at_rest: u = v = 0"),
+            }), required=True, doc="the initial state"),
+            "integration": Field(Table({"model": Field(Choice("auto", "explicit", "reduced", "averaged"), default="auto",
+                                                       doc="auto: the cheapest model that meets the accuracy; "
+                                                           "averaged: (a, r); reduced: the quasi-static damper torque; "
+                                                           "explicit: the mass, spring and damper"),
+                                        "accuracy": ACCURACY, "phase": PHASE,
+                                        "method": METHOD,
+                                        "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT}),
+                                 required=True, doc="the run"),
+            "outputs": outputs_field(self.plots, ["omega", "invariants", "mass"]),
+        })
+
+    def ladder(self, doc):
+        body, torques = make_body(doc), make_torques(doc)
+        d = doc["damper"]
+        damper = build("damper", _core.MovingMassDamper, d["mass"], d["arm"], d["frequency"], d["damping"])
+        model = build("damper", MovingMassModel, body, d["mass"], d["arm"], d["frequency"], d["damping"], torques)
+        omega = np.asarray(doc["initial"]["omega"], float)
+        y0 = model.quasi_static_state(omega) if doc["initial"]["start"] == "quasi_static" else \
+            np.concatenate([omega, np.zeros(6)])
+        plots = doc["outputs"]["plots"]
+        compare = _ladder.rates if "omega" in plots else slow_columns
+        explicit = _ladder.Rung("explicit", model, y0, "the carrier, the point mass, its spring and damper (9 states)",
+                                compare=compare)
+        reduced_model = build("damper", Model, body, [damper, *torques])
+        checks = [a for a in check(reduced_model, omega, warn=False)
+                  if a.part == "moving-mass damper" and "condition (4)" not in a.statement]
+        A, C = body.moments[0], body.moments[2]
+        fast = abs((C - A) * omega[2] / A)
+        reduced = _ladder.Rung(
+            "reduced", reduced_model, omega, "the rigid body under the damper's quasi-static torque (Chernousko)",
+            compare=compare, fast_period=2.0 * math.pi / fast if fast > 0 else math.inf,
+            phase_compared=compare is _ladder.rates,
+            blocked="the plot 'mass' needs the mass's own motion" if "mass" in plots else "",
+            start_checks=lambda: checks, small=max(a.value for a in checks),
+            basis="; ".join(f"{a.statement} = {a.value:.3g}" for a in checks))
+        averaged = averaged_rung(doc, body, [damper, *torques], omega, ("invariants", "ladder"))
+        return [averaged, reduced, explicit]
+
+    def runs(self, doc):
+        choice = doc["integration"]["model"]
+        rungs = {rung.name: rung for rung in self.ladder(doc)}
+        rung = rungs["explicit" if choice == "auto" else choice]
+        if rung.blocked:
+            raise SceneError(f"[integration] model = {choice!r}: {rung.blocked}")
+        reason = {"explicit": "the explicit mass, spring and damper", "reduced": "the quasi-static damper torque",
+                  "averaged": "the averaged (a, r) system with the damper's torque"}[rung.name]
+        return ([Run(rung.run, rung.model, rung.y0, tuple(doc["integration"]["t_span"]), integration(doc, self))],
+                rung.name,
+                f"asked for by the scene: {reason}" if choice != "auto" else "the scene's own model (the ladder "
+                "chooses when it is solved)")
+
+    def initial_assumptions(self, run, warn):
+        return initial_assumptions(run, warn)
+
+    def assumptions(self, run, solution):
+        return check(run.model, solution.y, solution.t, warn=False, outputs=solution.outputs)
+
+    def draw(self, scene, solutions, derived, folder):
+        return draw(scene, solutions, derived, folder, own={"mass": mass})
+
+
+register(MovingMass())

@@ -1,0 +1,575 @@
+"""The rigid body family: a rigid body or gyrostat under perturbation torques (papers 000-002).
+
+A family module provides, in this order (copy it for a new family):
+
+1. its models: ``ModelBase`` subclasses over the C++ constructors, each with its own
+   ``assumptions`` (beside its torques') and ``check``;
+2. its paper helpers and analysis functions (from recorded outputs only);
+3. its plots, drawn with :mod:`gyrostat.figures`;
+4. its scene kind(s): ``Kind`` subclasses (:mod:`gyrostat.kind`) with the schema and defaults,
+   the runs, the ladder rungs, the checks, the analysis, the extra columns and the plots;
+5. one ``register(...)`` line at the end.
+
+Here: :class:`Model` (Euler's equations of a gyrostat), :class:`TorqueFreeModel` (the closed
+form, :func:`torque_free`) and :class:`AveragedModel` (the system averaged over the symmetric
+Euler-Poinsot motion in (a, r)); the averaged system's outputs (the papers' x, y, paper 002's
+Lotka-Volterra coefficients and first integral, the slow variables of a full solution); the
+kinds ``rigid_body`` (the full model, its closed form or the averaged system; its ladder:
+closed form (nothing perturbs a rigid body) -> averaged (a, r) -> full (Euler's equations)) and
+``averaged`` (the averaged system alone).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from gyrostat import _core, figures
+from gyrostat import ladder as _ladder
+from gyrostat.assumptions import SMALL, Assumption, check, exact_reduction
+from gyrostat.events import Event
+from gyrostat.figures import LEGEND_SIZE, error, euler_angles, invariants, omega, plt
+from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, SPLITTING_FIELDS, T_SPAN, Kind, Run,
+                           build, integration, make_body, make_torques, outputs_field, register, title_fields)
+from gyrostat.modelbase import ModelBase, check_body, check_torques, flag, floats, number, shown
+from gyrostat.schema import ArrayOf, Choice, Field, SceneError, Table, Vector, all_finite, finite, non_negative, nonzero_quaternion
+from gyrostat.solution import Solution
+from gyrostat.solve import output_times, solve
+from gyrostat.torques import TORQUE
+
+
+# ------------------------------------------------------------------------------------ models
+class Model(ModelBase):
+    """The full model: Euler's equations of a gyrostat, J ω̇ + ω × (J ω + k) = Σ M_i(t, ω).
+
+    Parameters
+    ----------
+    body:
+        A :class:`gyrostat.Body` (principal moments and rotor momentum k).
+    torques:
+        Perturbation torques (:class:`gyrostat.ConstantTorque`, :class:`gyrostat.LinearDamping`,
+        :class:`gyrostat.ResistiveMedium`, :class:`gyrostat.ViscousCavity`,
+        :class:`gyrostat.MovingMassDamper`); they add up.
+    attitude:
+        Integrate the attitude quaternion as well (state size 7 instead of 3). Only needed when
+        an output or a torque depends on the orientation; it costs four more equations.
+
+    Outputs: ``angular_momentum_norm`` |G|, ``kinetic_energy`` T and, with attitude, the z-x-z
+    Euler angles ``psi``, ``theta``, ``phi``.
+    """
+
+    kind = "full"
+
+    def __init__(self, body: _core.Body, torques: Sequence = (), attitude: bool = False):
+        self.body = check_body(body)
+        self.torques = check_torques(torques)
+        self._core = _core.gyrostat_model(body, self.torques, flag(attitude, "attitude"))
+
+    @property
+    def is_torque_free_rigid_body(self) -> bool:
+        """No torque and no rotor: the closed form (no integration) answers such a scene."""
+        return not self.torques and not any(self.body.rotor)
+
+    def __repr__(self) -> str:
+        return f"Model({self.body!r}, torques={list(self.torques)!r}, attitude={self.attitude})"
+
+
+class TorqueFreeModel(ModelBase):
+    """The torque-free rigid body in closed form: Jacobi elliptic functions, no integration.
+
+    State ω = (p, q, r), or with ``attitude=True`` ω and the quaternion (q_w, q_x, q_y, q_z)
+    rotating body axes into inertial axes (the exact flow: the rotation about the fixed inertial
+    angular momentum from the incomplete elliptic integral of the third kind; see
+    docs/integrators.md). Outputs |G| and T (exact to rounding at any t) and, with attitude, the
+    z-x-z Euler angles. A gyrostat (rotor k ≠ 0) has a closed form here only for a symmetric body
+    with the rotor along its symmetry axis (or a spherical body); any other rotor raises
+    ValueError naming the body (use :class:`Model`, which integrates)."""
+
+    kind = "closed_form"
+
+    def __init__(self, body: _core.Body, attitude: bool = False):
+        self.body = check_body(body)
+        self.torques = ()
+        self._core = _core.torque_free_model(body, flag(attitude, "attitude"))
+
+    def __repr__(self) -> str:
+        return f"TorqueFreeModel({self.body!r}, attitude={self.attitude})"
+
+
+class AveragedModel(ModelBase):
+    """The system averaged over the symmetric Euler–Poinsot motion, in slow variables (a, r).
+
+    The body is (nearly) symmetric: A = A1 ≈ A2, C = A3, no rotor. The generating motion is
+    p = a cos φ, q = a sin φ, r = const, φ̇ = (C − A) r / A; each torque contributes its own
+    averaged (ȧ, ṙ) and the contributions add up. r is signed and may pass through zero (the
+    papers' x = a², y = r² form cannot). Outputs: |G|, T, ``x`` = a², ``y`` = r², the fast
+    frequency and ``slow_to_fast`` (must stay ≪ 1). :func:`gyrostat.validity.check` reports
+    where the assumptions fail; :func:`gyrostat.solve` does so by itself.
+    """
+
+    kind = "averaged"
+
+    def __init__(self, body: _core.Body, torques: Sequence = ()):
+        self.body = check_body(body)
+        self.torques = check_torques(torques)
+        self._core = _core.averaged_model(body, self.torques)
+
+    @property
+    def A(self) -> float:
+        return float(self.body.moments[0])
+
+    @property
+    def C(self) -> float:
+        return float(self.body.moments[2])
+
+    def fast_frequency(self, r: float) -> float:
+        """|φ̇| = |(C − A) r / A|."""
+        return self._core.fast_frequency(number(r, "r"))
+
+    def slow_rate(self, t: float, y) -> float:
+        """max(|ȧ/a|, |ṙ/r|) at (t, a, r)."""
+        return self._core.slow_rate(number(t, "t"), floats(y, "y"))
+
+    def check(self, solution) -> list:
+        return check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
+
+    def assumptions(self, states, times, outputs=None) -> list:
+        """Near symmetry, the distance from the separatrix against the asymmetry, and the fast
+        frequency against the slow rates (not needed where the reduction is exact)."""
+        J = np.asarray(self.body.moments, float)
+        A, C = J[0], J[2]
+        results = []
+        asymmetry = abs(J[1] - J[0]) / J[0]
+        results.append(Assumption("averaged model", "near symmetry |B − A|/A ≪ 1", asymmetry, SMALL,
+                                  asymmetry <= SMALL))
+        if asymmetry > 0:
+            # The polhode of the near-symmetric body must stay far from the separatrix D = G²/2T = A
+            # compared with the asymmetry; |D − A|/A = C r² |C − A| / (A (A a² + C r²)).
+            a, r = states[:, 0], states[:, 1]
+            distance = C * r**2 * abs(C - A) / (A * (A * a**2 + C * r**2))
+            ratio = asymmetry / np.maximum(distance, 1e-300)
+            worst = int(np.argmax(ratio))
+            results.append(Assumption("averaged model", "asymmetry against the separatrix distance "
+                                      "(|B − A|/A)/(|G²/2T − A|/A) ≪ 1", float(ratio[worst]), SMALL,
+                                      ratio[worst] <= SMALL, f"worst at t = {times[worst]:.4g}"))
+        if exact_reduction(self):
+            results.append(Assumption("averaged model", "fast frequency ≫ slow rates", 0.0, SMALL, True,
+                                      "not needed: the (a, r) reduction is exact for this symmetric scene"))
+        else:
+            if outputs is not None and "slow_to_fast" in outputs:
+                ratios = list(outputs["slow_to_fast"])
+            else:
+                ratios = []
+                for t, y in zip(times, states):
+                    fast = self.fast_frequency(y[1])
+                    ratios.append(math.inf if fast == 0 else self.slow_rate(t, y) / fast)
+            worst = int(np.argmax(ratios))
+            results.append(Assumption("averaged model", "slow rate / fast frequency |(C−A)r/A| ≪ 1", ratios[worst],
+                                      SMALL, ratios[worst] <= SMALL,
+                                      f"worst at t = {times[worst]:.4g}, r = {states[worst][1]:.3g}"))
+        return results
+    def __repr__(self) -> str:
+        return f"AveragedModel({self.body!r}, torques={list(self.torques)!r})"
+
+
+def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
+    """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no
+    integration. The same as ``solve(TorqueFreeModel(body), omega0, (t_eval[0], t_eval[-1]),
+    t_eval=t_eval)``."""
+    t = output_times(t_eval)
+    if np.any(np.diff(t) < 0):
+        raise ValueError(f"t_eval = {shown(t_eval)} is unsorted: the times must be increasing")
+    return solve(TorqueFreeModel(body), omega0, (t[0], t[-1]), t_eval=t)
+
+
+# ------------------------------------------------------------------------------------ the averaged system's outputs
+def slow_variables(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
+    """(a, r) of a solution: the state of the averaged model; a = √(p² + q²) and r of a full one."""
+    if solution.state_names[:2] == ("a", "r"):
+        return solution["a"], solution["r"]
+    return np.hypot(solution["p"], solution["q"]), solution["r"]
+
+
+def r_zero(direction: int = 0, terminal: bool | int = False) -> Event:
+    """The event r = 0 (the axial rate changes sign) of the full or the averaged model: there the
+    averaging over the symmetric motion stops being valid (the fast frequency vanishes)."""
+    return Event("r", 0.0, direction, terminal, "r = 0")
+
+
+def averaging_fails(limit: float = SMALL, terminal: bool | int = False) -> Event:
+    """The event where the averaged model's slow rate reaches ``limit`` times its fast frequency
+    (the output ``slow_to_fast`` rising through ``limit``): past it the averaging is not valid."""
+    return Event("slow_to_fast", float(limit), 1, terminal, f"slow/fast reaches {limit:g}")
+
+
+def xy(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
+    """Papers 000/001: x = a², y = r² (paper 002 swaps the names: its x is r², its y is a²)."""
+    a, r = slow_variables(solution)
+    return a**2, r**2
+
+
+@dataclass(frozen=True)
+class LotkaVolterra:
+    """Paper 002, eq. (6): with X = r², Y = a² (the paper's x, y) and no constant torque,
+    dX/dt = X (λ1 + μ1 Y), dY/dt = Y (λ2 + μ2 X), where
+
+        λ1 = −2 D33 / C,  λ2 = −(D11 + D22) / A,  μ1 = 2κ (C − A)/(A C),  μ2 = 2κ C (A − C)/A³,
+
+    D the summed linear-resistance matrix (ε included), κ = ρ P0 / ν summed over cavities.
+    A² μ2 + C² μ1 = 0 (the cavity keeps |G|)."""
+
+    lambda1: float
+    lambda2: float
+    mu1: float
+    mu2: float
+
+    def first_integral(self, X, Y):
+        """Paper 002 eq. (7) in logarithmic form (the exponential form overflows on the paper's
+        own scene): Φ = λ2 ln X + μ2 X − λ1 ln Y − μ1 Y, constant along the averaged solution."""
+        X, Y = np.asarray(X, float), np.asarray(Y, float)
+        return self.lambda2 * np.log(X) + self.mu2 * X - self.lambda1 * np.log(Y) - self.mu1 * Y
+
+
+def lotka_volterra(model) -> LotkaVolterra:
+    """The coefficients of paper 002's system (6) from a model's physical parameters."""
+    A, C = float(model.body.moments[0]), float(model.body.moments[2])
+    D = np.zeros((3, 3))
+    kappa = 0.0
+    for torque in model.torques:
+        if isinstance(torque, _core.LinearDamping):
+            D += np.asarray(torque.matrix)
+        elif isinstance(torque, _core.ResistiveMedium):
+            D += np.asarray(torque.at(0.0))
+        elif isinstance(torque, _core.ViscousCavity):
+            kappa += torque.kappa
+        elif isinstance(torque, _core.ConstantTorque):
+            if np.asarray(torque.moment)[2] != 0.0:
+                raise ValueError("paper 002's Lotka-Volterra form has no constant axial torque (M3 = "
+                                 f"{np.asarray(torque.moment)[2]!r})")
+        else:
+            raise ValueError(f"paper 002's Lotka-Volterra form has no term for {type(torque).__name__}")
+    return LotkaVolterra(
+        lambda1=-2.0 * D[2, 2] / C,
+        lambda2=-(D[0, 0] + D[1, 1]) / A,
+        mu1=2.0 * kappa * (C - A) / (A * C),
+        mu2=2.0 * kappa * C * (A - C) / A**3,
+    )
+
+
+def slow_columns(solution) -> np.ndarray:
+    """(a, r) of a rigid-body solution, full or averaged: (n, 2) (what the ladder compares)."""
+    return np.column_stack(slow_variables(solution))
+
+
+def initial_assumptions(run: Run, warn: bool) -> list:
+    """The assumptions of a run's model at its initial state (the full, averaged and moving-mass
+    models: their torques' and their own)."""
+    if run.model.kind in ("full", "averaged", "moving_mass"):
+        return check(run.model, run.model.initial_state(run.y0), warn=warn)
+    return []
+
+
+# ------------------------------------------------------------------------------------ analysis
+def analyse(scene, solutions: dict, report: dict, derived: dict) -> None:
+    """Paper 002's averaged against the full model, and the error against the closed form."""
+    if "full" in solutions and "averaged" in solutions:
+        a_full, r_full = slow_variables(solutions["full"])
+        a_avg, r_avg = slow_variables(solutions["averaged"])
+        n = min(len(a_full), len(a_avg))
+        report["averaged_vs_full"] = {"max_abs_error_a": float(np.max(np.abs(a_full[:n] - a_avg[:n]))),
+                                      "max_abs_error_r": float(np.max(np.abs(r_full[:n] - r_avg[:n])))}
+    main = solutions.get("full", solutions.get("closed_form"))
+    if scene.doc["outputs"].get("reference") == "closed_form" and main is not None and len(main):
+        reference = torque_free(scene.runs[0].model.body, scene.doc["initial"]["omega"], main.t)
+        derived["reference"] = reference
+        report["max_error_vs_closed_form"] = float(np.max(np.linalg.norm(main.omega - reference.omega, axis=1)))
+
+
+# ------------------------------------------------------------------------------------ plots
+FULL_STYLE = dict(lw=1.0, ls="--", color="k")  # the full model drawn dashed over the averaged one
+AVERAGED_STYLE = dict(lw=3.0, alpha=0.6)
+
+
+def slow_curves(solutions: dict[str, Solution], title: str, path: Path, kind: str) -> Path:
+    """a² and r² (kind "xy") or a and signed r (kind "slow") over time: the averaged model thick
+    and solid, the full model's a = √(p²+q²), r dashed over it; when both are there, a lower
+    panel shows their difference (where the curves coincide)."""
+    both = "full" in solutions and "averaged" in solutions
+    fig, axes = plt.subplots(2 if both else 1, 1, figsize=(8, 6.5 if both else 4.8), sharex=True, squeeze=False,
+                             gridspec_kw=dict(height_ratios=[2, 1] if both else [1]))
+    ax = axes[0, 0]
+    labels = ("a²", "r²") if kind == "xy" else ("a", "r")
+    curves = {}
+    for name in ("averaged", "full"):
+        if name not in solutions:
+            continue
+        a, r = slow_variables(solutions[name])
+        curves[name] = (a**2, r**2) if kind == "xy" else (a, r)
+        for label, values, color in zip(labels, curves[name], ("tab:blue", "tab:red")):
+            style = dict(AVERAGED_STYLE, color=color) if name == "averaged" else FULL_STYLE
+            legend = f"{label} (averaged)" if name == "averaged" else ("full model" if label == labels[0] else None)
+            ax.plot(solutions[name].t, values, label=legend, **style)
+    unit = "[rad²/s²]" if kind == "xy" else "[rad/s]"
+    ax.set_ylabel(f"{', '.join(labels)} {unit}")
+    ax.set_title(title)
+    ax.legend(fontsize=LEGEND_SIZE)
+    ax.grid(alpha=0.3)
+    if both:
+        diff = axes[1, 0]
+        t_full, t_avg = solutions["full"].t, solutions["averaged"].t
+        for label, full, averaged, color in zip(labels, curves["full"], curves["averaged"], ("tab:blue", "tab:red")):
+            diff.plot(t_full, full - np.interp(t_full, t_avg, averaged), color=color, lw=1.0, label=f"{label}")
+        diff.set_ylabel(f"full − averaged {unit}")
+        diff.legend(fontsize=LEGEND_SIZE)
+        diff.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("t [s]")
+    return figures.finish(fig, path)
+
+
+def phase(solutions: dict[str, Solution], title: str, path: Path) -> Path:
+    """The phase curve a² against r² (paper 002's y against its x): the full model dashed over
+    the averaged one, both starting at the black dot."""
+    fig, ax = plt.subplots(figsize=(6.5, 5.5))
+    for name, style in (("averaged", dict(AVERAGED_STYLE, color="tab:blue")), ("full", FULL_STYLE)):
+        if name in solutions:
+            a, r = slow_variables(solutions[name])
+            ax.plot(r**2, a**2, label=name, **style)
+            ax.plot(r[:1] ** 2, a[:1] ** 2, "ko", ms=4)
+    ax.set_xlabel("r² [rad²/s²]")
+    ax.set_ylabel("a² = p² + q² [rad²/s²]")
+    ax.set_title(f"{title}: phase curve")
+    ax.legend(fontsize=LEGEND_SIZE)
+    ax.grid(alpha=0.3)
+    return figures.finish(fig, path)
+
+
+def draw(scene, solutions: dict[str, Solution], derived: dict, folder: Path, own: dict | None = None) -> list[Path]:
+    """The plots of a rigid-body scene; ``own``: plot name → f(main solution, title, path) of a
+    family that draws these and some of its own (the moving mass)."""
+    files = []
+    main = solutions.get("full", solutions.get("closed_form"))
+    reference = derived.get("reference")
+    for plot in scene.plots:
+        path = folder / f"{plot}.png"
+        if plot in ("xy", "slow"):
+            files.append(slow_curves(solutions, scene.title, path, plot))
+        elif plot == "phase":
+            files.append(phase(solutions, scene.title, path))
+        elif main is None:
+            continue
+        elif plot == "omega":
+            files.append(omega(main, scene.title, path, reference))
+        elif plot == "invariants":
+            files.append(invariants(main, scene.title, path))
+        elif plot == "euler_angles" and "q_w" in main.state_names:
+            files.append(euler_angles(main, scene.title, path))
+        elif plot == "error" and reference is not None:
+            files.append(error(main, reference, scene.title, path))
+        elif own and plot in own:
+            files.append(own[plot](main, scene.title, path))
+    return files
+
+
+# ------------------------------------------------------------------------------------ scene kinds
+def averaged_rung(doc: dict, body, torques, omega, drawable: tuple[str, ...], attitude: bool = False) -> _ladder.Rung:
+    """The averaged (a, r) rung of the ladder of a rigid body or, with the damper's quasi-static
+    torque among ``torques``, of the moving-mass family. Blocked when the scene's outputs need
+    ω(t) (plots not in ``drawable``, the attitude, a closed-form reference) or when the torques
+    have no average (the model's own message)."""
+    y0 = np.array([math.hypot(omega[0], omega[1]), omega[2]])
+    description = "the system averaged over the symmetric Euler-Poinsot motion, in (a, r)"
+    needs = [p for p in doc["outputs"]["plots"] if p not in drawable]
+    blocked = ("the scene integrates the attitude: the averaged model has none" if attitude else
+               f"the plots {needs} need omega(t): the averaged model gives a and r only" if needs else
+               "the closed-form reference is of omega(t)" if doc["outputs"].get("reference") else "")
+    model = None
+    if not blocked:
+        try:
+            model = AveragedModel(body, torques)
+        except ValueError as error:
+            blocked = f"no averaged model: {error}"
+    if blocked:
+        return _ladder.Rung("averaged", None, y0, description, blocked=blocked, run="averaged")
+    exact = exact_reduction(model)
+    fast = model.fast_frequency(y0[1])
+    span = doc["integration"]["t_span"]
+    # an exact reduction has no fast motion to resolve: its probe is the longest one, a twentieth of the span
+    # an exact reduction has no fast oscillation to sample: its probe may be shorter than 20 periods
+    share = _ladder.PROBE_FRACTION * abs(span[1] - span[0]) / _ladder.PROBE_PERIODS
+    period = 2.0 * math.pi / fast if fast > 0 else math.inf
+    period = min(period, share) if exact else period
+    watches = () if exact else (_ladder.Watch("slow_to_fast", SMALL, 0.5 * SMALL,
+                                              "slow rate / fast frequency << 1", scales_error=True),)
+    return _ladder.Rung("averaged", model, y0, description, compare=slow_columns, fast_period=period,
+                        watches=watches, exact=exact,
+                        start_checks=lambda: [a for a in check(model, y0, warn=False)
+                                              if a.part == "averaged model"],
+                        basis="the (a, r) reduction is exact for this symmetric scene: r = 0 is not a limit" if exact
+                        else "", run="averaged")
+
+
+class RigidBody(Kind):
+    name = "rigid_body"
+    doc = ("A rigid body or gyrostat under perturbation torques: the full model, its closed form when nothing "
+           "perturbs it, or the system averaged over the symmetric Euler-Poinsot motion in (a, r).")
+    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase", "ladder")
+    models = ("auto", "full", "closed_form", "averaged", "compare")
+    default = True
+    splits = True
+
+    @property
+    def schema(self) -> Table:
+        return Table({
+            **title_fields(),
+            "body": Field(BODY, required=True, doc="the body"),
+            "torques": Field(ArrayOf(TORQUE), default=[], doc="perturbation torques; they add up"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), required=True, doc="angular velocity in body axes", unit="rad/s",
+                               check=all_finite),
+                "attitude": Field(Vector(4), doc="attitude quaternion (w, x, y, z), body to inertial; "
+                                                 "giving it integrates the attitude", check=nonzero_quaternion),
+            }), required=True, doc="the initial state"),
+            "integration": Field(Table({
+                "model": Field(Choice(*self.models), default="auto",
+                               doc="auto: the cheapest model that meets the accuracy (the model ladder); compare: "
+                                   "full and averaged side by side"),
+                "accuracy": ACCURACY, "phase": PHASE,
+                "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
+                **SPLITTING_FIELDS,
+            }), required=True, doc="the run"),
+            "outputs": outputs_field(self.plots, ["omega", "invariants"],
+                                reference=Field(Choice("closed_form"), doc="draw and measure against the closed form")),
+        })
+
+    def needs_attitude(self, doc: dict) -> bool:
+        """The attitude is integrated only when the scene asks for it (an initial quaternion or
+        an Euler-angle plot)."""
+        return "attitude" in doc["initial"] or "euler_angles" in doc["outputs"]["plots"]
+
+    def choose(self, doc: dict, body, torques) -> tuple[str, str]:
+        """The cheapest model that answers the scene, and the reason for the choice."""
+        choice = doc["integration"]["model"]
+        free = not torques and not np.any(np.asarray(body.rotor))
+        attitude = self.needs_attitude(doc)
+        if choice == "closed_form":
+            if not free:
+                raise SceneError("[integration] model = 'closed_form' needs a rigid body (rotor k = 0) with no torque")
+            return choice, "asked for by the scene"
+        if choice != "auto":
+            return choice, "asked for by the scene"
+        if free:
+            return "closed_form", ("no torque, no rotor: the exact flow (elliptic functions" +
+                                   (", attitude included" if attitude else "") + ") needs no integration")
+        reasons = [f"{len(torques)} torque(s)"] if torques else []
+        if np.any(np.asarray(body.rotor)):
+            reasons.append("a rotor (k != 0)")
+        if attitude:
+            reasons.append("attitude asked for")
+        return "full", "full model: " + ", ".join(reasons)
+
+    # plots an averaged model can draw: functions of its slow variables
+    slow_plots = ("xy", "slow", "phase", "invariants", "ladder")
+
+    def ladder(self, doc):
+        body, torques = make_body(doc), make_torques(doc)
+        omega = np.asarray(doc["initial"]["omega"], float)
+        attitude = self.needs_attitude(doc)
+        q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
+        y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+        free = not torques and not np.any(np.asarray(body.rotor))
+        closed = _ladder.Rung("closed_form", TorqueFreeModel(body, attitude) if free else None, y0,
+                              "the exact torque-free flow (elliptic functions)",
+                              blocked="" if free else "torques or a rotor perturb the body", run="closed_form")
+        full = _ladder.Rung("full", build("torques", Model, body, torques, attitude), y0,
+                            "Euler's equations" + (" with the attitude" if attitude else ""),
+                            compare=slow_columns)
+        rungs = [closed, averaged_rung(doc, body, torques, omega, self.slow_plots, attitude), full]
+        return rungs
+
+    def runs(self, doc):
+        body, torques = make_body(doc), make_torques(doc)
+        choice, reason = self.choose(doc, body, torques)
+        omega = np.asarray(doc["initial"]["omega"], float)
+        t_span = tuple(doc["integration"]["t_span"])
+        options = integration(doc, self)
+        runs = []
+        attitude = self.needs_attitude(doc)
+        q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
+        if choice == "closed_form":
+            y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+            runs.append(Run("closed_form", build("body", TorqueFreeModel, body, attitude), y0, t_span, options))
+        if choice in ("full", "compare"):
+            model = build("torques", Model, body, torques, attitude)
+            y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+            runs.append(Run("full", model, y0, t_span, options))
+        if choice in ("averaged", "compare"):
+            model = build("torques", AveragedModel, body, torques)
+            runs.append(Run("averaged", model, np.array([math.hypot(omega[0], omega[1]), omega[2]]), t_span, options))
+        return runs, choice, reason
+
+    def initial_assumptions(self, run, warn):
+        return initial_assumptions(run, warn)
+
+    def assumptions(self, run, solution):
+        return check(run.model, solution.y, solution.t, warn=False, outputs=solution.outputs)
+
+    def analyse(self, scene, solutions, report, derived):
+        analyse(scene, solutions, report, derived)
+
+    def draw(self, scene, solutions, derived, folder):
+        return draw(scene, solutions, derived, folder)
+
+    def why_not_drawn(self, doc, plot):
+        if plot == "error" and doc["outputs"].get("reference") is None:
+            return ("it needs a reference: [outputs] reference = \"closed_form\" (a rigid body with neither torques "
+                    "nor a rotor)")
+        return ""
+
+
+class Averaged(RigidBody):
+    name = "averaged"
+    doc = ("The system averaged over the symmetric Euler-Poinsot motion in the slow variables (a, r) alone "
+           "(a rigid_body scene with model = 'averaged'; the initial state may be given as a and r).")
+    plots = ("xy", "slow", "phase")
+    default = False
+    splits = False
+
+    @property
+    def schema(self) -> Table:
+        return Table({
+            **title_fields(),
+            "body": Field(BODY, required=True, doc="the (nearly) symmetric body A1 ~ A2, no rotor"),
+            "torques": Field(ArrayOf(TORQUE), default=[], doc="perturbation torques; their averages add up"),
+            "initial": Field(Table({
+                "omega": Field(Vector(3), doc="angular velocity in body axes (gives a = |(p, q)|, r)", unit="rad/s",
+                               check=all_finite),
+                "a": Field(float, doc="equatorial amplitude a = sqrt(p^2 + q^2)", unit="rad/s", check=non_negative),
+                "r": Field(float, doc="axial rate r (signed)", unit="rad/s", check=finite),
+            }), required=True, doc="the initial state: omega, or a and r"),
+            "integration": Field(Table({"method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN,
+                                        "n_out": N_OUT}), required=True, doc="the run"),
+            "outputs": outputs_field(self.plots, ["xy", "slow"]),
+        })
+
+    def runs(self, doc):
+        body, torques = make_body(doc), make_torques(doc)
+        initial = doc["initial"]
+        if "omega" in initial and ("a" in initial or "r" in initial):
+            raise SceneError("[initial] give omega, or a and r, not both")
+        if "omega" in initial:
+            omega = initial["omega"]
+            y0 = np.array([math.hypot(omega[0], omega[1]), omega[2]])
+        elif "a" in initial and "r" in initial:
+            y0 = np.array([initial["a"], initial["r"]])
+        else:
+            raise SceneError("[initial] needs omega, or both a and r")
+        model = build("torques", AveragedModel, body, torques)
+        return ([Run("averaged", model, y0, tuple(doc["integration"]["t_span"]), integration(doc, self))], "averaged",
+                "asked for by the scene kind")
+
+
+register(RigidBody(), Averaged())

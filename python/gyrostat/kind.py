@@ -1,0 +1,244 @@
+"""The scene kind every family's kinds derive from, and what all kinds share.
+
+* :class:`Kind`: a scene kind's name, schema, runs, ladder, checks, analysis, output columns and
+  plots (each family module subclasses it: ``gyrostat/families/``);
+* :data:`KINDS` and :func:`register`: the registry that family modules fill when they are
+  imported (:mod:`gyrostat.families` imports them all);
+* :class:`Run`: one solve of a scene;
+* the schema pieces every kind uses (:func:`title_fields`: ``kind``, ``title``, ``description``,
+  ``events``, ``sweep``; ``BODY``; the integration fields ``METHOD``, ``RTOL``, ``ATOL``,
+  ``N_OUT``, ``T_SPAN``, ``ACCURACY``, ``PHASE``, ``SPLITTING_FIELDS``; :func:`outputs_field`) and
+  the builders from a validated document (:func:`build`, :func:`make_body`, :func:`make_torques`,
+  :func:`integration`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from gyrostat import _core
+from gyrostat import ladder as _ladder
+from gyrostat.modelbase import ModelBase
+from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, SceneError, Table, Vector, all_finite, at_least,
+                             finite, non_negative, positive, span_order)
+from gyrostat.torques import TORQUES
+
+__all__ = ["Kind", "Run", "KINDS", "register", "default_kind", "title_fields", "outputs_field", "build",
+           "make_body", "make_torques", "integration", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
+           "SPLITTING_FIELDS"]
+
+
+@dataclass
+class Run:
+    """One solve of a scene: a model, its initial state, the span and the integrator options."""
+
+    name: str
+    model: ModelBase
+    y0: np.ndarray
+    t_span: tuple[float, float]
+    options: dict
+
+
+class Kind:
+    """A scene kind: its schema, the runs it makes, the plots it draws (``plots`` names them).
+    The defaults below are those of a kind with one model, no ladder, its models' own checks
+    and no analysis or plots of its own; a family's kind overrides what it has."""
+
+    name = ""
+    doc = ""
+    schema: Table
+    plots: tuple[str, ...] = ()
+    default = False
+    """The kind of a scene that gives no ``kind`` (one kind is)."""
+    splits = False
+    """Its models split into the free-body flow and a perturbation (``method = "splitting"``)."""
+
+    def runs(self, doc: dict) -> tuple[list[Run], str, str]:
+        """(runs, the model chosen, why)."""
+        raise NotImplementedError
+
+    def ladder(self, doc: dict) -> list | None:
+        """The rungs of the model ladder for ``model = "auto"`` (cheapest first, the scene's most
+        complete model last: :mod:`gyrostat.ladder`), or None where the kind has one model."""
+        return None
+
+    def initial_assumptions(self, run: Run, warn: bool) -> list:
+        """The assumptions of a run's model at its initial state (``gyrostat.validity.check_scene``)."""
+        return []
+
+    def assumptions(self, run: Run, solution) -> list:
+        """The assumptions of a run's model along its solution (the report's ``assumptions``)."""
+        return run.model.check(solution)
+
+    def analyse(self, scene, solutions: dict, report: dict, derived: dict) -> None:
+        """The paper's analysis of the solved runs, from their recorded outputs: entries of the
+        report, and in ``derived`` what the plots need beside the runs."""
+
+    def extra_columns(self, scene, solution) -> dict | None:
+        """Columns written beside a run's own (None: none)."""
+        return None
+
+    def draw(self, scene, solutions: dict, derived: dict, folder) -> list:
+        """The kind's plots that the scene asks for, as PNG files in ``folder``."""
+        return []
+
+    def why_not_drawn(self, doc: dict, plot: str) -> str:
+        """Why a plot of this kind asked for was not drawn, where the kind knows ("" otherwise)."""
+        return ""
+
+
+KINDS: dict[str, Kind] = {}
+"""The registry of scene kinds, by the name a scene gives as ``kind``, in the order the family
+modules registered them (import :mod:`gyrostat.families` to have them all)."""
+
+
+def register(*kinds: Kind) -> None:
+    """Adds a family's kinds to :data:`KINDS` (a family module calls it once, at its end)."""
+    for kind in kinds:
+        if kind.name in KINDS:
+            raise ValueError(f"scene kind {kind.name!r} is registered twice")
+        KINDS[kind.name] = kind
+
+
+def default_kind() -> str:
+    """The name of the kind of a scene that gives no ``kind``."""
+    return next(name for name, kind in KINDS.items() if kind.default)
+
+
+# ------------------------------------------------------------------------------------ schema pieces
+def _splitting_order(value):
+    if value not in (2, 4, 6):
+        raise ValueError("must be 2, 4 or 6")
+
+
+def _direction(value):
+    if value not in (-1, 0, 1):
+        raise ValueError("must be -1, 0 or 1")
+
+
+EVENT = Table({
+    "quantity": Field(str, required=True, doc="a state component or a named output of the run's model"),
+    "value": Field(float, default=0.0, doc="the value it crosses", check=finite),
+    "direction": Field(int, default=0, doc="+1 upward crossings only, -1 downward, 0 both", check=_direction),
+    "terminal": Field(int, default=0, doc="0: record; n: stop the run at the n-th crossing", check=non_negative),
+    "name": Field(str, default="", doc="a name for the report"),
+}, doc="an event: where a quantity crosses a value, located by the engine")
+
+SWEEP_PARAMETER = Table({
+    "path": Field(str, doc="the entry of this scene it sets: body.moments[0], torques[1].viscosity, initial.omega[2], "
+                           "integration.rtol; a slice body.moments[0:2] sets several entries"),
+    "paths": Field(ListOf(str, min_len=1), doc="several entries set to the same value"),
+    "name": Field(str, doc="the coordinate's name in sweep.nc (default: the path)"),
+    "label": Field(str, default="", doc="text for plots, e.g. A/C"),
+    "scale": Field(float, default=1.0, doc="each entry is set to scale * value", check=finite),
+    "values": Field(ListOf(float, min_len=1), doc="a grid: these values"),
+    "start": Field(float, doc="a grid from start to stop (with num)", check=finite),
+    "stop": Field(float, doc="the grid's last value", check=finite),
+    "num": Field(int, doc="the grid's number of values", check=at_least(1)),
+    "spacing": Field(Choice("linear", "log"), default="linear", doc="the grid's spacing"),
+    "distribution": Field(Choice("uniform", "normal", "loguniform"), doc="a dispersion: uniform and loguniform take "
+                                                                         "low and high, normal takes mean and std"),
+    "low": Field(float, doc="lower bound", check=finite),
+    "high": Field(float, doc="upper bound", check=finite),
+    "mean": Field(float, doc="mean", check=finite),
+    "std": Field(float, doc="standard deviation", check=finite),
+}, one_of=[("path", "paths")], doc="a varied parameter: a grid (values, or start, stop, num) or a distribution")
+SWEEP_LINE = Table({"label": Field(str, required=True, doc="legend text"),
+                    "x": Field(ListOf(float, min_len=2), required=True, doc="first parameter's values"),
+                    "y": Field(ListOf(float, min_len=2), required=True, doc="the summary (one parameter) or the second "
+                                                                            "parameter's values")},
+                   doc="a reference line drawn over the sweep's plot")
+SWEEP = Field(Table({
+    "vary": Field(ArrayOf(SWEEP_PARAMETER), required=True, doc="the varied parameters"),
+    "run": Field(str, doc="the run of the scene to sweep (default: its only run, or full)"),
+    "samples": Field(int, doc="members of a dispersion", check=at_least(1)),
+    "seed": Field(int, doc="seed of a dispersion (default: a fresh one, recorded in sweep.nc)", check=non_negative),
+    "trajectories": Field(bool, default=False, doc="keep every member's trajectory in sweep.nc"),
+    "summary": Field(str, default="", doc="what the plot shows: a variable of sweep.nc or an expression such as "
+                                          "final_x / final_y (default: the first final value)"),
+    "contour": Field(float, doc="draw where the summary equals this value", check=finite),
+    "lines": Field(ArrayOf(SWEEP_LINE), default=[], doc="reference lines over the plot"),
+}), doc="a sweep of this scene, run by gyrostat sweep (and gyrostat run): a grid or a seeded dispersion of its "
+        "numeric entries")
+
+
+def title_fields() -> dict[str, Field]:
+    """The top-level keys every kind has: kind, title, description, events and sweep."""
+    return {
+        "kind": Field(str, default=default_kind(), doc="scene kind: " + ", ".join(KINDS)),
+        "title": Field(str, default="", doc="a title for plots and reports"),
+        "description": Field(str, default="", doc="what the scene shows"),
+        "events": Field(ArrayOf(EVENT), default=[], doc="events to locate in every run that has the quantity"),
+        "sweep": SWEEP,
+    }
+
+
+_DEFAULT = _core.Options()  # the engine's defaults: the one place where they live
+METHOD = Field(Choice(*_core.methods()), default="auto",
+               doc="integrator (gyrostat.METHODS); auto: DOP853 or CVODE BDF by the stiffness measured along the run")
+RTOL = Field(float, default=_DEFAULT.rtol, doc="relative tolerance", check=positive)
+ATOL = Field(float, default=_DEFAULT.atol, doc="absolute tolerance", check=non_negative)
+N_OUT = Field(int, default=_DEFAULT.n_out, doc="number of evenly spaced output times", check=at_least(2))
+T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=span_order)
+ACCURACY = Field(float, default=_ladder.ACCURACY, check=positive,
+                 doc="model = 'auto': the largest relative error accepted on the quantities the outputs need; "
+                     "the cheapest model whose measured error estimate is below it is taken")
+PHASE = Field(float, default=0.0, unit="rad", check=finite,
+              doc="model = 'auto': the fast phase at which a switch up the ladder lifts the slow variables")
+
+BODY = Table({
+    "moments": Field(Vector(3), required=True, doc="principal moments A1, A2, A3", unit="kg m^2",
+                     check=all_finite),
+    "rotor": Field(Vector(3), default=[0.0, 0.0, 0.0], doc="gyrostatic momentum k of the rotors",
+                   unit="kg m^2/s", check=all_finite),
+})
+
+
+
+SPLITTING_FIELDS = {
+    "step": Field(float, doc="fixed step of method 'splitting' (left out: chosen from rtol by the splitting's own "
+                        "error estimate)", unit="s", check=positive),
+    "splitting_order": Field(int, default=_DEFAULT.splitting_order, doc="order of the splitting composition: 2, 4 or 6",
+                             check=_splitting_order),
+}
+
+
+
+def outputs_field(plots: tuple[str, ...], default: list[str], **extra: Field) -> Field:
+    """The [outputs] table of a kind: the plots it can draw (and what else it takes)."""
+    return Field(Table({"plots": Field(ListOf(str, choices=plots), default=default, doc="plots to draw"), **extra}),
+                 default={}, doc="what to draw")
+
+
+def build(where: str, make, *args):
+    """A core object from validated values; its own ValueError becomes a SceneError naming the table."""
+    try:
+        return make(*args)
+    except ValueError as error:
+        raise SceneError(f"[{where}] {error}") from None
+
+
+def make_body(doc: dict) -> _core.Body:
+    """The scene's [body] as a :class:`gyrostat.Body`."""
+    return build("body", _core.Body, doc["body"]["moments"], doc["body"]["rotor"])
+
+
+def make_torques(doc: dict) -> list:
+    """The scene's [[torques]], built by the registry :data:`gyrostat.torques.TORQUES`."""
+    return [build(f"torques[{i}]", TORQUES[spec["type"]][1], spec) for i, spec in enumerate(doc.get("torques", []))]
+
+
+def integration(doc: dict, kind: Kind, **extra) -> dict:
+    """The integrator options of a scene of ``kind`` from its [integration] table (and ``extra``)."""
+    integ = doc["integration"]
+    options = {"method": integ["method"], "rtol": integ["rtol"], "atol": integ["atol"], "n_out": integ["n_out"]}
+    if integ["method"] == "splitting":
+        if not kind.splits:
+            splits = ", ".join(name for name, k in KINDS.items() if k.splits)
+            raise SceneError(f"[integration] method = 'splitting' is not offered for {kind.name} scenes (their models "
+                             f"do not split into the free-body flow and a perturbation; it is for {splits})")
+        options.update(step=integ.get("step"), splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
+    options.update(extra)
+    return options

@@ -1,0 +1,123 @@
+"""What every model is: :class:`ModelBase` (a C++ model with named state components and named
+outputs, solved by :func:`gyrostat.solve` and :func:`gyrostat.solve_ensemble`), and the argument
+helpers every constructor uses (numbers, flags, bodies and torques checked with one-line
+errors). Each family's models derive from it in their family module (``gyrostat/families/``).
+"""
+
+from __future__ import annotations
+
+
+import numpy as np
+
+from gyrostat import _core
+from gyrostat.torques import TORQUE_TYPES
+
+
+def shown(value, limit: int = 60) -> str:
+    """``repr(value)`` on one line, shortened to ``limit`` characters: for error messages."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def floats(value, name: str, what: str = "real numbers") -> np.ndarray:
+    """``value`` as an array of floats, or a one-line ValueError naming ``name``, ``what`` it must
+    be and the value: strings, None, booleans alone, complex numbers and ragged lists are refused,
+    never cast (NumPy would say "could not convert string to float" or drop an imaginary part)."""
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError):  # a ragged list
+        array = None
+    if array is None or array.dtype.kind not in "iuf":
+        raise ValueError(f"{name} must be {what}, got {shown(value)}")
+    return array.astype(float, copy=False)
+
+
+def number(value, name: str) -> float:
+    """``value`` as one float, or a one-line ValueError naming ``name`` and the value (as :func:`floats`)."""
+    array = floats(value, name, "a number")
+    if array.ndim:
+        raise ValueError(f"{name} must be a number, got {shown(value)}")
+    return float(array)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` as a bool, or a ValueError naming ``name``: only True and False are booleans
+    (``bool("no")`` is True; 0 and 1 are numbers)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} = {shown(value)} must be True or False")
+
+
+def check_torques(torques) -> tuple:
+    """The torques as a tuple (a single torque is a list of one); anything that is not a torque
+    raises TypeError naming its type."""
+    if isinstance(torques, TORQUE_TYPES):
+        return (torques,)
+    if isinstance(torques, (str, bytes)) or not hasattr(torques, "__iter__"):
+        raise TypeError(f"torques must be a list of torques, got {type(torques).__name__}")
+    torques = tuple(torques)
+    for torque in torques:
+        if not isinstance(torque, TORQUE_TYPES):
+            raise TypeError(f"not a torque: {type(torque).__name__} (torques are "
+                            + ", ".join(t.__name__ for t in TORQUE_TYPES) + ")")
+    return torques
+
+
+def check_body(body) -> _core.Body:
+    if not isinstance(body, _core.Body):
+        raise TypeError(f"body must be a gyrostat.Body, not {type(body).__name__}")
+    return body
+
+
+class ModelBase:
+    """What every model gives: its C++ model (``_core``), its family, the names of its state
+    components and of the outputs recorded at every output time.
+
+    Subclasses set ``_core`` in their constructor; ``kind`` names the model in reports.
+    """
+
+    __slots__ = ("_core", "__dict__")
+    kind = "model"
+
+    @property
+    def family(self) -> str:
+        return self._core.family
+
+    @property
+    def dim(self) -> int:
+        """Size of the state vector."""
+        return self._core.dim
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(self._core.state_names)
+
+    @property
+    def output_names(self) -> tuple[str, ...]:
+        """Quantities recorded by the engine at every output time (``solution[name]``)."""
+        return tuple(self._core.output_names)
+
+    @property
+    def attitude(self) -> bool:
+        """Whether the state holds the attitude quaternion (q_w, q_x, q_y, q_z)."""
+        return "q_w" in self._core.state_names
+
+    def rhs(self, t: float, y) -> np.ndarray:
+        """The right-hand side f(t, y), evaluated by the core (for checks, not for speed)."""
+        return np.asarray(self._core.rhs(number(t, "t"), floats(y, "y")))
+
+    def initial_state(self, y0) -> np.ndarray:
+        """The full initial state from a shorter one where the model allows it (ω alone for a
+        model with attitude: identity quaternion; τ(0) = 0 for the orthogonal torque)."""
+        return np.asarray(self._core.initial_state(floats(y0, "y0").ravel()))
+
+    def check(self, solution) -> list:
+        """The model's assumptions along a solution (averaged models override this);
+        :func:`gyrostat.solve` warns for broken ones."""
+        return []
+
+    def assumptions(self, states: np.ndarray, times: np.ndarray, outputs: dict | None = None) -> list:
+        """The model's own assumptions over (n, dim) states at ``times``, beside its torques'
+        (:func:`gyrostat.validity.check` adds those first). ``outputs``: what a solve recorded
+        at those states, used as it is."""
+        return []

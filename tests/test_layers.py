@@ -1,0 +1,191 @@
+"""The Python package's floors, read from its source (ast): every import of every module, those
+inside functions included, must point to the module's own floor or below; the import graph has
+no cycle; the generic layers name no family module and no kind; the old module names that
+re-export a family (``gyrostat.lagrange``, ...) hold no logic.
+
+Floors, bottom up: core → families → re-exports → generic → command line. A new module must be
+placed in FLOORS (an unplaced module fails the test).
+
+How the checks were seen to fail: ``test_planted_violations_are_caught`` plants each kind of
+violation in a copy of the sources (an upward import closing a cycle, as ``validity.check_scene
+→ scene.Scene`` once did; a generic module importing a family module; a kind's name in a
+generic module; logic in a re-export module) and asserts that each is reported. By hand, adding
+``from gyrostat.scene import Scene`` inside a function of ``gyrostat/assumptions.py``, or
+``if scene.kind.name == "lagrange_top": pass`` to ``gyrostat/runner.py``, made
+``test_floors_and_cycles`` / ``test_generic_layers_name_no_family`` fail with the module, the
+line and the name.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
+
+CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.torques", "gyrostat.units",
+        "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
+        "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
+REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")
+GENERIC = ("gyrostat.scene", "gyrostat.runner", "gyrostat.output", "gyrostat.plots", "gyrostat.sweeps",
+           "gyrostat.validity")
+TOP = ("gyrostat", "gyrostat.__main__", "gyrostat.cli")
+FLOOR_NAMES = ("core", "families", "re-exports", "generic", "command line")
+
+
+def floor(module: str) -> int:
+    if module in CORE:
+        return 0
+    if module == "gyrostat.families" or module.startswith("gyrostat.families."):
+        return 1
+    for index, members in ((2, REEXPORTS), (3, GENERIC), (4, TOP)):
+        if module in members:
+            return index
+    raise AssertionError(f"{module} is in no floor: add it to FLOORS in tests/test_layers.py")
+
+
+def sources() -> dict[str, str]:
+    """Module name → source of every module of the package."""
+    found = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        found[name] = path.read_text()
+    return found
+
+
+def imports(name: str, source: str, known: set[str]) -> list[tuple[int, str]]:
+    """(line, module) of every gyrostat module that ``source`` imports, anywhere in it."""
+    package = name if name == "gyrostat" or name == "gyrostat.families" else name.rsplit(".", 1)[0]
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            found += [(node.lineno, a.name) for a in node.names if a.name.split(".")[0] == "gyrostat"]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                base = ".".join(package.split(".")[: len(package.split(".")) - node.level + 1] + ([base] if base else []))
+            if base.split(".")[0] != "gyrostat":
+                continue
+            for alias in node.names:  # `from gyrostat import ladder` imports the module gyrostat.ladder
+                sub = f"{base}.{alias.name}"
+                found.append((node.lineno, sub if sub in known else base))
+    return [(line, module) for line, module in found if module != name]
+
+
+def docstrings(tree: ast.AST) -> set[int]:
+    """ids of the docstring constants of a module, its classes and functions."""
+    ids = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and node.body:
+            first = node.body[0]
+            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant):
+                ids.add(id(first.value))
+        if isinstance(node, (ast.Module, ast.ClassDef)):  # attribute docstrings: a string after an assignment
+            for before, after in zip(node.body, node.body[1:]):
+                if isinstance(before, (ast.Assign, ast.AnnAssign)) and isinstance(after, ast.Expr) \
+                        and isinstance(after.value, ast.Constant):
+                    ids.add(id(after.value))
+    return ids
+
+
+def violations(modules: dict[str, str], kinds: set[str]) -> dict[str, list[str]]:
+    """Every broken rule, by rule: floors, cycles, generic (names a family), reexports (logic)."""
+    known = set(modules) | {"gyrostat._core"}
+    graph = {name: imports(name, source, known) for name, source in modules.items()}
+    found: dict[str, list[str]] = {"floors": [], "cycles": [], "generic": [], "reexports": []}
+    for name, edges in graph.items():
+        for line, target in edges:
+            if floor(target) > floor(name):
+                found["floors"].append(f"{name}:{line} ({FLOOR_NAMES[floor(name)]}) imports {target} "
+                                       f"({FLOOR_NAMES[floor(target)]})")
+    # cycles: depth-first search over module → imported modules
+    state: dict[str, int] = {}
+
+    def visit(node: str, path: list[str]) -> None:
+        state[node] = 1
+        for _, target in graph.get(node, []):
+            if state.get(target) == 1:
+                found["cycles"].append(" → ".join(path[path.index(target):] + [target]))
+            elif target not in state:
+                visit(target, path + [target])
+        state[node] = 2
+
+    for name in sorted(graph):
+        if name not in state:
+            visit(name, [name])
+    for name in GENERIC:
+        if name not in modules:
+            continue
+        for line, target in graph[name]:
+            if target.startswith("gyrostat.families.") or target in REEXPORTS:
+                found["generic"].append(f"{name}:{line} imports the family module {target}")
+        tree = ast.parse(modules[name])
+        skip = docstrings(tree)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in skip \
+                    and node.value in kinds:
+                found["generic"].append(f"{name}:{node.lineno} names the kind {node.value!r}")
+    for name in REEXPORTS:
+        if name not in modules:
+            continue
+        body = ast.parse(modules[name]).body
+        for i, node in enumerate(body):
+            docstring = i == 0 and isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)
+            dunder_all = isinstance(node, ast.Assign) and [getattr(t, "id", "") for t in node.targets] == ["__all__"]
+            if not (docstring or dunder_all or isinstance(node, ast.ImportFrom)):
+                found["reexports"].append(f"{name}:{node.lineno} holds {type(node).__name__}, not a re-export")
+    return found
+
+
+@pytest.fixture(scope="module")
+def kinds() -> set[str]:
+    from gyrostat.families import KINDS
+
+    return set(KINDS)
+
+
+def test_floors_and_cycles(kinds):
+    found = violations(sources(), kinds)
+    assert not found["floors"], "\n".join(found["floors"])
+    assert not found["cycles"], "\n".join(found["cycles"])
+
+
+def test_generic_layers_name_no_family(kinds):
+    found = violations(sources(), kinds)
+    assert not found["generic"], "\n".join(found["generic"])
+
+
+def test_reexport_modules_hold_no_logic(kinds):
+    found = violations(sources(), kinds)
+    assert not found["reexports"], "\n".join(found["reexports"])
+
+
+def test_every_family_module_registers_a_kind(kinds):
+    """A module under families/ is a family: it registers at least one scene kind, and says what a
+    family module provides in its docstring (the recipe)."""
+    from gyrostat.families import KINDS
+
+    modules = {kind.__class__.__module__ for kind in KINDS.values()}
+    for path in (PACKAGE / "families").glob("*.py"):
+        if path.stem == "__init__":
+            continue
+        assert f"gyrostat.families.{path.stem}" in modules, path.stem
+        assert "A family module provides" in ast.get_docstring(ast.parse(path.read_text())), path.stem
+
+
+def test_planted_violations_are_caught(kinds):
+    """Each rule fails on a violation planted in a copy of the sources."""
+    clean = sources()
+    planted = dict(clean)
+    planted["gyrostat.assumptions"] += "\n\ndef _planted():\n    from gyrostat.scene import Scene\n"
+    planted["gyrostat.runner"] += "\n\nfrom gyrostat.families import rigid_body\n\nif 'lagrange_top':\n    pass\n"
+    planted["gyrostat.lagrange"] += "\n\nSEPARATRIX = 2 * 1e-3\n"
+    found = violations(planted, kinds)
+    assert any("gyrostat.assumptions" in v and "gyrostat.scene" in v for v in found["floors"]), found["floors"]
+    assert any("gyrostat.assumptions" in v and "gyrostat.scene" in v for v in found["cycles"]), found["cycles"]
+    assert any("rigid_body" in v for v in found["generic"]) and any("'lagrange_top'" in v for v in found["generic"])
+    assert any("gyrostat.lagrange" in v for v in found["reexports"]), found["reexports"]
+    assert not any(violations(clean, kinds).values())
