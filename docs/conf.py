@@ -35,10 +35,28 @@ def plain_bars(app, what, name, obj, options, lines):
     lines[:] = [line.replace("|", r"\|") for line in lines]
 
 
+def registries(folder: Path) -> None:
+    """The reference entries of what registers itself: every torque class of the core (from its
+    C++ declaration) and every family module (gyrostat/families/), so that adding either needs
+    no edit here."""
+    import pkgutil
+
+    import gyrostat
+    import gyrostat.families
+
+    folder.mkdir(parents=True, exist_ok=True)
+    torques = "".join(f".. autoclass:: gyrostat.{cls.__name__}\n   :members:\n\n" for cls in gyrostat._core.torque_types)
+    (folder / "torques.rst").write_text(torques)
+    families = "".join(f".. automodule:: gyrostat.families.{m.name}\n   :members:\n   :no-index:\n\n"
+                       for m in pkgutil.iter_modules(gyrostat.families.__path__))
+    (folder / "families.rst").write_text(families)
+
+
 def setup(app):
     app.connect("autodoc-process-docstring", plain_bars)
     def generate(app):
         gallery.generate(HERE / "_generated")
         cpp_reference.generate(HERE / "_generated")
+        registries(HERE / "_generated")
 
     app.connect("builder-inited", generate)

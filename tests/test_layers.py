@@ -25,7 +25,7 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
 
-CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.torques", "gyrostat.units",
+CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.torques",
         "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
         "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
 REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")

@@ -153,6 +153,17 @@ void expose_integrate(py::module_& m) {
         .def_readwrite("dense_output", &Options::dense_output)
         .def_readwrite("step", &Options::step)
         .def_readwrite("splitting_order", &Options::splitting_order)
+        .def(
+            "to_dict",
+            [](const Options& o) {
+                py::dict d;
+                d["method"] = std::string(integrate::method_name(o.method)), d["rtol"] = o.rtol, d["atol"] = o.atol;
+                d["n_out"] = o.n_out, d["every_step"] = o.every_step, d["max_steps"] = o.max_steps;
+                d["first_step"] = o.first_step, d["max_step"] = o.max_step, d["dense_output"] = o.dense_output;
+                d["step"] = o.step, d["splitting_order"] = o.splitting_order;
+                return d;
+            },
+            "Every scalar option by name (not t_eval and events): what report.json records of a run.")
         .def_static("check", &integrate::check_option, py::arg("name"), py::arg("value"),
                     "The engine's rule for one scalar option (rtol, atol, n_out, max_steps, first_step, max_step, step, "
                     "splitting_order): ValueError naming the value when it breaks it. The scene schema applies it too.")

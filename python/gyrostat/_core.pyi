@@ -375,6 +375,10 @@ class Options:
         ...
     def __repr__(self) -> str:
         ...
+    def to_dict(self) -> dict:
+        """
+        Every option by name (t_eval and events by their count): what report.json records of a run.
+        """
     def validate(self, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
         The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.

@@ -1,6 +1,7 @@
 """The base of the validity checks: :class:`Assumption` (a check with its number and limit),
 :class:`ValidityWarning`, the limit :data:`SMALL`, the torques' own checks and :func:`check`,
-which adds each model's own (``ModelBase.assumptions``, in its family module). Each check names
+which adds each model's own (``ModelBase.assumptions``, in its family module). The torques'
+numbers are computed by their C++ headers (``torque.assumptions(motion)``). Each check names
 the assumption, its number and the limit; broken ones are warned about and returned.
 :mod:`gyrostat.validity` is what users call (it adds ``check_scene``).
 
@@ -13,7 +14,6 @@ reported as such.
 
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass
 
@@ -21,8 +21,10 @@ import numpy as np
 
 from gyrostat import _core
 
-SMALL = 0.1
-PAPER_RATIO = 10.0
+SMALL = _core.small
+""""≪ 1": the limit of every ratio that must be small (C++ torque::kSmall)."""
+PAPER_RATIO = _core.large
+""""≫ 1" for the conditions a paper prints as such (C++ torque::kLarge)."""
 
 
 class ValidityWarning(UserWarning):
@@ -51,24 +53,6 @@ def _omegas(model, states: np.ndarray) -> np.ndarray:
     return states[:, :3]
 
 
-def exact_reduction(model) -> bool:
-    """Whether the (a, r) reduction of a symmetric scene is exact (then r = 0 is no limit)."""
-    A1, A2, _ = np.asarray(model.body.moments)
-    if A1 != A2 or np.any(np.asarray(model.body.rotor)):
-        return False
-    for torque in model.torques:
-        if isinstance(torque, _core.ConstantTorque) and np.any(np.asarray(torque.moment)[:2]):
-            return False
-        if isinstance(torque, (_core.LinearDamping, _core.ResistiveMedium)):
-            matrices = [np.asarray(torque.matrix)] if isinstance(torque, _core.LinearDamping) else \
-                [np.asarray(c) for c in torque.coefficients]
-            for D in matrices:
-                off = D - np.diag(np.diag(D))
-                if np.any(off) or D[0, 0] != D[1, 1]:
-                    return False
-    return True
-
-
 def check(model, states, times=None, warn: bool = True, outputs: dict | None = None) -> list[Assumption]:
     """Checks a model's assumptions over the given states (one state or an (n, dim) array, e.g.
     a solution's ``y``; ``times`` for time-dependent coefficients): its torques' first, then the
@@ -78,36 +62,10 @@ def check(model, states, times=None, warn: bool = True, outputs: dict | None = N
     states = np.atleast_2d(np.asarray(states, float))
     times = np.zeros(len(states)) if times is None else np.asarray(times, float)
     omegas = _omegas(model, states)
-    J = np.asarray(model.body.moments, float)
-    A, C = J[0], J[2]
-    speed = float(np.max(np.linalg.norm(omegas, axis=1)))
-    results: list[Assumption] = []
-
-    for torque in model.torques:
-        if isinstance(torque, _core.ViscousCavity):
-            b = torque.equivalent_radius
-            reynolds = speed * b * b / torque.viscosity
-            results.append(Assumption("viscous cavity", "Reynolds number |ω| b²/ν ≪ 1", reynolds, SMALL,
-                                      reynolds <= SMALL, f"b = {b:.4g} (sphere of the same P0)"))
-            strength = torque.kappa * speed / J.min()
-            results.append(Assumption("viscous cavity", "cavity rate κ|ω|/A_min ≪ 1 (perturbation small)",
-                                      strength, SMALL, strength <= SMALL))
-        if isinstance(torque, _core.MovingMassDamper):
-            omega2 = torque.frequency**2
-            nu = np.abs((C - A) * omegas[:, 2] / A)
-            lag = float(np.max(torque.damping * nu / omega2))
-            results.append(Assumption("moving-mass damper", "λ|ν|/Ω² ≪ 1 (quasi-static lag, ν = (C−A)r/A)", lag,
-                                      SMALL, lag <= SMALL))
-            G = np.linalg.norm(omegas * J, axis=1)
-            inertial = float(np.max(G**2 / (A * A * omega2)))
-            results.append(Assumption("moving-mass damper", "|G|²/(A²Ω²) ≪ 1 (inertial corrections)", inertial, SMALL,
-                                      inertial <= SMALL))
-            first = omega2 / (torque.damping * speed) if torque.damping * speed > 0 else math.inf
-            second = torque.damping / speed if speed > 0 else math.inf
-            results.append(Assumption("moving-mass damper", "paper 001 condition (4): Ω²/(λ|ω|) ≫ 1", first,
-                                      PAPER_RATIO, first >= PAPER_RATIO, "as printed; not needed for (a, r)"))
-            results.append(Assumption("moving-mass damper", "paper 001 condition (4): λ|ω|/|ω|² ≫ 1", second,
-                                      PAPER_RATIO, second >= PAPER_RATIO, "as printed; not needed for (a, r)"))
+    # each torque's own numbers, as its C++ header declares them (torque.assumptions)
+    motion = _core.Motion(model.body.moments, omegas)
+    results: list[Assumption] = [Assumption(a.part, a.statement, a.value, a.limit, a.holds, a.note)
+                                 for torque in model.torques for a in torque.assumptions(motion)]
 
     results += model.assumptions(states, times, outputs)
 

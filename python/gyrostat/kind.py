@@ -23,11 +23,11 @@ from gyrostat import ladder as _ladder
 from gyrostat.modelbase import ModelBase
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, SceneError, Table, Vector, all_finite, at_least,
                              finite, non_negative, positive, span_order)
-from gyrostat.torques import TORQUES
+from gyrostat import torques as _torques
 
 __all__ = ["Kind", "Run", "KINDS", "register", "default_kind", "title_fields", "outputs_field", "build",
            "make_body", "make_torques", "integration", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
-           "SPLITTING_FIELDS"]
+           "SPLITTING_FIELDS", "engine_option", "engine_rule"]
 
 
 @dataclass
@@ -77,7 +77,7 @@ class Kind:
         report, and in ``derived`` what the plots need beside the runs."""
 
     def extra_columns(self, scene, solution) -> dict | None:
-        """Columns written beside a run's own (None: none)."""
+        """Columns written beside a run's own: name → (values, unit) (None: none)."""
         return None
 
     def draw(self, scene, solutions: dict, derived: dict, folder) -> list:
@@ -108,11 +108,6 @@ def default_kind() -> str:
 
 
 # ------------------------------------------------------------------------------------ schema pieces
-def _splitting_order(value):
-    if value not in (2, 4, 6):
-        raise ValueError("must be 2, 4 or 6")
-
-
 def _direction(value):
     if value not in (-1, 0, 1):
         raise ValueError("must be -1, 0 or 1")
@@ -176,11 +171,37 @@ def title_fields() -> dict[str, Field]:
 
 
 _DEFAULT = _core.Options()  # the engine's defaults: the one place where they live
+
+
+def engine_rule(name: str):
+    """The engine's own rule for the scalar option ``name`` (C++ ``Options::check``), as a schema
+    check: a scene is refused with the same words as the engine would use, at its key."""
+    def check(value) -> None:
+        try:
+            _core.Options.check(name, value)
+        except ValueError as error:  # "rtol = 2 must be below 1": the key and value are named by the schema
+            text = str(error)
+            raise ValueError(text.split(" ", 3)[3] if text.startswith(f"{name} = ") else text) from None
+    return check
+
+
+def engine_option(name: str, type_, doc: str, default=None, why: str = "", **extra) -> Field:
+    """A scene field for the engine option ``name``: its default (the engine's, unless a family
+    gives its own with the reason ``why``, which the field's doc then states) and its rule, both
+    from C++ (:class:`gyrostat.Options`, ``Options.check``)."""
+    if default is None:
+        default = getattr(_DEFAULT, name)
+    elif not why:
+        raise ValueError(f"a family's own default for {name} needs its reason")
+    return Field(type_, default=default, doc=doc + (f" (default {default:g}: {why})" if why else ""),
+                 check=engine_rule(name), **extra)
+
+
 METHOD = Field(Choice(*_core.methods()), default="auto",
                doc="integrator (gyrostat.METHODS); auto: DOP853 or CVODE BDF by the stiffness measured along the run")
-RTOL = Field(float, default=_DEFAULT.rtol, doc="relative tolerance", check=positive)
-ATOL = Field(float, default=_DEFAULT.atol, doc="absolute tolerance", check=non_negative)
-N_OUT = Field(int, default=_DEFAULT.n_out, doc="number of evenly spaced output times", check=at_least(2))
+RTOL = engine_option("rtol", float, "relative tolerance")
+ATOL = engine_option("atol", float, "absolute tolerance")
+N_OUT = engine_option("n_out", int, "number of evenly spaced output times (0: t0 and t1 only)")
 T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=span_order)
 ACCURACY = Field(float, default=_ladder.ACCURACY, check=positive,
                  doc="model = 'auto': the largest relative error accepted on the quantities the outputs need; "
@@ -199,9 +220,8 @@ BODY = Table({
 
 SPLITTING_FIELDS = {
     "step": Field(float, doc="fixed step of method 'splitting' (left out: chosen from rtol by the splitting's own "
-                        "error estimate)", unit="s", check=positive),
-    "splitting_order": Field(int, default=_DEFAULT.splitting_order, doc="order of the splitting composition: 2, 4 or 6",
-                             check=_splitting_order),
+                        "error estimate)", unit="s", check=[positive, engine_rule("step")]),
+    "splitting_order": engine_option("splitting_order", int, "order of the splitting composition: 2, 4 or 6"),
 }
 
 
@@ -226,8 +246,8 @@ def make_body(doc: dict) -> _core.Body:
 
 
 def make_torques(doc: dict) -> list:
-    """The scene's [[torques]], built by the registry :data:`gyrostat.torques.TORQUES`."""
-    return [build(f"torques[{i}]", TORQUES[spec["type"]][1], spec) for i, spec in enumerate(doc.get("torques", []))]
+    """The scene's [[torques]], each built by its core class (:func:`gyrostat.torques.build`)."""
+    return [build(f"torques[{i}]", _torques.build, spec) for i, spec in enumerate(doc.get("torques", []))]
 
 
 def integration(doc: dict, kind: Kind, **extra) -> dict:

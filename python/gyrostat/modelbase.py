@@ -98,6 +98,18 @@ class ModelBase:
         return tuple(self._core.output_names)
 
     @property
+    def quantities(self) -> list[dict]:
+        """What the C++ model declares about each state component and output: ``name``,
+        ``unit``, ``description``, ``role`` ("state" or "output") and ``conserved``."""
+        return list(self._core.quantities)
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The SI unit of t, of each state component and of each output ("1": dimensionless), as
+        the C++ model declares them."""
+        return {"t": "s", **{q["name"]: q["unit"] for q in self._core.quantities}}
+
+    @property
     def attitude(self) -> bool:
         """Whether the state holds the attitude quaternion (q_w, q_x, q_y, q_z)."""
         return "q_w" in self._core.state_names

@@ -1,5 +1,5 @@
-"""What a run leaves on disk: CSV/NPZ writers with the units of :mod:`gyrostat.units`
-(``output.UNITS``, ``output.unit``), the report (report.json), and the output folder's claim."""
+"""What a run leaves on disk: CSV/NPZ writers (each column with the unit its C++ model declares),
+the report (report.json), and the output folder's claim."""
 
 from __future__ import annotations
 
@@ -11,29 +11,29 @@ from pathlib import Path
 
 import numpy as np
 
-from gyrostat.units import UNITS, unit  # noqa: F401  (output.UNITS, output.unit)
 
 
-def write_columns(columns: dict[str, np.ndarray], folder: Path, stem: str) -> list[Path]:
+def write_columns(columns: dict[str, np.ndarray], units: dict[str, str], folder: Path, stem: str) -> list[Path]:
     """STEM.csv (a column per quantity, its unit in the header) and STEM.npz (the same arrays by
-    name, plus their units as JSON under ``units``)."""
+    name, plus their units as JSON under ``units``); ``units`` gives each column's unit."""
     folder.mkdir(parents=True, exist_ok=True)
     csv_path = folder / f"{stem}.csv"
     with csv_path.open("w", newline="") as handle:
         writer = csv.writer(handle)
-        writer.writerow([f"{name} [{unit(name)}]" for name in columns])
+        writer.writerow([f"{name} [{units[name]}]" for name in columns])
         writer.writerows(np.column_stack([np.asarray(v, float) for v in columns.values()]).tolist())
     npz_path = folder / f"{stem}.npz"
-    np.savez(npz_path, **columns, units=json.dumps({name: unit(name) for name in columns}))
+    np.savez(npz_path, **columns, units=json.dumps({name: units[name] for name in columns}))
     return [csv_path, npz_path]
 
 
 def write_solution(solution, folder: Path, stem: str = "result", extra: dict | None = None) -> list[Path]:
-    """t, the state and every output of a :class:`gyrostat.Solution` (plus ``extra`` columns)."""
-    columns = solution.columns()
-    if extra:
-        columns.update(extra)
-    return write_columns(columns, folder, stem)
+    """t, the state and every output of a :class:`gyrostat.Solution` with their declared units,
+    plus ``extra`` columns (name → (values, unit))."""
+    columns, units = solution.columns(), solution.units
+    for name, (values, unit) in (extra or {}).items():
+        columns[name], units[name] = values, unit
+    return write_columns(columns, units, folder, stem)
 
 
 def _number(x):
@@ -62,7 +62,7 @@ def run_report(solution) -> dict:
     report = {"method": solution.method, "status": solution.status, "success": bool(solution.success),
               "message": solution.message, "stats": solution.stats, "notes": list(solution.notes),
               "t_last": solution.t_last, "y_last": solution.y_last, "h_next": solution.h_next,  # to continue
-              "conserved": {}}
+              "options": solution.options.to_dict(), "conserved": {}}
     switches = getattr(solution, "method_switches", [])
     if switches or solution.method == "auto":  # method 'auto': which integrators, switched where
         report["methods_used"] = list(getattr(solution, "methods_used", ()))

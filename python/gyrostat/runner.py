@@ -127,7 +127,7 @@ def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = Tr
         solution = solutions[name]
         stem = "result" if len(runs) == 1 or name == "full" else f"result_{name}"
         files += output.write_solution(solution, folder, stem, scene.kind.extra_columns(scene, solution))
-        report["units"].update({column: output.unit(column) for column in solution.columns()})
+        report["units"].update(solution.units)
     drawn = plots.draw_scene(scene, solutions, derived, folder)
     report["plots_skipped"] = plots.skipped(scene, drawn)
     files += drawn

@@ -47,7 +47,7 @@ from gyrostat.families import KINDS, default_kind
 from gyrostat.kind import Kind, Run, build
 from gyrostat.schema import ArrayOf, Field, SceneError, Table, describe, validate
 from gyrostat.solve import check_run
-from gyrostat.torques import TORQUE, TORQUES  # noqa: F401  (scene.TORQUES, scene.TORQUE)
+from gyrostat.torques import TORQUE
 
 __all__ = ["Scene", "Run", "SceneError", "KINDS", "SCENES", "load", "scene_format"]
 

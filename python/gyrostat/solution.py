@@ -89,7 +89,9 @@ class Solution:
             y=np.vstack([p[1] for p in parts]) if parts else np.zeros((0, dim)),
             outputs=np.vstack([p[2] for p in parts]) if parts else np.zeros((0, n_out)),
             state_names=tuple(core.state_names), output_names=tuple(core.output_names),
-            output_conserved=(False,) * n_out,
+            state_units=tuple(q["unit"] for q in core.quantities if q["role"] == "state"),
+            output_units=tuple(q["unit"] for q in core.quantities if q["role"] == "output"),
+            output_conserved=(False,) * n_out, options=last._result.options,
             stats=SimpleNamespace(**stats, last_step=last.stats["last_step"]),
             t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status, message=last.message,
             success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
@@ -148,6 +150,21 @@ class Solution:
 
     def __contains__(self, name: str) -> bool:
         return name in self._result.state_names or name in self._result.output_names
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The SI unit of every column (t, each state component, each output; "1":
+        dimensionless), as the C++ model declares them."""
+        r = self._result
+        units = {"t": "s", **dict(zip(r.state_names, r.state_units)), **dict(zip(r.output_names, r.output_units))}
+        if self.rung is not None:
+            units["rung"] = "1"
+        return units
+
+    @property
+    def options(self):
+        """The options the run was made with (:class:`gyrostat.Options`, without t_eval and events)."""
+        return self._result.options
 
     def columns(self) -> dict[str, np.ndarray]:
         """t, every state component and every output, by name (what the CSV/NPZ writers save)."""
@@ -226,9 +243,9 @@ class Solution:
         import xarray as xr
 
         from gyrostat.events import variable_name
-        from gyrostat.units import unit
 
-        variables = {name: ("time", values, {"units": unit(name)}) for name, values in self.columns().items()
+        units = self.units
+        variables = {name: ("time", values, {"units": units[name]}) for name, values in self.columns().items()
                      if name != "t"}
         for label, times in zip(self.event_names, self.t_events):
             key = variable_name(label)

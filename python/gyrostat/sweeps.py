@@ -385,6 +385,7 @@ class Plan:
         base = next(r for r in scene.runs if r.name == run)
         self.state_names = tuple(base.model.state_names)
         self.output_names = tuple(base.model.output_names)
+        self.units = base.model.units  # as the C++ model declares them
         self.event_labels = tuple(e.label for e in base.options.get("events", ()))
         self.n_out = int(base.options.get("n_out", _core.Options().n_out))
         self.parameters = _parameters(vary)
@@ -685,7 +686,7 @@ def _attributes(plan: Plan, name: str) -> dict:
     for prefix, meaning in (("final_", "at the end of the run"), ("min_", "minimum over the output times"),
                             ("max_", "maximum over the output times")):
         if name.startswith(prefix) and name[len(prefix):] in plan.names:
-            return {"units": output.unit(name[len(prefix):]), "description": f"{name[len(prefix):]} {meaning}"}
+            return {"units": plan.units[name[len(prefix):]], "description": f"{name[len(prefix):]} {meaning}"}
     if name.startswith("first_"):
         return {"units": "s", "description": "time of the event's first crossing (NaN: none)"}
     if name.startswith("count_"):
@@ -705,7 +706,7 @@ def _attributes(plan: Plan, name: str) -> dict:
         return fixed[name]
     if name in STATS:
         return {"description": f"solver statistics: {name}"}
-    return {"units": output.unit(name)}
+    return {"units": plan.units.get(name, "1")}
 
 
 def _dataset(plan: Plan, arrays: dict, attrs: dict):

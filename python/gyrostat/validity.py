@@ -13,10 +13,10 @@ reported as such.
 
 from __future__ import annotations
 
-from gyrostat.assumptions import PAPER_RATIO, SMALL, Assumption, ValidityWarning, check, exact_reduction
+from gyrostat.assumptions import PAPER_RATIO, SMALL, Assumption, ValidityWarning, check
 from gyrostat.scene import Scene
 
-__all__ = ["SMALL", "PAPER_RATIO", "ValidityWarning", "Assumption", "exact_reduction", "check", "check_scene"]
+__all__ = ["SMALL", "PAPER_RATIO", "ValidityWarning", "Assumption", "check", "check_scene"]
 
 
 def check_scene(scene, warn: bool = True) -> list[Assumption]:

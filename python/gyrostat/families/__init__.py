@@ -9,16 +9,24 @@ validity checks, ladder rungs, plots and scene kinds):
 * :mod:`gyrostat.families.orthogonal_torque`: the orthogonal servo torque (kind
   ``orthogonal_torque``).
 
-Importing this package imports every family, each of which registers its kinds into
-:data:`KINDS` (:mod:`gyrostat.kind`); the generic layers (scene, runner, sweeps, plots) look
-kinds up there and name none. A new family is one more module here and one more line below.
+Importing this package imports every module in it (a new family is one more module here: nothing
+else to edit), each of which registers its kinds into :data:`KINDS` (:mod:`gyrostat.kind`); the
+generic layers (scene, runner, sweeps, plots) look kinds up there and name none. The kinds are
+listed with the default kind's family first, then by module name.
 """
 
-# in this order: the order of the kinds in ``scene-format`` and in error messages
-from gyrostat.families import rigid_body  # noqa: F401, I001  (each import registers the family's kinds)
-from gyrostat.families import moving_mass  # noqa: F401
-from gyrostat.families import lagrange_top  # noqa: F401
-from gyrostat.families import orthogonal_torque  # noqa: F401
+import importlib
+import pkgutil
+
 from gyrostat.kind import KINDS, default_kind
+
+for _module in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
+    importlib.import_module(f"{__name__}.{_module.name}")  # each module registers its family's kinds
+
+# the default kind's family first, then the others by module name
+_first = type(KINDS[default_kind()]).__module__
+_order = sorted(KINDS.values(), key=lambda kind: type(kind).__module__ != _first)
+KINDS.clear()
+KINDS.update({kind.name: kind for kind in _order})
 
 __all__ = ["KINDS", "default_kind"]

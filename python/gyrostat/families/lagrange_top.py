@@ -41,8 +41,8 @@ from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL, Assumption, ValidityWarning
 from gyrostat.events import Event
 from gyrostat.figures import LEGEND_SIZE, keep, plt
-from gyrostat.kind import (ACCURACY, METHOD, PHASE, SPLITTING_FIELDS, Kind, Run, build, integration, outputs_field,
-                           register, title_fields)
+from gyrostat.kind import (ACCURACY, METHOD, PHASE, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration,
+                           outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_torques, number
 from gyrostat.schema import (Choice, Field, ListOf, SceneError, Table, Vector, all_finite, at_least, finite,
                              non_negative, positive)
@@ -316,6 +316,10 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
 
 
 # ------------------------------------------------------------------------------------ the scene kind
+WHY_TOLERANCES = ("the scene compares the full top with the nutation-averaged one over a long slow time, whose "
+                  "O(eps) difference the integration error must stay far below")
+
+
 class LagrangeTopKind(Kind):
     name = "lagrange_top"
     doc = ("Paper 003: the heavy symmetric top under M = eps(-a(tau) p, -a(tau) q, -b(tau) r), tau = eps t: the "
@@ -351,10 +355,9 @@ class LagrangeTopKind(Kind):
                                                        doc="compare: the full and the averaged top side by side; auto: "
                                                            "the cheapest that meets the accuracy (the model ladder)"),
                                         "accuracy": ACCURACY, "phase": PHASE,
-                                        "method": METHOD, "rtol": Field(float, default=1e-10, doc="relative tolerance",
-                                                                        check=positive),
-                                        "atol": Field(float, default=1e-12, doc="absolute tolerance",
-                                                      check=non_negative),
+                                        "method": METHOD,
+                                        "rtol": engine_option("rtol", float, "relative tolerance", 1e-10, WHY_TOLERANCES),
+                                        "atol": engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
                                         "tau_end": Field(float, required=True, doc="end of the slow time tau = eps t",
                                                          unit="s", check=positive),
                                         "n_out": Field(int, default=4001, doc="number of output times",
@@ -390,7 +393,7 @@ class LagrangeTopKind(Kind):
 
     def extra_columns(self, scene, solution):
         """The slow time τ = εt of paper 003, beside t."""
-        return {"tau": scene.doc["torque"]["epsilon"] * solution.t}
+        return {"tau": (scene.doc["torque"]["epsilon"] * solution.t, "s")}
 
     def draw(self, scene, solutions, derived, folder):
         return draw(scene, solutions, derived, folder)

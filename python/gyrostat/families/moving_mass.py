@@ -30,7 +30,7 @@ from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, T_S
 from gyrostat.modelbase import ModelBase, check_body, check_torques, floats
 from gyrostat.schema import ArrayOf, Choice, Field, SceneError, Table, Vector, all_finite
 from gyrostat.solution import Solution
-from gyrostat.torques import TORQUE, TORQUES
+from gyrostat.torques import BY_KIND, TORQUE, schema
 
 
 class MovingMassModel(ModelBase):
@@ -101,7 +101,7 @@ class MovingMass(Kind):
 
     @property
     def schema(self) -> Table:
-        damper_table, _ = TORQUES["moving_mass_damper"]
+        damper_table = schema(BY_KIND["moving_mass_damper"])
         return Table({
             **title_fields(),
             "body": Field(BODY, required=True, doc="the system's moments with the mass at rest"),

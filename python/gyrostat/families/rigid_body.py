@@ -30,7 +30,7 @@ import numpy as np
 
 from gyrostat import _core, figures
 from gyrostat import ladder as _ladder
-from gyrostat.assumptions import SMALL, Assumption, check, exact_reduction
+from gyrostat.assumptions import SMALL, Assumption, check
 from gyrostat.events import Event
 from gyrostat.figures import LEGEND_SIZE, error, euler_angles, invariants, omega, plt
 from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, SPLITTING_FIELDS, T_SPAN, Kind, Run,
@@ -126,6 +126,12 @@ class AveragedModel(ModelBase):
     def C(self) -> float:
         return float(self.body.moments[2])
 
+    @property
+    def exact_reduction(self) -> bool:
+        """Whether (a, r) is exact rather than averaged (a symmetric body without rotor under
+        torques that commute with rotations about z: the C++ model says): then r = 0 is no limit."""
+        return self._core.exact_reduction()
+
     def fast_frequency(self, r: float) -> float:
         """|φ̇| = |(C − A) r / A|."""
         return self._core.fast_frequency(number(r, "r"))
@@ -156,7 +162,7 @@ class AveragedModel(ModelBase):
             results.append(Assumption("averaged model", "asymmetry against the separatrix distance "
                                       "(|B − A|/A)/(|G²/2T − A|/A) ≪ 1", float(ratio[worst]), SMALL,
                                       ratio[worst] <= SMALL, f"worst at t = {times[worst]:.4g}"))
-        if exact_reduction(self):
+        if self.exact_reduction:
             results.append(Assumption("averaged model", "fast frequency ≫ slow rates", 0.0, SMALL, True,
                                       "not needed: the (a, r) reduction is exact for this symmetric scene"))
         else:
@@ -235,29 +241,25 @@ class LotkaVolterra:
 
 
 def lotka_volterra(model) -> LotkaVolterra:
-    """The coefficients of paper 002's system (6) from a model's physical parameters."""
+    """The coefficients of paper 002's system (6) from each torque's averaged contribution, as its
+    C++ header gives it (``torque.averaged``): with Y = a², X = r², the system is Lotka–Volterra
+    when each contribution has ṙ/r = (λ1 + μ1 a²)/2 and ȧ/a = (λ2 + μ2 r²)/2, which is read off at
+    (a, r) = (0, 1), (1, 0) and (1, 1) and checked at a fourth point. A torque without that form
+    (a constant axial torque, the damper's r⁴ terms) raises ValueError naming it."""
     A, C = float(model.body.moments[0]), float(model.body.moments[2])
-    D = np.zeros((3, 3))
-    kappa = 0.0
+    lambda1 = lambda2 = mu1 = mu2 = 0.0
     for torque in model.torques:
-        if isinstance(torque, _core.LinearDamping):
-            D += np.asarray(torque.matrix)
-        elif isinstance(torque, _core.ResistiveMedium):
-            D += np.asarray(torque.at(0.0))
-        elif isinstance(torque, _core.ViscousCavity):
-            kappa += torque.kappa
-        elif isinstance(torque, _core.ConstantTorque):
-            if np.asarray(torque.moment)[2] != 0.0:
-                raise ValueError("paper 002's Lotka-Volterra form has no constant axial torque (M3 = "
-                                 f"{np.asarray(torque.moment)[2]!r})")
-        else:
-            raise ValueError(f"paper 002's Lotka-Volterra form has no term for {type(torque).__name__}")
-    return LotkaVolterra(
-        lambda1=-2.0 * D[2, 2] / C,
-        lambda2=-(D[0, 0] + D[1, 1]) / A,
-        mu1=2.0 * kappa * (C - A) / (A * C),
-        mu2=2.0 * kappa * C * (A - C) / A**3,
-    )
+        def rates(a, r):
+            return np.asarray(torque.averaged(0.0, a, r, A, C), float)
+        l1, l2 = 2.0 * rates(0.0, 1.0)[1], 2.0 * rates(1.0, 0.0)[0]
+        m1, m2 = 2.0 * rates(1.0, 1.0)[1] - l1, 2.0 * rates(1.0, 1.0)[0] - l2
+        a, r = 1.5, 0.75
+        expected = np.array([a * (l2 + m2 * r * r), r * (l1 + m1 * a * a)]) / 2.0
+        if not np.allclose(rates(a, r), expected, rtol=1e-12, atol=1e-300):
+            raise ValueError(f"paper 002's Lotka-Volterra form has no term for {torque!r}: its averaged "
+                             "contribution is not (a (λ2 + μ2 r²), r (λ1 + μ1 a²))/2")
+        lambda1, lambda2, mu1, mu2 = lambda1 + l1, lambda2 + l2, mu1 + m1, mu2 + m2
+    return LotkaVolterra(lambda1=lambda1, lambda2=lambda2, mu1=mu1, mu2=mu2)
 
 
 def slow_columns(solution) -> np.ndarray:
@@ -394,7 +396,7 @@ def averaged_rung(doc: dict, body, torques, omega, drawable: tuple[str, ...], at
             blocked = f"no averaged model: {error}"
     if blocked:
         return _ladder.Rung("averaged", None, y0, description, blocked=blocked, run="averaged")
-    exact = exact_reduction(model)
+    exact = model.exact_reduction
     fast = model.fast_frequency(y0[1])
     span = doc["integration"]["t_span"]
     # an exact reduction has no fast motion to resolve: its probe is the longest one, a twentieth of the span

@@ -1,0 +1,78 @@
+"""Files generated from the C++ declarations are current, and what Python shows of a torque or a
+model is what C++ declares (nothing restated).
+
+* ``python/gyrostat/_core.pyi`` equals a fresh ``docs/stubs.py`` run on the built module
+  (pybind11-stubgen, pinned in the ``test`` extra); ``docs/scenes.md`` is checked in
+  tests/test_scene_errors.py.
+* The torque registry, the scene schema of ``[[torques]]`` and the package namespace hold
+  exactly the core's torques, with the core's parameters and units.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrostat as g
+from gyrostat import _core, torques
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def test_type_stubs_are_current():
+    # Fails when a binding changed and `python docs/stubs.py` was not run (checked by adding a
+    # method to a binding without regenerating: this test failed).
+    run = subprocess.run([sys.executable, str(ROOT / "docs" / "stubs.py"), "--check"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+
+
+def test_every_core_torque_is_registered_once_and_exported():
+    kinds = [cls.kind for cls in _core.torque_types]
+    assert len(set(kinds)) == len(kinds) == len(torques.TORQUE_TYPES) == 5
+    for cls in _core.torque_types:
+        assert getattr(g, cls.__name__) is cls, f"gyrostat.{cls.__name__} is not the core's class"
+        assert torques.BY_KIND[cls.kind] is cls
+        assert set(torques.TORQUE.variants[cls.kind].fields) == {p["name"] for p in cls.parameters}
+
+
+def test_scene_fields_carry_the_declared_units_and_choices():
+    cavity = torques.TORQUE.variants["viscous_cavity"]
+    assert cavity.fields["radius"].unit == "m" and cavity.fields["p0"].unit == "m^5"
+    assert ("p0", "radius") in cavity.one_of  # exactly one of them, as C++ declares
+    damping = torques.TORQUE.variants["linear_damping"]
+    assert damping.fields["matrix"].unit == "N m s" and not damping.fields["matrix"].required
+
+
+@pytest.mark.parametrize("make, expected", [
+    # the keyword form of every constructor builds what the positional form builds
+    (lambda: g.LinearDamping(diagonal=[1.0, 2.0, 3.0]).matrix, np.diag([1.0, 2.0, 3.0])),
+    (lambda: g.ViscousCavity(density=1.26, viscosity=33.4, radius=2.0).p0, 8 * np.pi * 2.0**7 / 525),
+])
+def test_alternative_parameters_build_the_same_torque(make, expected):
+    np.testing.assert_allclose(make(), expected, rtol=1e-15)  # one formula, rounding only
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: g.ViscousCavity(1.0, 2.0), r"ViscousCavity: give exactly one of p0 or radius \(got 0\)"),
+    (lambda: g.ViscousCavity(1.0, 2.0, 3.0, radius=1.0), r"exactly one of p0 or radius \(got 2\)"),
+    (lambda: g.ConstantTorque(moment=[0, 0, 1], torque=1), r"ConstantTorque: unknown parameter 'torque' \(parameters: moment\)"),
+    (lambda: g.MovingMassDamper(1.0, 1.0, 10.0), r"MovingMassDamper: missing parameter 'damping'"),
+    (lambda: g.MovingMassDamper(1.0, -1.0, 10.0, 1.0), r"arm rho = -1 must be finite and non-negative"),
+    (lambda: g.Model(g.Body([1, 2, 3]), [object()]), r"ConstantTorque, LinearDamping, ResistiveMedium, ViscousCavity, "
+                                                      r"MovingMassDamper"),
+])
+def test_bad_torque_arguments_are_named(make, message):
+    with pytest.raises((TypeError, ValueError), match=message):
+        make()
+
+
+def test_units_of_a_run_come_from_the_model():
+    sol = g.solve(g.Model(g.Body([1.0, 2.0, 3.0]), [], attitude=True), [1.0, 0.5, -0.3], (0, 1), n_out=3)
+    assert sol.units["p"] == "rad/s" and sol.units["q_w"] == "1"
+    assert sol.units["angular_momentum_norm"] == "kg m^2/s" and sol.units["psi"] == "rad"
+    declared = {q["name"]: q["unit"] for q in g.Model(g.Body([1.0, 2.0, 3.0]), [], attitude=True)._core.quantities}
+    assert sol.units == {"t": "s", **declared}
