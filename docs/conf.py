@@ -46,10 +46,10 @@ def registries(folder: Path) -> None:
 
     folder.mkdir(parents=True, exist_ok=True)
     torques = "".join(f".. autoclass:: gyrostat.{cls.__name__}\n   :members:\n\n" for cls in gyrostat._core.torque_types)
-    (folder / "torques.rst").write_text(torques)
+    (folder / "torques.inc").write_text(torques)
     families = "".join(f".. automodule:: gyrostat.families.{m.name}\n   :members:\n   :no-index:\n\n"
                        for m in pkgutil.iter_modules(gyrostat.families.__path__))
-    (folder / "families.rst").write_text(families)
+    (folder / "families.inc").write_text(families)
 
 
 def setup(app):

@@ -251,7 +251,7 @@ def test_bad_distributions_and_values_name_the_value():
     doc = scene("forced_damped", t_span=[0.0, 1.0], n_out=5)
     ds = g.sweep(doc, {"integration.rtol": [1e-8, -1.0]}, progress=False)  # a key's own checks, per member
     assert list(ds["status"].values) == ["success", "invalid_input"]
-    assert ds["message"].values[1] == "[integration] rtol = -1.0: must be positive"
+    assert ds["message"].values[1] == "[integration] rtol = -1.0: must be a finite positive number"  # the engine's rule
 
 
 def test_memory_is_checked_before_anything_runs(monkeypatch):

@@ -11,8 +11,7 @@ over a grid or a seeded dispersion of its entries (locally or on Dask) into an x
 """
 
 from gyrostat import _core
-from gyrostat._core import (Body, ConstantTorque, LinearDamping, MovingMassDamper, ResistiveMedium,
-                            TorqueFreeSolution, ViscousCavity)
+from gyrostat._core import Body, TorqueFreeSolution
 from gyrostat.assumptions import ValidityWarning
 from gyrostat.families.moving_mass import MovingMassModel
 from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel, torque_free
@@ -22,13 +21,13 @@ from gyrostat.solve import METHODS, Options, solve, solve_ensemble
 from gyrostat.sweeps import LogUniform, Normal, Parameter, Uniform, sweep
 from gyrostat import attitude, averaged, lagrange, orthogonal, scene, sweeps, validity  # noqa: E402
 
+# every torque class of the core, under its own name (gyrostat.ConstantTorque, …): generated from
+# the C++ declarations, so a new torque needs nothing here
+globals().update({cls.__name__: cls for cls in _core.torque_types})
+
 __all__ = [
     "Body",
-    "ConstantTorque",
-    "LinearDamping",
-    "ResistiveMedium",
-    "ViscousCavity",
-    "MovingMassDamper",
+    *(cls.__name__ for cls in _core.torque_types),
     "TorqueFreeSolution",
     "ModelBase",
     "Model",

@@ -377,7 +377,7 @@ class Options:
         ...
     def to_dict(self) -> dict:
         """
-        Every option by name (t_eval and events by their count): what report.json records of a run.
+        Every scalar option by name (not t_eval and events): what report.json records of a run.
         """
     def validate(self, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
