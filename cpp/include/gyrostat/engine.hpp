@@ -20,7 +20,8 @@
 namespace gyrostat {
 
 /// Every model the library integrates (each implements model/system.hpp). Adding a model: its
-/// header, one alternative here, one solve_system overload (src/solve_*.cpp) and its binding.
+/// header (included above), one alternative here, and its constructor in the bindings
+/// (cpp/bindings/expose_models.cpp); its solve is instantiated by src/solve_part*.cpp.
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
                               model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
@@ -64,20 +65,12 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
                                               const integrate::Options& options, int threads = 0,
                                               const integrate::Control* control = nullptr, bool batch = true);
 
-// One overload per model type, each compiled in its own translation unit (src/solve_*.cpp).
-#define GYROSTAT_DECLARE_SOLVE(Model)                                                                        \
-    integrate::Result solve_system(const Model& model, double t0, const Eigen::VectorXd& y0, double t1,     \
-                                   const integrate::Options& options, const integrate::Control* control);
-GYROSTAT_DECLARE_SOLVE(model::Gyrostat<false>)
-GYROSTAT_DECLARE_SOLVE(model::Gyrostat<true>)
-GYROSTAT_DECLARE_SOLVE(model::AveragedSymmetric)
-GYROSTAT_DECLARE_SOLVE(model::MovingMass)
-GYROSTAT_DECLARE_SOLVE(model::LagrangeTop)
-GYROSTAT_DECLARE_SOLVE(model::LagrangeAveraged)
-GYROSTAT_DECLARE_SOLVE(model::OrthogonalTorque<false>)
-GYROSTAT_DECLARE_SOLVE(model::OrthogonalTorque<true>)
-GYROSTAT_DECLARE_SOLVE(model::TorqueFree)
-GYROSTAT_DECLARE_SOLVE(model::TorqueFreeAttitude)
+/// The integration of one model type: the whole engine (every method) instantiated for it. Each
+/// alternative of AnyModel is instantiated in one of the translation units src/solve_part*.cpp,
+/// chosen by its index (solve_system.hpp), so that a new model needs no line there.
+template <class Model>
+integrate::Result solve_system(const Model& model, double t0, const Eigen::VectorXd& y0, double t1,
+                               const integrate::Options& options, const integrate::Control* control);
 #undef GYROSTAT_DECLARE_SOLVE
 
 }  // namespace gyrostat

@@ -138,8 +138,7 @@ class MovingMass(Kind):
         reduced_model = build("damper", Model, body, [damper, *torques])
         checks = [a for a in check(reduced_model, omega, warn=False)
                   if a.part == "moving-mass damper" and "condition (4)" not in a.statement]
-        A, C = body.moments[0], body.moments[2]
-        fast = abs((C - A) * omega[2] / A)
+        fast = _core.Motion(body.moments, omega[np.newaxis, :]).axial_frequency  # |(C − A) r / A|, from C++
         reduced = _ladder.Rung(
             "reduced", reduced_model, omega, "the rigid body under the damper's quasi-static torque (Chernousko)",
             compare=compare, fast_period=2.0 * math.pi / fast if fast > 0 else math.inf,

@@ -1,0 +1,9 @@
+// Instantiates the engine for the models at indices 3, 7, 11, 15 of AnyModel (solve_system.hpp):
+// one of four translation units, for parallel builds.
+#include "gyrostat/solve_system.hpp"
+
+namespace gyrostat {
+
+GYROSTAT_INSTANTIATE_SOLVE_PART(3)
+
+}  // namespace gyrostat
