@@ -76,3 +76,51 @@ def test_units_of_a_run_come_from_the_model():
     assert sol.units["angular_momentum_norm"] == "kg m^2/s" and sol.units["psi"] == "rad"
     declared = {q["name"]: q["unit"] for q in g.Model(g.Body([1.0, 2.0, 3.0]), [], attitude=True)._core.quantities}
     assert sol.units == {"t": "s", **declared}
+
+
+@pytest.mark.parametrize("key, value, message", [
+    ("rtol", 2.0, r"\[integration\] rtol = 2\.0: must be below 1"),           # was accepted by the schema
+    ("rtol", 1e-16, r"\[integration\] rtol = 1e-16: is below 1e-14"),
+    ("atol", -1.0, r"\[integration\] atol = -1\.0: must be finite and non-negative"),
+    ("n_out", 1, r"\[integration\] n_out = 1: must be at least 2 \(or 0: t0 and t1 only\)"),
+])
+def test_scene_options_take_the_engine_rule_at_their_key(key, value, message):
+    from gyrostat.scene import Scene, SceneError
+
+    doc = {"body": {"moments": [1.0, 2.0, 3.0]}, "initial": {"omega": [1.0, 0.0, 0.0]},
+           "integration": {"t_span": [0.0, 1.0], key: value}}
+    with pytest.raises(SceneError, match=message):
+        Scene.from_dict(doc, "bad")
+    with pytest.raises(ValueError, match=rf"{key} = "):  # the same rule, from the engine itself
+        _core.Options.check(key, value)
+
+
+def test_every_kind_takes_the_engine_defaults_or_says_why():
+    from gyrostat.kind import KINDS
+
+    defaults = _core.Options()
+    for name, kind in KINDS.items():
+        integration = kind.schema.fields["integration"].type
+        for key in ("rtol", "atol", "n_out"):
+            field = integration.fields.get(key)
+            if field is None:
+                continue
+            if field.default != getattr(defaults, key):
+                assert "default" in field.doc and ":" in field.doc, f"{name}.{key}: own default without its reason"
+
+
+def test_a_run_records_its_options_and_report_json_writes_them(tmp_path):
+    sol = g.solve(g.Model(g.Body([1.0, 2.0, 3.0]), []), [1.0, 0.5, -0.3], (0, 1), rtol=1e-9, atol=1e-11, n_out=5)
+    assert sol.options.rtol == 1e-9 and sol.options.atol == 1e-11 and sol.options.n_out == 5
+    assert sol.options.method == "dop853"
+    from gyrostat.runner import run_scene
+
+    scene = ROOT / "python" / "gyrostat" / "scenes" / "torque_free_integrated.toml"
+    report = run_scene(scene, tmp_path, progress=False)
+    import tomllib
+
+    integration = tomllib.loads(scene.read_text())["integration"]
+    for run in report["runs"].values():
+        for key in ("rtol", "atol", "n_out"):
+            if key in integration:
+                assert run["options"][key] == integration[key]

@@ -44,8 +44,7 @@ from gyrostat.figures import LEGEND_SIZE, keep, plt
 from gyrostat.kind import (ACCURACY, METHOD, PHASE, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration,
                            outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_torques, number
-from gyrostat.schema import (Choice, Field, ListOf, SceneError, Table, Vector, all_finite, at_least, finite,
-                             non_negative, positive)
+from gyrostat.schema import Choice, Field, ListOf, SceneError, Table, Vector, all_finite, finite, positive
 
 SEPARATRIX_LIMIT = 1e-3
 """1 − k² below this: near the separatrix (K(k) ≈ ln(4/√(1 − k²)), v has an infinite slope)."""
@@ -360,8 +359,9 @@ class LagrangeTopKind(Kind):
                                         "atol": engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
                                         "tau_end": Field(float, required=True, doc="end of the slow time tau = eps t",
                                                          unit="s", check=positive),
-                                        "n_out": Field(int, default=4001, doc="number of output times",
-                                                       check=at_least(2)),
+                                        "n_out": engine_option("n_out", int, "number of output times", 4001,
+                                                               "enough points per nutation period over the paper's "
+                                                               "slow-time span to draw the nutation"),
                                         **SPLITTING_FIELDS}),
                                  required=True, doc="the run"),
             "outputs": outputs_field(self.plots, ["slow", "roots", "nutation", "validity"]),

@@ -44,7 +44,7 @@ from gyrostat.kind import (BODY, METHOD, SPLITTING_FIELDS, Kind, Run, build, eng
                            outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_torques, flag
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, OneOf, SceneError, Table, Variants, Vector, all_finite,
-                             at_least, increasing, non_negative, nonzero_quaternion, positive, span_order)
+                             increasing, nonzero_quaternion, positive, span_order)
 from gyrostat.schema import finite as finite_value
 from gyrostat.solve import solve
 
@@ -685,8 +685,8 @@ class OrthogonalTorqueKind(Kind):
                                         "atol": engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
                                         "t_span": Field(Vector(2), default=[0.0, 60.0], doc="(t0, t1)", unit="s",
                                                         check=span_order),
-                                        "n_out": Field(int, default=1201, doc="number of output times",
-                                                       check=at_least(2)),
+                                        "n_out": engine_option("n_out", int, "number of output times", 1201,
+                                                               "20 points per second over the default 60 s span"),
                                         "eta": Field(float, default=ETA,
                                                      doc="regularisation: delta = eta |omega| |G|", check=positive),
                                         **SPLITTING_FIELDS}),
