@@ -70,14 +70,33 @@ def keep(fig, path: Path, wanted: bool, files: list[Path]) -> None:
         plt.close(fig)
 
 
+_SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def unit_label(solution, name: str, text: str | None = None) -> str:
+    """``text [unit]`` for an axis: the unit of ``name`` as its C++ model declares it
+    (:attr:`gyrostat.Solution.units`), with powers as superscripts (kg m^2/s → kg m²/s)."""
+    unit = solution.units[name]
+    pretty = "".join(part.translate(_SUPERSCRIPTS) if i % 2 else part
+                     for i, part in enumerate(_split_powers(unit)))
+    return f"{text or name} [{pretty}]"
+
+
+def _split_powers(unit: str) -> list[str]:
+    """"kg m^2/s" → ["kg m", "2", "/s"]: the odd items are exponents."""
+    import re
+
+    return re.split(r"\^\(?(-?\d+)\)?", unit)
+
+
 def omega(solution: Solution, title: str, path: Path, reference: Solution | None = None) -> Path:
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for i, name in enumerate(("p", "q", "r")):
         ax.plot(solution.t, solution.omega[:, i], label=f"{name} ({solution.method})")
         if reference is not None:
             ax.plot(reference.t, reference.omega[:, i], "k:", lw=1, label=f"{name} (closed form)" if i == 0 else None)
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel("angular velocity in body axes [rad/s]")
+    ax.set_xlabel(unit_label(solution, "t"))
+    ax.set_ylabel(unit_label(solution, "p", "angular velocity in body axes"))
     ax.set_title(title)
     ax.legend(loc="upper right", fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3)
@@ -131,7 +150,7 @@ def euler_angles(solution: Solution, title: str, path: Path) -> Path:
         ax.set_ylim(limits[0] - 0.1, limits[1] + 0.1)
         ticks = {label: value for label, value in PI_TICKS.items() if value >= limits[0]}
         ax.set_yticks(list(ticks.values()), list(ticks))
-        ax.set_ylabel(f"{label} [rad]")
+        ax.set_ylabel(unit_label(solution, "psi", label))
         ax.grid(alpha=0.3)
     if axes[0].get_legend_handles_labels()[0]:
         axes[0].legend(loc="upper right", fontsize=LEGEND_SIZE)
@@ -145,7 +164,7 @@ def error(solution: Solution, reference: Solution, title: str, path: Path) -> Pa
     err = np.linalg.norm(solution.omega - reference.omega, axis=1)
     ax.semilogy(solution.t, np.maximum(err, 1e-18), label=f"|ω − ω_closed form| ({solution.method})")
     ax.set_xlabel("t [s]")
-    ax.set_ylabel("error [rad/s]")
+    ax.set_ylabel(unit_label(solution, "p", "error"))
     ax.set_title(f"{title}: error against the closed form")
     ax.legend(fontsize=LEGEND_SIZE)
     ax.grid(alpha=0.3, which="both")

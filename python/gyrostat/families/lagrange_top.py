@@ -40,7 +40,7 @@ from gyrostat import _core, attitude
 from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL, Assumption, ValidityWarning
 from gyrostat.events import Event
-from gyrostat.figures import LEGEND_SIZE, keep, plt
+from gyrostat.figures import LEGEND_SIZE, keep, plt, unit_label
 from gyrostat.kind import (ACCURACY, METHOD, PHASE, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration,
                            outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_torques, number
@@ -240,14 +240,14 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
     both = full is not None and avg is not None
 
     fig, axes = plt.subplots(4 if both else 3, 1, figsize=(8, 10 if both else 8), sharex=True)
-    for ax, key, label in zip(axes, ("G_z", "H", "r"), ("G_z [kg m²/s]", "H [J]", "r [rad/s]")):
+    for ax, key in zip(axes, ("G_z", "H", "r")):
         if full is not None:
             ax.plot(tau_f, full[key], label="full model (ω, quaternion)", **sf)
         if avg is not None:
             ax.plot(tau_a, avg[key], label="averaged over nutation", **sa)
         if key == "r":
             ax.plot(epsilon * main.t[: exact_r.size], exact_r, "k:", lw=1.2, label="exact (3.3)")
-        ax.set_ylabel(label)
+        ax.set_ylabel(unit_label(avg if avg is not None else full, key))
         ax.grid(alpha=0.3)
         ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     if both:

@@ -24,7 +24,7 @@ from gyrostat import _core
 from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL, Assumption, check
 from gyrostat.families.rigid_body import Model, averaged_rung, draw, initial_assumptions, slow_columns
-from gyrostat.figures import curves
+from gyrostat.figures import curves, unit_label
 from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, T_SPAN, Kind, Run, build, integration,
                            make_body, make_torques, outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_body, check_torques, floats
@@ -90,7 +90,7 @@ class MovingMassModel(ModelBase):
 def mass(solution: Solution, title: str, path: Path) -> Path:
     """The moving mass's displacement u relative to the carrier (the explicit damper model)."""
     return curves(solution.t, {name: solution[name] for name in ("u_1", "u_2", "u_3")},
-                   "displacement of the mass in body axes [m]", f"{title}: moving mass", path)
+                   unit_label(solution, "u_1", "displacement of the mass in body axes"), f"{title}: moving mass", path)
 
 
 class MovingMass(Kind):

@@ -39,7 +39,7 @@ import numpy as np
 from gyrostat import _core, attitude, figures
 from gyrostat.events import Event
 from gyrostat.families.rigid_body import Model
-from gyrostat.figures import LEGEND_SIZE, keep, mark_singular, plt, wrap_angle
+from gyrostat.figures import LEGEND_SIZE, keep, mark_singular, plt, unit_label, wrap_angle
 from gyrostat.kind import (BODY, METHOD, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration, make_body,
                            outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_torques, flag
@@ -541,7 +541,7 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
         for i, c in enumerate(("p", "q", "r")):
             ax.plot(sol.t, sol.omega[:, i], label=f"{c} (full model)")
             ax.plot(sol.t, zv[:, i], "k:", lw=1, label="ω_ZV(τ(t)) (torque-free)" if i == 0 else None)
-        ax.set_ylabel("ω [rad/s]")
+        ax.set_ylabel(unit_label(sol, "p", "ω"))
         ax.set_title(f"{scene.title}: {_law_text(spec)}")
         ax.legend(loc="upper right", fontsize=LEGEND_SIZE, ncol=2)
         ax.grid(alpha=0.3)
