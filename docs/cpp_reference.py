@@ -12,7 +12,8 @@ from pathlib import Path
 INCLUDE = Path(__file__).resolve().parent.parent / "cpp" / "include"
 DETAIL = {"solve_system.hpp", "dop853_tableau.hpp", "sundials.hpp", "sundials_driver.hpp"}
 SECTIONS = [("", "Engine, bodies, ensembles, attitude"), ("model", "Models"), ("torque", "Torques"),
-            ("integrate", "Integrators")]
+            ("integrate", "Integrators"),
+            ("numeric", "Numeric tools (double-double, dual numbers, SIMD lanes, elliptic integrals, tableaux)")]
 
 
 def header_entries(text: str) -> tuple[str, list[tuple[str, str]]]:

@@ -9,7 +9,7 @@
 #include "expose.hpp"
 #include "gyrostat/engine.hpp"
 #include "gyrostat/integrate/dense.hpp"
-#include "gyrostat/lanes.hpp"
+#include "gyrostat/numeric/lanes.hpp"
 #include "gyrostat/model/affine_euler_avx2.hpp"
 
 namespace gyrostat::bindings {

@@ -1,5 +1,5 @@
-// Elliptic functions through GSL, every return code checked (model/elliptic.hpp).
-#include "gyrostat/model/elliptic.hpp"
+// Elliptic functions through GSL, every return code checked (numeric/elliptic.hpp).
+#include "gyrostat/numeric/elliptic.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_sf_ellint.h>

@@ -2,6 +2,7 @@
 #include "ensemble_batch.hpp"
 
 #include <array>
+#include <type_traits>
 #include <variant>
 
 #include "gyrostat/integrate/batch.hpp"
@@ -53,19 +54,25 @@ Plan plan(const std::vector<const AnyModel*>& models, const std::vector<Eigen::V
           const integrate::Options& options) {
     constexpr std::size_t W = lanes::width;
     Plan p;
-    std::vector<std::size_t> open[3];  // per batched model type: members waiting for a full batch
+    std::vector<std::size_t> open[std::variant_size_v<AnyModel>];  // per model type: members waiting for a full batch
     for (std::size_t i = 0; i < y0s.size(); ++i) {
         const AnyModel& m = model_of(models, i);
-        int kind = -1;
-        if (batched<model::Gyrostat<false>>(m, y0s[i], options)) kind = 0;
-        else if (batched<model::Gyrostat<true>>(m, y0s[i], options)) kind = 1;
-        else if (batched<model::AveragedSymmetric>(m, y0s[i], options)) kind = 2;
-        if (kind < 0) {
+        const bool batches = std::visit(
+            [&](const auto& system) {
+                using System = std::decay_t<decltype(system)>;
+                if constexpr (model::system::has_lanes<System>::value)
+                    return batched<System>(m, y0s[i], options) != nullptr;
+                else
+                    return false;
+            },
+            m);
+        if (!batches) {
             p.single.push_back(i);
             continue;
         }
-        open[kind].push_back(i);
-        if (open[kind].size() == W) p.batches.push_back(std::move(open[kind])), open[kind].clear();
+        auto& waiting = open[m.index()];
+        waiting.push_back(i);
+        if (waiting.size() == W) p.batches.push_back(std::move(waiting)), waiting.clear();
     }
     for (auto& rest : open)  // a last, partial batch (a member alone is a batch of one: the same numbers)
         if (!rest.empty()) p.batches.push_back(std::move(rest));
@@ -75,13 +82,13 @@ Plan plan(const std::vector<const AnyModel*>& models, const std::vector<Eigen::V
 void solve(const std::vector<std::size_t>& batch, const std::vector<const AnyModel*>& models,
            const std::vector<Eigen::VectorXd>& y0s, double t0, double t1, const integrate::Options& options,
            const integrate::Control* control, std::vector<integrate::Result>& results) {
-    const AnyModel& first = model_of(models, batch.front());
-    if (std::holds_alternative<model::Gyrostat<false>>(first))
-        run<model::Gyrostat<false>>(batch, models, y0s, t0, t1, options, control, results);
-    else if (std::holds_alternative<model::Gyrostat<true>>(first))
-        run<model::Gyrostat<true>>(batch, models, y0s, t0, t1, options, control, results);
-    else
-        run<model::AveragedSymmetric>(batch, models, y0s, t0, t1, options, control, results);
+    std::visit(
+        [&](const auto& first) {
+            using System = std::decay_t<decltype(first)>;
+            if constexpr (model::system::has_lanes<System>::value)
+                run<System>(batch, models, y0s, t0, t1, options, control, results);
+        },
+        model_of(models, batch.front()));
 }
 
 }  // namespace gyrostat::ensemble_batch

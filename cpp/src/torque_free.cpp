@@ -1,6 +1,6 @@
 #include "gyrostat/model/torque_free.hpp"
 
-#include "gyrostat/model/elliptic.hpp"
+#include "gyrostat/numeric/elliptic.hpp"
 #include "gyrostat/attitude.hpp"
 
 #include <algorithm>

@@ -20,7 +20,7 @@
 
 #include "gyrostat/engine.hpp"
 #include "gyrostat/ensemble.hpp"
-#include "gyrostat/model/elliptic.hpp"
+#include "gyrostat/numeric/elliptic.hpp"
 
 #include "check.hpp"
 

@@ -11,7 +11,7 @@
 
 #include "check.hpp"
 #include "gyrostat/engine.hpp"
-#include "gyrostat/lanes.hpp"
+#include "gyrostat/numeric/lanes.hpp"
 
 using namespace gyrostat;
 using integrate::Method;

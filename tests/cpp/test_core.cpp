@@ -16,7 +16,7 @@
 #include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/solve.hpp"
 #include "gyrostat/model/averaged.hpp"
-#include "gyrostat/model/elliptic.hpp"
+#include "gyrostat/numeric/elliptic.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/lagrange_top.hpp"
 #include "gyrostat/model/moving_mass.hpp"
@@ -574,7 +574,7 @@ int main() {
         CHECK(std::abs(G1 / G0 - 1.0) < 1e-15, "the servo torque's splitting keeps |G| (projection)");
     }
 
-    // Carlson's R_F, R_C, R_J by duplication in double-double (model/elliptic.hpp) against values
+    // Carlson's R_F, R_C, R_J by duplication in double-double (numeric/elliptic.hpp) against values
     // to 32 digits: R_C(0, 1/4) = π and R_C(9/4, 2) = ln 2 exactly (Carlson 1995, §3; DLMF 19.2.19);
     // R_F(1, 2, 0) = 1.3110287771460599052…, R_F(2, 3, 4) = 0.58408284167715170669…,
     // R_J(0, 1, 2, 3) = 0.77688623778582332014…, R_J(2, 3, 4, 5) = 0.14297579667156753833… (the

@@ -12,10 +12,11 @@
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/diagnose.hpp"
 #include "gyrostat/integrate/events.hpp"
-#include "gyrostat/integrate/dop853_tableau.hpp"
+#include "gyrostat/numeric/dop853_tableau.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recording.hpp"
 #include "gyrostat/integrate/stiffness.hpp"
+#include "gyrostat/integrate/trajectories.hpp"
 
 namespace gyrostat::integrate {
 
@@ -67,6 +68,358 @@ void monomials(const std::array<State, 7>& F, const State& y, State* c) {
 }
 }  // namespace dop853_detail
 
+/// One trajectory for the step loop below (integrate/trajectories.hpp): its Recording (outputs,
+/// events, dense output, statistics) and, for method 'auto', the stiffness monitor.
+template <class System>
+class OneRun : public OneTrajectory<System> {
+public:
+    using typename OneTrajectory<System>::Vector;
+    using typename OneTrajectory<System>::State;
+
+    OneRun(const System& system, Recording<System>& run, StiffnessMonitor<System>* monitor)
+        : OneTrajectory<System>(system, run.result), run_(run), monitor_(monitor) {}
+
+    void rhs(double t, const Vector& y, Vector& dy) const { this->system_.rhs(t, y[0], dy[0]); }
+    void start(double, const Vector&) {}  // the caller recorded t0 (Recording::start)
+    void empty_span(int, double, const Vector&) { this->active_ = false; }
+    void fail_at_start(int, Status status, std::string message, double, const Vector&) {
+        run_.result.status = status;
+        run_.result.message = std::move(message);
+        this->active_ = false;
+    }
+    /// Hairer's stiffness test after an accepted step (method 'auto'): true asks for BDF.
+    bool stiff(double t, double h, const Vector& y_new, const Vector& f_new, const Vector& stage, const Vector& f_stage) {
+        return monitor_ && monitor_->explicit_step(t, h, y_new[0], f_new[0], stage[0], f_stage[0]);
+    }
+    /// The accepted step from t to t_new: events, dense output and the outputs inside it from
+    /// `dense` (dense.value(0, time), dense.coefficients()). True: a terminal event ended the run.
+    template <class Dense>
+    bool inside(int, double t, double t_new, double h, const Vector& y, const Vector& y_new, Dense& dense) {
+        auto value = [&](double time) { return dense.value(0, time); };
+        const double t_stop = run_.events.step(t, t_new, y_new[0], value);
+        const bool terminated = !std::isnan(t_stop);
+        if (run_.result.dense) {
+            const auto& F = dense.coefficients(0);
+            std::array<State, 7> f;
+            for (int i = 0; i < 7; ++i) f[i] = F[i][0];
+            std::array<State, 8> c;
+            dop853_detail::monomials(f, y[0], c.data());
+            run_.result.dense->add(t, terminated ? t_stop : t_new, t, h, 7, c[0].data());
+        }
+        if (run_.cursor.inside(t_new, t_stop, value)) {
+            mark_terminated(run_.result, t_stop);
+            this->active_ = false;
+            return true;
+        }
+        return false;
+    }
+    void at_end(int l, double t, const Vector& y, double h_next, bool every_step) {
+        run_.cursor.at_end(t, y[0], every_step);
+        if (t == run_.t1) this->finish(l, t, y[0], h_next);
+    }
+    /// The hand-over to BDF at (t, y) (method 'auto').
+    void hand_over(double t, const Vector& y, double h_next) { this->finish(0, t, y[0], h_next); }
+
+private:
+    Recording<System>& run_;
+    StiffnessMonitor<System>* monitor_;
+};
+
+namespace dop853_detail {
+// The failures of a trajectory before its trial step, out of the step loop (cold, and so that
+// the loop stays small enough for the compiler to inline the model's right-hand side into it).
+/// The first step (Hairer's algorithm, as in SciPy's select_initial_step), per trajectory, from
+/// f = f(t, y). (Out of the step loop, with the failures below: the loop stays small enough for
+/// the compiler to inline the model's right-hand side into its stages.)
+template <class Run, class WeightedSquares>
+[[gnu::noinline]] typename Run::Value initial_step(Run& run, const typename Run::Value& t, const typename Run::Vector& y,
+                                                   const typename Run::Vector& f, double span, double direction,
+                                                   double rtol, double atol, const WeightedSquares& weighted_squares) {
+    using Value = typename Run::Value;
+    using Vector = typename Run::Vector;
+    using lanes::lane;
+    constexpr int n = Run::dim, parts = Run::parts, W = Run::width;
+    const int count = run.count();
+    Value h_abs;
+    Vector scale, y1, f1, df;
+    for (int i = 0; i < parts; ++i) scale[i] = atol + y[i].array().abs() * rtol;
+    const Value d0 = lanes::sqrt(weighted_squares(y, scale) / static_cast<double>(n));
+    const Value d1 = lanes::sqrt(weighted_squares(f, scale) / static_cast<double>(n));
+    const Value h0 = lanes::min(lanes::select(d0 < 1e-5 || d1 < 1e-5, 1e-6, 0.01 * d0 / d1), span);
+    for (int i = 0; i < parts; ++i) y1[i] = y[i] + h0 * direction * f[i];
+    run.rhs(t + h0 * direction, y1, f1);
+    for (int i = 0; i < parts; ++i) df[i] = f1[i] - f[i];
+    const Value d2 = lanes::sqrt(weighted_squares(df, scale) / static_cast<double>(n)) / h0;
+    for (int l = 0; l < W; ++l) {  // (lanes past `count` too: they repeat a member)
+        if (l < count) ++run.stats(l).rhs_evals;
+        const double h1 = (lane(d1, l) <= 1e-15 && lane(d2, l) <= 1e-15)
+                              ? std::max(1e-6, lane(h0, l) * 1e-3)
+                              : std::pow(0.01 / std::max(lane(d1, l), lane(d2, l)), 1.0 / 8.0);
+        double& h = lane(h_abs, l);
+        h = std::min({100 * lane(h0, l), h1, span});
+        if (!std::isfinite(h) || h <= 0.0) h = std::min(1e-6, span);
+    }
+    return h_abs;
+}
+template <class Run>
+[[gnu::cold, gnu::noinline]] void fail_at_start(Run& run, int l, double t0, const typename Run::Vector& y) {
+    run.fail_at_start(l, Status::NonFiniteState,
+                      "the right-hand side is not finite at the initial state (t = " + format_number(t0) + ")", t0, y);
+}
+template <class Run>
+[[gnu::cold, gnu::noinline]] void fail_max_steps(Run& run, int l, long max_steps, double t, double t1,
+                                                 const typename Run::Vector& state, double h_next, double span) {
+    decltype(auto) y = run.state(state, l);
+    run.fail(l, Status::MaxStepsReached,
+             "max_steps = " + std::to_string(max_steps) + " reached at t = " + format_number(t) + " before t1 = " +
+                 format_number(t1) + "." + stiffness_hint(run.system(l), t, y, run.stats(l).last_step, span),
+             t, y, h_next);
+}
+template <class Run>
+[[gnu::cold, gnu::noinline]] void fail_trial(Run& run, int l, bool non_finite, double t, const typename Run::Vector& state,
+                                             double smallest, double span) {
+    decltype(auto) y = run.state(state, l);
+    const double last_step = run.stats(l).last_step;
+    if (non_finite)
+        run.fail(l, Status::NonFiniteState,
+                 "the state became non-finite (inf/NaN) on every trial step from t = " + format_number(t, 17) +
+                     " (|y| = " + format_number(y.norm()) + "): the solution overflows or leaves the model's domain there",
+                 t, y, last_step);
+    else
+        run.fail(l, Status::StepSizeUnderflow,
+                 "step size underflow at t = " + format_number(t, 17) + ": the step needed (< " + format_number(smallest) +
+                     ") is below the resolution of t." + stiffness_hint(run.system(l), t, y, last_step, span),
+                 t, y, last_step);
+}
+}  // namespace dop853_detail
+
+/// The DOP853 step loop, for one trajectory (OneRun) or the W lanes of a batch (LaneRuns,
+/// integrate/trajectories.hpp) from (t0, y0) to t1: each trajectory with its own step size,
+/// accepted or rejected on its own error (SciPy's controller and norm). Returns true when a
+/// trajectory's stiffness monitor asks for BDF (OneRun::hand_over then noted where).
+template <class Run>
+[[gnu::flatten]] bool dop853_steps(Run& run, double t0, typename Run::Vector y, double t1, const Options& options,
+                  const Control* control) {
+    using namespace dop853_detail;
+    namespace tab = dop853_tableau;
+    using Value = typename Run::Value;
+    using Part = typename Run::Part;
+    using Vector = typename Run::Vector;
+    using State = typename Run::State;
+    using lanes::lane;
+    constexpr int n = Run::dim, parts = Run::parts, W = Run::width;
+    const int count = run.count();
+    const double direction = t1 >= t0 ? 1.0 : -1.0, span = std::abs(t1 - t0);
+    const double rtol = options.rtol, atol = options.atol;
+
+    // Σ_i (v_i / scale_i)² with 0/0 = 0 (weighted) over one part of the state, and over all of
+    // it, per trajectory.
+    auto part_squares = [](const Part& v, const Part& scale) -> Value {
+        if constexpr (parts == 1)
+            return weighted(v, scale).squaredNorm();
+        else
+            return Value((v == 0.0).select(Value::Zero(), v / scale)).square();
+    };
+    auto weighted_squares = [&](const Vector& v, const Vector& scale) {
+        Value sum = lanes::splat<Value>(0.0);
+        for (int i = 0; i < parts; ++i) sum += part_squares(v[i], scale[i]);
+        return sum;
+    };
+
+    run.project(y);
+    Value t = lanes::splat<Value>(t0);
+    run.start(t0, y);
+    Vector f;
+    run.rhs(t, y, f);
+    for (int l = 0; l < count; ++l) {
+        ++run.stats(l).rhs_evals;
+        if (t0 == t1) {
+            run.empty_span(l, t0, y);
+            continue;
+        }
+        if (!all_finite(run.state(f, l))) fail_at_start(run, l, t0, y);
+    }
+    if (!run.any_active()) return false;
+
+    Value h_abs = lanes::splat<Value>(options.first_step);
+    if (options.first_step == 0.0) h_abs = initial_step(run, t, y, f, span, direction, rtol, atol, weighted_squares);
+
+    Vector k[tab::n_stages_extended];
+    Vector y_new, f_new, stage;  // stage: the argument of the last stage computed (c = 1 after the 12th)
+    Vector F[7];                 // the dense output's coefficients of the step (when needed)
+    std::array<bool, W> rejected{}, accepted{};
+    std::array<int, W> non_finite_trials{};
+    Ticker ticker(control, t0, t1);
+
+    // Stage s: k_s = f(t + c_s h, y + h Σ_j a_sj k_j).
+    auto compute_stage = [&](int s, const Value& h) {
+        for (int i = 0; i < parts; ++i) {
+            Part dy = tab::a[s][0] * k[0][i];
+            for (int j = 1; j < s; ++j)
+                if (tab::a[s][j] != 0.0) dy += tab::a[s][j] * k[j][i];
+            stage[i] = y[i] + h * dy;
+        }
+        run.rhs(t + tab::c[s] * h, stage, k[s]);
+    };
+
+    while (run.any_active()) {
+        if (!run.keep_going(ticker, t, y, h_abs)) return false;
+        // Each trajectory's trial step (0 for those that are done).
+        Value h = lanes::splat<Value>(0.0), t_new = t;
+        for (int l = 0; l < count; ++l) {
+            if (!run.active(l)) continue;
+            const double tl = lane(t, l);
+            double& hl = lane(h_abs, l);
+            if (run.stats(l).steps >= options.max_steps) {
+                fail_max_steps(run, l, options.max_steps, tl, t1, y, hl, span);
+                continue;
+            }
+            const double smallest = min_step(tl, direction);
+            if (!rejected[l]) hl = std::max(std::min(hl, options.max_step), smallest);
+            if (hl < smallest || non_finite_trials[l] >= kMaxNonFiniteTrials) {
+                fail_trial(run, l, non_finite_trials[l] > 0, tl, y, smallest, span);
+                continue;
+            }
+            double end = tl + hl * direction;
+            if (direction * (end - t1) > 0.0) end = t1;
+            lane(t_new, l) = end;
+            lane(h, l) = end - tl;
+            hl = std::abs(lane(h, l));
+        }
+        if (!run.any_active()) break;
+
+        // The 12 stages and the 8th-order solution.
+        for (int i = 0; i < parts; ++i) k[0][i] = f[i];
+        for (int s = 1; s < tab::n_stages; ++s) compute_stage(s, h);
+        for (int i = 0; i < parts; ++i) {
+            Part incr = tab::b[0] * k[0][i];
+            for (int j = 1; j < tab::n_stages; ++j)
+                if (tab::b[j] != 0.0) incr += tab::b[j] * k[j][i];
+            y_new[i] = y[i] + h * incr;
+        }
+        run.rhs(t_new, y_new, f_new);
+        for (int i = 0; i < parts; ++i) k[tab::n_stages][i] = f_new[i];
+
+        // Error: the 5th- and 3rd-order embedded estimates combined as in DOP853.
+        Value e5 = lanes::splat<Value>(0.0), e3 = e5;
+        for (int i = 0; i < parts; ++i) {
+            const Part scale(atol + y[i].array().abs().max(y_new[i].array().abs()) * rtol);
+            Part err5 = Part::Zero(), err3 = Part::Zero();
+            for (int j = 0; j <= tab::n_stages; ++j) {
+                if (tab::e5[j] != 0.0) err5 += tab::e5[j] * k[j][i];
+                if (tab::e3[j] != 0.0) err3 += tab::e3[j] * k[j][i];
+            }
+            e5 += part_squares(err5, scale);
+            e3 += part_squares(err3, scale);
+        }
+        const Value error_norm =
+            lanes::select(e5 == 0.0 && e3 == 0.0, 0.0, h_abs * e5 / lanes::sqrt((e5 + 0.01 * e3) * static_cast<double>(n)));
+
+        bool any_accepted = false;
+        for (int l = 0; l < count; ++l) {
+            accepted[l] = false;
+            if (!run.active(l)) continue;
+            Stats& stats = run.stats(l);
+            stats.rhs_evals += tab::n_stages;
+            const double err = lane(error_norm, l);
+            double& hl = lane(h_abs, l);
+            if (!std::isfinite(err)) {
+                ++non_finite_trials[l];
+                ++stats.rejected_steps;
+                hl *= kMinFactor;
+                rejected[l] = true;
+            } else if (err < 1.0) {
+                double factor = err == 0.0 ? kMaxFactor : std::min(kMaxFactor, kSafety * std::pow(err, kErrorExponent));
+                if (rejected[l]) factor = std::min(1.0, factor);
+                hl *= factor;
+                accepted[l] = any_accepted = true;
+                rejected[l] = false;
+                non_finite_trials[l] = 0;
+                ++stats.steps;
+                stats.last_step = std::abs(lane(h, l));
+            } else {
+                hl *= std::max(kMinFactor, kSafety * std::pow(err, kErrorExponent));
+                ++stats.rejected_steps;
+                rejected[l] = true;
+            }
+        }
+        if (!any_accepted) {
+            run.fill_done_lanes(t, y, f);
+            continue;
+        }
+        bool stiff = false;
+        if constexpr (W == 1) stiff = run.stiff(t, h, y_new, f_new, stage, k[tab::n_stages - 1]);
+
+        // The 7th-order dense output of the step, its three extra stages computed (for every
+        // trajectory at once) only when one of them has an output time or an event inside it.
+        struct Dense {
+            decltype(compute_stage)& stage_of;
+            const Value& h;
+            const Vector &y, &y_new, &f_new, (&k)[tab::n_stages_extended];
+            Run& run;
+            Vector (&F)[7];
+            const Value& t_of;
+            bool ready = false;
+            std::array<bool, W> counted{};
+            // (out of line: needed only for steps with an output or event inside)
+            [[gnu::noinline]] const Vector (&coefficients(int l))[7] {
+                if (!ready) {
+                    for (int s = tab::n_stages + 1; s < tab::n_stages_extended; ++s) stage_of(s, h);
+                    for (int i = 0; i < parts; ++i) {
+                        const Part delta = y_new[i] - y[i];
+                        F[0][i] = delta;
+                        F[1][i] = h * k[0][i] - delta;
+                        F[2][i] = 2.0 * delta - h * (f_new[i] + k[0][i]);
+                        for (int r = 0; r < 4; ++r) {
+                            Part acc = tab::d[r][0] * k[0][i];
+                            for (int j = 1; j < tab::n_stages_extended; ++j)
+                                if (tab::d[r][j] != 0.0) acc += tab::d[r][j] * k[j][i];
+                            F[3 + r][i] = h * acc;
+                        }
+                    }
+                    ready = true;
+                }
+                if (!counted[l]) run.stats(l).rhs_evals += tab::n_stages_extended - tab::n_stages - 1, counted[l] = true;
+                return F;
+            }
+            State value(int l, double time) {
+                const Vector(&c)[7] = coefficients(l);
+                const double x = (time - lane(t_of, l)) / lane(h, l);
+                State v = State::Zero();
+                for (int r = 0; r < 7; ++r) {
+                    v += run.state(c[6 - r], l);
+                    v *= (r % 2 == 0) ? x : (1.0 - x);
+                }
+                return State(v + run.state(y, l));
+            }
+        } dense{compute_stage, h, y, y_new, f_new, k, run, F, t};
+        for (int l = 0; l < count; ++l)
+            if (accepted[l] && run.inside(l, lane(t, l), lane(t_new, l), lane(h, l), y, y_new, dense)) return false;
+
+        if constexpr (model::system::has_projection<typename Run::System>::value) {
+            run.project(y_new);
+            run.rhs(t_new, y_new, f_new);
+            for (int l = 0; l < count; ++l)
+                if (accepted[l]) ++run.stats(l).rhs_evals;
+        }
+        for (int l = 0; l < count; ++l) {
+            if (!accepted[l]) continue;
+            lane(t, l) = lane(t_new, l);
+            Run::copy_lane(y, y_new, l);
+            Run::copy_lane(f, f_new, l);
+            run.at_end(l, lane(t, l), y, lane(h_abs, l), options.every_step);
+        }
+        if constexpr (W == 1) {
+            if (stiff && run.active(0)) {
+                run.hand_over(lane(t, 0), y, lane(h_abs, 0));
+                return true;
+            }
+        }
+        run.fill_done_lanes(t, y, f);
+    }
+    return false;
+}
+
 /// One DOP853 segment of `run` from (t0, y0) to run.t1: outputs, events, dense output and
 /// statistics continue those already in run.result (a plain run has one segment, method 'auto'
 /// several). With a `monitor`, Hairer's stiffness test runs after every accepted step and the
@@ -76,209 +429,8 @@ void monomials(const std::array<State, 7>& F, const State& y, State* c) {
 template <class System>
 bool dop853_segment(const System& system, Recording<System>& run, double t0, const typename System::State& y0,
                     const Options& options, const Control* control, StiffnessMonitor<System>* monitor = nullptr) {
-    using namespace dop853_detail;
-    namespace tab = dop853_tableau;
-    using State = typename System::State;
-    constexpr int n = System::dim;
-
-    Result& result = run.result;
-    const double t1 = run.t1, direction = run.direction;
-    const double rtol = options.rtol, atol = options.atol;
-    Stats& stats = result.stats;
-
-    double t = t0;
-    State y = y0;
-    model::system::project(system, y);
-    State f;
-    system.rhs(t, y, f);
-    ++stats.rhs_evals;
-
-    if (t0 == t1) return false;
-    if (!all_finite(f)) {
-        result.status = Status::NonFiniteState;
-        result.message = "the right-hand side is not finite at the initial state (t = " + format_number(t0) + ")";
-        return false;
-    }
-
-    // Initial step (Hairer's algorithm, as in SciPy's select_initial_step).
-    double h_abs = options.first_step;
-    const double span = std::abs(t1 - t0);
-    if (h_abs == 0.0) {
-        const State scale = (atol + (y.cwiseAbs() * rtol).array()).matrix();
-        const double d0 = rms(weighted(y, scale));
-        const double d1 = rms(weighted(f, scale));
-        double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
-        h0 = std::min(h0, span);
-        State y1 = y + h0 * direction * f, f1;
-        system.rhs(t + h0 * direction, y1, f1);
-        ++stats.rhs_evals;
-        const double d2 = rms(weighted(State(f1 - f), scale)) / h0;
-        const double h1 = (d1 <= 1e-15 && d2 <= 1e-15) ? std::max(1e-6, h0 * 1e-3)
-                                                       : std::pow(0.01 / std::max(d1, d2), 1.0 / 8.0);
-        h_abs = std::min({100 * h0, h1, span});
-        if (!std::isfinite(h_abs) || h_abs <= 0.0) h_abs = std::min(1e-6, span);
-    }
-
-    std::array<State, tab::n_stages_extended> k;
-    State y_new, f_new, err5, err3, scale, stage;  // stage: the argument of the last stage (c = 1)
-    Ticker ticker(control, run.t0, t1);
-
-    while (direction * (t - t1) < 0.0) {
-        if (!ticker.keep_going(t)) {
-            mark_interrupted(result, t);
-            keep_last(result, t, y, h_abs);
-            return false;
-        }
-        if (stats.steps >= options.max_steps) {
-            result.status = Status::MaxStepsReached;
-            result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
-                             " before t1 = " + format_number(t1) + "." + stiffness_hint(system, t, y, stats.last_step, span);
-            keep_last(result, t, y, h_abs);
-            return false;
-        }
-        const double min_step = 10.0 * std::abs(std::nextafter(t, direction * std::numeric_limits<double>::infinity()) - t);
-        h_abs = std::min(h_abs, options.max_step);
-        if (h_abs < min_step) h_abs = min_step;
-
-        bool accepted = false, rejected = false;
-        int non_finite_trials = 0;
-        double h = 0.0, t_new = t, error_norm = 0.0;
-        while (!accepted) {
-            if (h_abs < min_step || non_finite_trials >= kMaxNonFiniteTrials) {
-                if (non_finite_trials > 0) {
-                    result.status = Status::NonFiniteState;
-                    result.message = "the state became non-finite (inf/NaN) on every trial step from t = " +
-                                     format_number(t, 17) + " (|y| = " + format_number(y.norm()) +
-                                     "): the solution overflows or leaves the model's domain there";
-                } else {
-                    result.status = Status::StepSizeUnderflow;
-                    result.message = "step size underflow at t = " + format_number(t, 17) + ": the step needed (< " +
-                                     format_number(min_step) + ") is below the resolution of t." +
-                                     stiffness_hint(system, t, y, stats.last_step, span);
-                }
-                keep_last(result, t, y, stats.last_step);
-                return false;
-            }
-            h = h_abs * direction;
-            t_new = t + h;
-            if (direction * (t_new - t1) > 0.0) t_new = t1;
-            h = t_new - t;
-            h_abs = std::abs(h);
-
-            // The 12 stages and the 8th-order solution.
-            k[0] = f;
-            for (int s = 1; s < tab::n_stages; ++s) {
-                State dy = tab::a[s][0] * k[0];
-                for (int j = 1; j < s; ++j)
-                    if (tab::a[s][j] != 0.0) dy += tab::a[s][j] * k[j];
-                stage = y + h * dy;
-                system.rhs(t + tab::c[s] * h, stage, k[s]);
-            }
-            State incr = tab::b[0] * k[0];
-            for (int j = 1; j < tab::n_stages; ++j)
-                if (tab::b[j] != 0.0) incr += tab::b[j] * k[j];
-            y_new = y + h * incr;
-            system.rhs(t_new, y_new, f_new);
-            k[tab::n_stages] = f_new;
-            stats.rhs_evals += tab::n_stages;
-
-            // Error: the 5th- and 3rd-order embedded estimates combined as in DOP853.
-            scale = (atol + (y.cwiseAbs().cwiseMax(y_new.cwiseAbs()) * rtol).array()).matrix();
-            err5.setZero();
-            err3.setZero();
-            for (int j = 0; j <= tab::n_stages; ++j) {
-                if (tab::e5[j] != 0.0) err5 += tab::e5[j] * k[j];
-                if (tab::e3[j] != 0.0) err3 += tab::e3[j] * k[j];
-            }
-            const double e5 = weighted(err5, scale).squaredNorm();
-            const double e3 = weighted(err3, scale).squaredNorm();
-            error_norm = (e5 == 0.0 && e3 == 0.0) ? 0.0 : h_abs * e5 / std::sqrt((e5 + 0.01 * e3) * n);
-
-            if (!std::isfinite(error_norm)) {
-                ++non_finite_trials;
-                ++stats.rejected_steps;
-                h_abs *= kMinFactor;
-                rejected = true;
-                continue;
-            }
-            if (error_norm < 1.0) {
-                double factor = error_norm == 0.0 ? kMaxFactor
-                                                  : std::min(kMaxFactor, kSafety * std::pow(error_norm, kErrorExponent));
-                if (rejected) factor = std::min(1.0, factor);
-                h_abs *= factor;
-                accepted = true;
-            } else {
-                h_abs *= std::max(kMinFactor, kSafety * std::pow(error_norm, kErrorExponent));
-                ++stats.rejected_steps;
-                rejected = true;
-            }
-        }
-        ++stats.steps;
-        stats.last_step = std::abs(h);
-        const bool stiff = monitor && monitor->explicit_step(t, h, y_new, f_new, stage, k[tab::n_stages - 1]);
-
-        // The 7th-order dense output of the step, its three extra stages computed only for steps
-        // that contain an output time or an event.
-        bool dense_ready = false;
-        std::array<State, 7> F;
-        auto dense = [&](double time) {
-            if (!dense_ready) {
-                for (int s = tab::n_stages + 1; s < tab::n_stages_extended; ++s) {
-                    State dy = tab::a[s][0] * k[0];
-                    for (int j = 1; j < s; ++j)
-                        if (tab::a[s][j] != 0.0) dy += tab::a[s][j] * k[j];
-                    system.rhs(t + tab::c[s] * h, State(y + h * dy), k[s]);
-                }
-                stats.rhs_evals += tab::n_stages_extended - tab::n_stages - 1;
-                const State delta = y_new - y;
-                F[0] = delta;
-                F[1] = h * k[0] - delta;
-                F[2] = 2.0 * delta - h * (f_new + k[0]);
-                for (int i = 0; i < 4; ++i) {
-                    State acc = tab::d[i][0] * k[0];
-                    for (int j = 1; j < tab::n_stages_extended; ++j)
-                        if (tab::d[i][j] != 0.0) acc += tab::d[i][j] * k[j];
-                    F[3 + i] = h * acc;
-                }
-                dense_ready = true;
-            }
-            const double x = (time - t) / h;
-            State value = State::Zero();
-            for (int i = 0; i < 7; ++i) {
-                value += F[6 - i];
-                value *= (i % 2 == 0) ? x : (1.0 - x);
-            }
-            return State(value + y);
-        };
-        const double t_stop = run.events.step(t, t_new, y_new, dense);
-        const bool terminated = !std::isnan(t_stop);
-        if (result.dense) {
-            dense(t);  // the dense coefficients F of this step
-            std::array<State, 8> c;
-            monomials(F, y, c.data());
-            result.dense->add(t, terminated ? t_stop : t_new, t, h, 7, c[0].data());
-        }
-        if (run.cursor.inside(t_new, t_stop, dense)) {
-            mark_terminated(result, t_stop);
-            return false;
-        }
-
-        if constexpr (model::system::has_projection<System>::value) {
-            system.project(y_new);
-            system.rhs(t_new, y_new, f_new);
-            ++stats.rhs_evals;
-        }
-        t = t_new;
-        y = y_new;
-        f = f_new;
-        run.cursor.at_end(t, y, options.every_step);
-        if (stiff && direction * (t - t1) < 0.0) {
-            keep_last(result, t, y, h_abs);
-            return true;
-        }
-    }
-    keep_last(result, t, y, h_abs);
-    return false;
+    OneRun<System> one(system, run, monitor);
+    return dop853_steps(one, t0, {y0}, run.t1, options, control);
 }
 
 /// Integrates `system` from (t0, y0) to t1. Never throws on a failing run: the result carries the

@@ -17,21 +17,19 @@
 #include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
+#include "gyrostat/integrate/substep.hpp"
 
 namespace gyrostat::integrate {
 
-/// A System splits when it gives (model/gyrostat.hpp)
-///   void require_splitting() const;               throws when its free part has no exact flow
-///   void free_flow(double h, State& y) const;     the exact flow of the free part over h
-///   Perturbation perturbation(double h) const;    the perturbation's flow over h, prepared
-///   void perturb(const Perturbation&, double t, State& y) const;   applied at frozen time t
-/// and optionally
+/// A System splits when it gives its free flow and its perturbation (model/system.hpp); the
+/// perturbation's sub-flow is built here (substep.hpp: PerturbationFlow). Optionally
 ///   bool keeps_momentum_norm() const;    |G| = |Jω| (ω = y[0..2], J = body().moments()) is a
 ///                                        first integral of both sub-flows: projected on (below)
 template <class S, class = void>
 struct has_splitting : std::false_type {};
 template <class S>
-struct has_splitting<S, std::void_t<decltype(std::declval<const S&>().perturbation(0.0))>> : std::true_type {};
+struct has_splitting<S, std::void_t<decltype(std::declval<const S&>().free_flow(0.0, std::declval<typename S::State&>()))>>
+    : std::true_type {};
 template <class S, class = void>
 struct has_momentum_norm : std::false_type {};
 template <class S>
@@ -107,17 +105,17 @@ public:
         if (h == h_) return;
         h_ = h;
         prepared_.clear();
-        for (double a : perturb_) prepared_.push_back(system_.perturbation(a * h));
+        for (double a : perturb_) prepared_.push_back(Perturbation::over(system_, a * h));
     }
     /// y ← the composite step of size h from time t; returns the number of sub-flows.
     long advance(double t, double h, State& y) {
         prepare(h);
         double time = t;
-        system_.perturb(prepared_[0], time, y);
+        prepared_[0].apply(system_, time, y);
         for (std::size_t i = 0; i < free_.size(); ++i) {
             system_.free_flow(free_[i] * h, y);
             time += free_[i] * h;
-            system_.perturb(prepared_[i + 1], time, y);
+            prepared_[i + 1].apply(system_, time, y);
         }
         return static_cast<long>(2 * free_.size() + 1);
     }
@@ -126,11 +124,11 @@ public:
         State z = y;
         if (h == 0.0) return z;
         double time = t;
-        system_.perturb(system_.perturbation(perturb_[0] * h), time, z);
+        Perturbation::over(system_, perturb_[0] * h).apply(system_, time, z);
         for (std::size_t i = 0; i < free_.size(); ++i) {
             system_.free_flow(free_[i] * h, z);
             time += free_[i] * h;
-            system_.perturb(system_.perturbation(perturb_[i + 1] * h), time, z);
+            Perturbation::over(system_, perturb_[i + 1] * h).apply(system_, time, z);
         }
         model::system::project(system_, z);
         return z;
@@ -139,7 +137,8 @@ public:
 private:
     const System& system_;
     std::vector<double> free_, perturb_;
-    std::vector<typename System::Perturbation> prepared_;
+    using Perturbation = PerturbationFlow<System>;
+    std::vector<Perturbation> prepared_;
     double h_ = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -1,14 +1,15 @@
 // The perturbation sub-flows of the splitting integrators (integrate/splitting.hpp): the exact
-// flow of an affine rate equation, and one 8th-order step for any other. Each model that splits
-// (model/gyrostat.hpp, model/lagrange_top.hpp, model/orthogonal.hpp) builds its perturbation
-// flow from these two.
+// flow of an affine rate equation, and one 8th-order step for any other. A model that splits
+// declares its perturbation (model/system.hpp: torques on ω with an optional frozen moment, or a
+// rate on part of its state); PerturbationFlow builds the sub-flow from it.
 #pragma once
 
 #include <Eigen/Core>
 #include <cmath>
 
 #include "gyrostat/body.hpp"
-#include "gyrostat/integrate/dop853_tableau.hpp"
+#include "gyrostat/numeric/dop853_tableau.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::integrate {
@@ -94,6 +95,46 @@ struct TorqueSubflow {
         });
         return omega;
     }
+};
+
+/// The perturbation's flow over h of a model that splits (model/system.hpp), prepared once per
+/// sub-step size h and applied at frozen time t:
+///   a rate on part of the state (perturbation_rate): one dop853_substep on that part;
+///   else the model's torques on ω (body(), torques()) with the moment frozen_moment(y) (the
+///   heavy top's gravity at frozen attitude; none: zero, and no torque leaves y as it is):
+///   TorqueSubflow, exact for constant and linear torques.
+template <class System>
+class PerturbationFlow {
+public:
+    using State = typename System::State;
+    static PerturbationFlow over(const System& system, double h) {
+        PerturbationFlow p;
+        if constexpr (model::system::has_perturbation_rate<System>::value) {
+            (void)system;
+            p.h_ = h;
+        } else {
+            p.torques_ = TorqueSubflow::over(h, system.body(), system.torques());
+        }
+        return p;
+    }
+    /// y ← the perturbation's flow over h at frozen time t.
+    void apply(const System& system, double t, State& y) const {
+        if constexpr (model::system::has_perturbation_rate<System>::value) {
+            auto x = system.perturbed_part(y);
+            dop853_substep(h_, x, [&](const decltype(x)& part) { return system.perturbation_rate(t, part); });
+            system.set_perturbed_part(y, x);
+        } else if constexpr (model::system::has_frozen_moment<System>::value) {
+            y.template head<3>() =
+                torques_.advance(system.body(), system.torques(), t, y.template head<3>(), system.frozen_moment(y));
+        } else {
+            if (system.torques().empty()) return;
+            y.template head<3>() = torques_.advance(system.body(), system.torques(), t, y.template head<3>(), Vec3::Zero());
+        }
+    }
+
+private:
+    double h_ = 0.0;
+    TorqueSubflow torques_;
 };
 
 }  // namespace gyrostat::integrate

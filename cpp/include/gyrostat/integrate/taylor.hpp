@@ -51,7 +51,8 @@
 #include "gyrostat/integrate/events.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
-#include "gyrostat/model/double_double.hpp"
+#include "gyrostat/integrate/trajectories.hpp"
+#include "gyrostat/numeric/double_double.hpp"
 
 namespace gyrostat::integrate {
 
@@ -190,60 +191,6 @@ inline double safety_for(double eps, int order) {
     return std::exp(-0.7 / (order - 1)) * std::exp(std::log(local_error_fraction(eps) * eps) / order);
 }
 
-/// One step of fixed order: coefficients, step size, events and outputs inside the step, the new
-/// state. Returns false when the coefficients are not finite (h then holds NaN); `t_stop` is the
-/// time of a terminal event inside the step (NaN when none: the step goes to its end).
-template <int Order, class System>
-struct Step {
-    using State = typename System::State;
-    static bool run(const System& system, double t, State& y, State& y_low, bool compensated, double t1,
-                    double direction, double scale, double safety, double max_step, double& h,
-                    const std::vector<double>& outputs, std::size_t& next, Recorder<System>& record,
-                    EventLocator<System>& events, double& t_stop, DenseOutput* dense) {
-        State c[Order + 1];
-        system.template taylor_coefficients<Order>(t, y, c);
-        h = step_size(scale, c[Order - 1].cwiseAbs().maxCoeff(), c[Order].cwiseAbs().maxCoeff(), Order, safety);
-        if (!all_finite(c[Order]) || std::isnan(h)) {
-            h = std::numeric_limits<double>::quiet_NaN();
-            return false;
-        }
-        h = std::min({h, max_step, std::abs(t1 - t)});
-        // c[0] = y. Compensated: y + (Σ_{n≥1} c_n dtⁿ + y_low) with the sum's rounding error kept
-        // in y_low; else Estrin's scheme over the whole polynomial (one chain, shortest).
-        const State low_start = y_low;
-        auto evaluate = [&](double dt) -> State {
-            if (compensated) return c[0] + (increment<Order>(c, dt) + low_start);
-            return evaluate_polynomial<Order>(c, dt);
-        };
-        double t_new = (std::abs(t1 - t) <= h) ? t1 : t + direction * h;
-        if (compensated) {
-            if constexpr (model::system::has_taylor_rate_error<System>::value)
-                y_low += system.taylor_rate_error(c[0], y_low, c[1]) * (t_new - t);
-            advance_compensated<Order>(y, y_low, c, t_new - t);
-        } else {
-            y = evaluate_polynomial<Order>(c, t_new - t);
-        }
-        t_stop = events.active() ? events.step(t, t_new, y, [&](double time) { return evaluate(time - t); })
-                                 : std::numeric_limits<double>::quiet_NaN();
-        const bool terminated = !std::isnan(t_stop);
-        if (terminated) t_new = t_stop, y = evaluate(t_new - t), y_low.setZero();
-        if (dense && t_new != t) {  // the Taylor polynomial in s = (t' − t)/h: coefficients c_n hⁿ
-            const double step = t_new - t;
-            State scaled[Order + 1];
-            double power = 1.0;
-            for (int n = 0; n <= Order; ++n, power *= step) scaled[n] = c[n] * power;
-            dense->add(t, t_new, t, step, Order, scaled[0].data());
-        }
-        while (next < outputs.size() &&
-               (direction * (outputs[next] - t_new) < 0.0 || (terminated && outputs[next] == t_new))) {
-            record.push(outputs[next], evaluate(outputs[next] - t));
-            ++next;
-        }
-        h = t_new - t;
-        return true;
-    }
-};
-
 /// The system's projection (back onto |q| = 1, model/system.hpp) of a state carried with its
 /// rounding error: the components it moves drop their low part (the projection's change is larger).
 template <class System>
@@ -258,18 +205,222 @@ void project_compensated(const System& system, typename System::State& y, typena
     }
 }
 
-template <class System, int... Orders>
+/// One step of fixed order of every running trajectory of `run`: the coefficients, the step
+/// size, the checks that end a trajectory before its step, then the run's new state (with the
+/// outputs inside the step and the statistics: Run::advance).
+template <int Order, class Run>
+struct Step {
+    static void run(Run& run, typename Run::Value& t, typename Run::Vector& y, double t1, double direction,
+                    const Options& options) {
+        using Value = typename Run::Value;
+        using lanes::lane;
+        typename Run::Coefficient c[Order + 1];
+        run.template coefficients<Order>(t, y, c);
+        const Value h = run.template step_size<Order>(c);
+        Value dt = lanes::splat<Value>(0.0);  // the signed step of each trajectory (0 for those that are done)
+        for (int l = 0; l < run.count(); ++l) {
+            if (!run.active(l)) continue;
+            const double tl = lane(t, l);
+            if (!run.finite(l, c[Order], h)) {
+                run.fail(l, Status::NonFiniteState,
+                         "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(tl, 17) +
+                             ": the solution overflows or leaves the model's domain there",
+                         tl, run.state(y, l), 0.0);
+                continue;
+            }
+            const double remaining = std::abs(t1 - tl);
+            const double step = std::min({lane(h, l), options.max_step, remaining});
+            if (run.too_small(tl, step, remaining, direction)) {
+                run.fail(l, Status::StepSizeUnderflow,
+                         "step size underflow at t = " + format_number(tl, 17) + ": the step needed (" +
+                             format_number(step) + ") is below the resolution of t.",
+                         tl, run.state(y, l), 0.0);
+                continue;
+            }
+            lane(dt, l) = direction * step;
+        }
+        run.template advance<Order>(t, y, c, dt, t1);
+    }
+};
+
+template <class Run, int... Orders>
 constexpr auto step_table(std::integer_sequence<int, Orders...>) {
-    using Fn = decltype(&Step<2, System>::run);
-    return std::array<Fn, sizeof...(Orders)>{&Step<(Orders < 2 ? 2 : Orders), System>::run...};
+    using Fn = decltype(&Step<2, Run>::run);
+    return std::array<Fn, sizeof...(Orders)>{&Step<(Orders < 2 ? 2 : Orders), Run>::run...};
 }
 
 }  // namespace taylor_detail
 
+/// The Taylor step loop, for one trajectory (OneTaylorRun below) or the W lanes of a batch
+/// (batch.hpp: LaneTaylorRuns) from (t0, y0) to t1. No step is rejected; the run chooses the
+/// order and the step size rule (Run::prepare, Run::step_size).
+template <class Run>
+void taylor_steps(Run& run, double t0, typename Run::Vector y, double t1, const Options& options, const Control* control) {
+    using Value = typename Run::Value;
+    using lanes::lane;
+    static constexpr auto steps =
+        taylor_detail::step_table<Run>(std::make_integer_sequence<int, Run::max_taylor_order + 1>{});
+    const double direction = t1 >= t0 ? 1.0 : -1.0;
+    run.project(y);
+    Value t = lanes::splat<Value>(t0);
+    run.start(t0, y);
+    for (int l = 0; l < run.count(); ++l)
+        if (t0 == t1) run.empty_span(l, t0, y);
+    Ticker ticker(control, t0, t1);
+
+    while (run.any_active()) {
+        if (!run.keep_going(ticker, t, y, lanes::splat<Value>(0.0))) return;
+        for (int l = 0; l < run.count(); ++l)
+            if (run.active(l) && run.stats(l).steps >= options.max_steps)
+                run.fail(l, Status::MaxStepsReached,
+                         "max_steps = " + std::to_string(options.max_steps) + " reached at t = " +
+                             format_number(lane(t, l)) + " before t1 = " + format_number(t1) + ".",
+                         lane(t, l), run.state(y, l), 0.0);
+        if (!run.any_active()) break;
+        steps[run.prepare(y, options)](run, t, y, t1, direction, options);
+        run.fill_done_lanes(t, y);
+    }
+}
+
+/// One trajectory for taylor_steps: the order follows the tolerance of the step's mode
+/// (relative or absolute: it changes only when the mode switches), the step size the cheap
+/// log2/exp2 (step_size), the new state Estrin's scheme or, below rtol 1e-12, the compensated
+/// sum (advance_compensated); events and dense output.
+template <class System>
+class OneTaylorRun : public OneTrajectory<System> {
+public:
+    using typename OneTrajectory<System>::Vector;
+    using typename OneTrajectory<System>::State;
+    using Coefficient = State;
+    static constexpr int max_taylor_order = System::max_taylor_order;
+
+    OneTaylorRun(const System& system, Result& result, const Options& options, double t0, double t1)
+        : OneTrajectory<System>(system, result), outputs_(output_times(options, t0, t1)),
+          record_(system, result, outputs_.size()), events_(system, options.events, result), t1_(t1),
+          direction_(t1 >= t0 ? 1.0 : -1.0), every_step_(options.every_step) {
+        result.dense = make_dense<System>(options);
+    }
+
+    /// The outputs at t0 and the events' values there.
+    void start(double t0, const Vector& y) {
+        while (next_ < outputs_.size() && outputs_[next_] == t0) record_.push(t0, y[0]), ++next_;
+        events_.start(t0, y[0]);
+    }
+    void empty_span(int, double t0, const Vector& y) { this->finish(0, t0, y[0], 0.0); }
+
+    /// The order of the next step, from the mode (relative: rtol·‖y‖∞ > atol) at y.
+    int prepare(const Vector& y, const Options& options) {
+        norm_ = y[0].cwiseAbs().maxCoeff();
+        const bool relative = options.rtol * norm_ > options.atol;
+        const double eps = std::max(relative ? options.rtol : options.atol, 1e-300);
+        if (eps != eps_of_order_) {  // changes only when the mode (absolute/relative) switches
+            order_ = taylor_detail::order_for(eps, max_taylor_order);
+            safety_ = taylor_detail::safety_for(eps, order_);
+            eps_of_order_ = eps;
+            compensated_ = eps < taylor_detail::compensate_below;
+            if (!compensated_) y_low_.setZero();  // (no stale low part if compensation resumes)
+        }
+        scale_ = relative ? norm_ : 1.0;
+        return order_;
+    }
+    template <int Order>
+    void coefficients(double t, const Vector& y, State* c) const {
+        this->system_.template taylor_coefficients<Order>(t, y[0], c);
+    }
+    template <int Order>
+    double step_size(const State* c) const {
+        return taylor_detail::step_size(scale_, c[Order - 1].cwiseAbs().maxCoeff(), c[Order].cwiseAbs().maxCoeff(), Order,
+                                        safety_);
+    }
+    bool finite(int, const State& c_last, double h) const { return all_finite(c_last) && !std::isnan(h); }
+    static bool too_small(double, double, double, double) { return false; }  // (checked after the step: advance)
+
+    /// The new state over dt (events and outputs inside the step from its Taylor polynomial).
+    template <int Order>
+    void advance(double& t, Vector& yv, const State* c, double dt, double t1) {
+        if (!this->active_) return;  // (failed before its step: Step::run)
+        State& y = yv[0];
+        const State y_before = y;
+        const double direction = direction_;
+        double t_new = (std::abs(t1 - t) <= std::abs(dt)) ? t1 : t + dt;
+        // c[0] = y. Compensated: y + (Σ_{n≥1} c_n dtⁿ + y_low) with the sum's rounding error kept
+        // in y_low; else Estrin's scheme over the whole polynomial (one chain, shortest).
+        const State low_start = y_low_;
+        auto evaluate = [&](double s) -> State {
+            if (compensated_) return c[0] + (taylor_detail::increment<Order>(c, s) + low_start);
+            return taylor_detail::evaluate_polynomial<Order>(c, s);
+        };
+        if (compensated_) {
+            if constexpr (model::system::has_taylor_rate_error<System>::value)
+                y_low_ += this->system_.taylor_rate_error(c[0], y_low_, c[1]) * (t_new - t);
+            taylor_detail::advance_compensated<Order>(y, y_low_, c, t_new - t);
+        } else {
+            y = taylor_detail::evaluate_polynomial<Order>(c, t_new - t);
+        }
+        const double t_stop = events_.active() ? events_.step(t, t_new, y, [&](double time) { return evaluate(time - t); })
+                                               : std::numeric_limits<double>::quiet_NaN();
+        const bool terminated = !std::isnan(t_stop);
+        if (terminated) t_new = t_stop, y = evaluate(t_new - t), y_low_.setZero();
+        if (this->result_.dense && t_new != t) {  // the Taylor polynomial in s = (t' − t)/h: coefficients c_n hⁿ
+            const double step = t_new - t;
+            State scaled[Order + 1];
+            double power = 1.0;
+            for (int n = 0; n <= Order; ++n, power *= step) scaled[n] = c[n] * power;
+            this->result_.dense->add(t, t_new, t, step, Order, scaled[0].data());
+        }
+        while (next_ < outputs_.size() &&
+               (direction * (outputs_[next_] - t_new) < 0.0 || (terminated && outputs_[next_] == t_new))) {
+            record_.push(outputs_[next_], evaluate(outputs_[next_] - t));
+            ++next_;
+        }
+        const double h = t_new - t;
+        Stats& stats = this->result_.stats;
+        ++stats.rhs_evals;  // one evaluation of the coefficient recursion per step
+        if (terminated) {
+            model::system::project(this->system_, y);
+            ++stats.steps;
+            stats.last_step = std::abs(h);
+            mark_terminated(this->result_, t_stop);
+            this->active_ = false;
+            return;
+        }
+        // 10 to 20 units in the last place of t (no nextafter call on every step)
+        const double min_step =
+            10.0 * (std::numeric_limits<double>::epsilon() * std::abs(t) + std::numeric_limits<double>::denorm_min());
+        if (std::abs(h) < min_step && t + h != t1) {
+            y = y_before;
+            this->fail(0, Status::StepSizeUnderflow,
+                 "step size underflow at t = " + format_number(t, 17) + ": the step needed (" + format_number(std::abs(h)) +
+                     ") is below the resolution of t.",
+                 t, y, 0.0);
+            return;
+        }
+        taylor_detail::project_compensated(this->system_, y, y_low_);
+        ++stats.steps;
+        stats.last_step = std::abs(h);
+        t = (std::abs(t1 - t) <= std::abs(h)) ? t1 : t + h;
+        bool recorded = false;
+        while (next_ < outputs_.size() && outputs_[next_] == t) record_.push(t, y), ++next_, recorded = true;
+        if (every_step_ && !recorded) record_.push(t, y);
+        if (direction * (t - t1_) >= 0.0) this->finish(0, t, y, 0.0);  // the Taylor step size follows from (t, y) alone
+    }
+
+private:
+    std::vector<double> outputs_;
+    std::size_t next_ = 0;
+    Recorder<System> record_;
+    EventLocator<System> events_;
+    double t1_, direction_;
+    bool every_step_;
+    State y_low_ = State::Zero();  // the state's rounding error carried between steps (advance_compensated)
+    int order_ = 0;
+    double eps_of_order_ = -1.0, safety_ = 0.0, norm_ = 0.0, scale_ = 1.0;
+    bool compensated_ = false;
+};
+
 template <class System>
 Result taylor(const System& system, double t0, const typename System::State& y0, double t1, const Options& options,
               const Control* control = nullptr) {
-    using State = typename System::State;
     validate(options, t0, t1);
     require_finite(y0, "initial state y0");
     Result result;
@@ -282,89 +433,8 @@ Result taylor(const System& system, double t0, const typename System::State& y0,
         if (!system.supports_taylor())
             throw std::invalid_argument("method 'taylor' covers constant and linear torques only (a quadratic "
                                         "right-hand side); this model has other torques: use dop853");
-        constexpr int max_order = System::max_taylor_order;
-        static constexpr auto steps =
-            taylor_detail::step_table<System>(std::make_integer_sequence<int, max_order + 1>{});
-        const std::vector<double> outputs = output_times(options, t0, t1);
-        Recorder<System> record(system, result, outputs.size());
-        EventLocator<System> events(system, options.events, result);
-        result.dense = make_dense<System>(options);
-        std::size_t next = 0;
-        const double direction = t1 >= t0 ? 1.0 : -1.0;
-        Stats& stats = result.stats;
-        double t = t0;
-        State y = y0;
-        State y_low = State::Zero();  // the state's rounding error carried between steps (advance_compensated)
-        model::system::project(system, y);
-        while (next < outputs.size() && outputs[next] == t0) record.push(t0, y), ++next;
-        events.start(t0, y);
-        int order = 0;
-        double eps_of_order = -1.0, safety = 0.0;
-        bool compensated = false;
-        Ticker ticker(control, t0, t1);
-
-        while (direction * (t - t1) < 0.0) {
-            if (!ticker.keep_going(t)) {
-                mark_interrupted(result, t);
-                keep_last(result, t, y, 0.0);
-                return result;
-            }
-            if (stats.steps >= options.max_steps) {
-                result.status = Status::MaxStepsReached;
-                result.message = "max_steps = " + std::to_string(options.max_steps) + " reached at t = " + format_number(t) +
-                                 " before t1 = " + format_number(t1) + ".";
-                keep_last(result, t, y, 0.0);
-                return result;
-            }
-            const double norm = y.cwiseAbs().maxCoeff();
-            const bool relative = options.rtol * norm > options.atol;
-            const double eps = std::max(relative ? options.rtol : options.atol, 1e-300);
-            if (eps != eps_of_order) {  // changes only when the mode (absolute/relative) switches
-                order = taylor_detail::order_for(eps, max_order);
-                safety = taylor_detail::safety_for(eps, order);
-                eps_of_order = eps;
-                compensated = eps < taylor_detail::compensate_below;
-                if (!compensated) y_low.setZero();  // (no stale low part if compensation resumes)
-            }
-            const double t_before = t;
-            const State y_before = y;
-            double h = 0.0, t_stop = 0.0;
-            if (!steps[order](system, t, y, y_low, compensated, t1, direction, relative ? norm : 1.0, safety, options.max_step, h, outputs,
-                              next, record, events, t_stop, result.dense.get())) {
-                result.status = Status::NonFiniteState;
-                result.message = "the Taylor coefficients became non-finite (inf/NaN) at t = " + format_number(t, 17) +
-                                 ": the solution overflows or leaves the model's domain there";
-                keep_last(result, t_before, y_before, 0.0);
-                return result;
-            }
-            ++stats.rhs_evals;  // one evaluation of the coefficient recursion per step
-            if (!std::isnan(t_stop)) {
-                model::system::project(system, y);
-                ++stats.steps;
-                stats.last_step = std::abs(h);
-                mark_terminated(result, t_stop);
-                return result;
-            }
-            // 10 to 20 units in the last place of t (no nextafter call on every step)
-            const double min_step = 10.0 * (std::numeric_limits<double>::epsilon() * std::abs(t) +
-                                            std::numeric_limits<double>::denorm_min());
-            if (std::abs(h) < min_step && t + h != t1) {
-                y = y_before;
-                result.status = Status::StepSizeUnderflow;
-                result.message = "step size underflow at t = " + format_number(t_before, 17) + ": the step needed (" +
-                                 format_number(std::abs(h)) + ") is below the resolution of t.";
-                keep_last(result, t, y, 0.0);
-                return result;
-            }
-            taylor_detail::project_compensated(system, y, y_low);
-            ++stats.steps;
-            stats.last_step = std::abs(h);
-            t = (std::abs(t1 - t) <= std::abs(h)) ? t1 : t + h;
-            bool recorded = false;
-            while (next < outputs.size() && outputs[next] == t) record.push(t, y), ++next, recorded = true;
-            if (options.every_step && !recorded) record.push(t, y);
-        }
-        keep_last(result, t, y, 0.0);  // the Taylor step size follows from (t, y) alone
+        OneTaylorRun<System> run(system, result, options, t0, t1);
+        taylor_steps(run, t0, {y0}, t1, options, control);
     }
     return result;
 }

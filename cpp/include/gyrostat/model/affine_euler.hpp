@@ -8,8 +8,8 @@
 #include <type_traits>
 
 #include "gyrostat/body.hpp"
-#include "gyrostat/lanes.hpp"
-#include "gyrostat/model/double_double.hpp"
+#include "gyrostat/numeric/lanes.hpp"
+#include "gyrostat/numeric/double_double.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {

@@ -1,15 +1,19 @@
 // The averaged (slow-variable) system over the symmetric Euler–Poinsot motion.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/model/system.hpp"
+#include "gyrostat/numeric/lanes.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
+
+struct AveragedLanes;
 
 /// Slow variables (a, r) of a nearly symmetric body (A1 ≈ A2 = A, A3 = C) under small torques.
 /// The generating motion is p = a cos φ, q = a sin φ, r = const, φ̇ = (C − A) r / A; averaging
@@ -66,6 +70,8 @@ public:
 
     /// (ȧ, ṙ) = Σ_i averaged contribution of torque i at (a, r), moments (A, A, C).
     void rhs(double t, const State& y, State& dy) const { dy = torques_.averaged(t, y[0], y[1], A_, C_); }
+    /// W members in SIMD lanes (below), for the ensembles' DOP853 batches (integrate/batch.hpp).
+    using LaneModel = AveragedLanes;
 
     /// (a, r) of a full state: a = √(p² + q²), r = ω3 (ω alone, or ω followed by the quaternion).
     State initial_state(const Eigen::VectorXd& given) const {
@@ -109,6 +115,28 @@ private:
     Body body_;
     TorqueSet torques_;
     double A_ = 0.0, C_ = 0.0;
+};
+
+/// W averaged systems side by side in SIMD lanes: the right-hand side lane by lane (each
+/// member's torques are a list of formulas), the rest of DOP853 vectorised; no Taylor method.
+struct AveragedLanes {
+    using System = AveragedSymmetric;
+    using Lanes = lanes::Lanes;
+    static constexpr int W = lanes::width;
+    static constexpr int dim = System::dim;
+    const System* members[W];
+
+    static bool accepts(const System& /*system*/, bool /*taylor*/) { return true; }
+    explicit AveragedLanes(const System* const* given) { std::copy(given, given + W, members); }
+    void rhs(const Lanes& t, const Lanes* y, Lanes* dy) const {
+        for (int l = 0; l < W; ++l) {
+            System::State rate;
+            members[l]->rhs(t[l], System::State(y[0][l], y[1][l]), rate);
+            dy[0][l] = rate[0];
+            dy[1][l] = rate[1];
+        }
+    }
+    void project(Lanes* /*y*/) const {}
 };
 
 }  // namespace gyrostat::model

@@ -11,10 +11,9 @@
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
-#include "gyrostat/model/elliptic.hpp"
+#include "gyrostat/numeric/elliptic.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/model/torque_free.hpp"
-#include "gyrostat/integrate/substep.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -174,13 +173,11 @@ public:
         const FreeBodyFlow flow(body_, y.template head<3>(), y.template segment<4>(3), 0.0, true, Phases::Double);
         y = flow.at(h);
     }
-    using Perturbation = integrate::TorqueSubflow;
-    Perturbation perturbation(double h) const { return Perturbation::over(h, body_, torques_); }
-    /// y ← the perturbation's flow over p.h at frozen time t and attitude.
-    void perturb(const Perturbation& p, double t, State& y) const {
+    /// The perturbation (model/system.hpp): the torques, and gravity's moment μ (γ2, −γ1, 0) at
+    /// the attitude frozen over the sub-step.
+    Vec3 frozen_moment(const State& y) const {
         const Vec3 g = vertical_in_body(y[3], y[4], y[5], y[6]);
-        const Vec3 gravity(mu_ * g[1], -mu_ * g[0], 0.0);
-        y.template head<3>() = p.advance(body_, torques_, t, y.template head<3>(), gravity);
+        return Vec3(mu_ * g[1], -mu_ * g[0], 0.0);
     }
 
     /// Keeps |Q| = 1 to rounding (so |γ| = 1).

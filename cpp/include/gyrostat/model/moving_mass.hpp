@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
-#include "gyrostat/model/dual.hpp"
+#include "gyrostat/numeric/dual.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
@@ -69,7 +69,7 @@ public:
         for (int i = 0; i < dim; ++i) dy[i] = f[i];
     }
 
-    /// The exact ∂f/∂y: the same equations evaluated on dual numbers (model/dual.hpp), the
+    /// The exact ∂f/∂y: the same equations evaluated on dual numbers (numeric/dual.hpp), the
     /// external torques entering through their own ∂M/∂ω.
     using Jacobian = Eigen::Matrix<double, dim, dim>;
     void jacobian(double t, const State& y, Jacobian& jac) const {

@@ -14,7 +14,6 @@
 #include "gyrostat/body.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/model/torque_free.hpp"
-#include "gyrostat/integrate/substep.hpp"
 #include "gyrostat/torque/set.hpp"
 
 namespace gyrostat::model {
@@ -175,9 +174,10 @@ private:
 /// θ_G, φ_G of G in body axes (paper (15): G/|G| = (sin θ sin φ, sin θ cos φ, cos θ)) and, with
 /// the attitude, the z-x-z Euler angles ψ, θ, φ.
 template <bool WithAttitude>
-class OrthogonalTorque {
+class OrthogonalTorque : public RateAttitude<OrthogonalTorque<WithAttitude>, WithAttitude ? 8 : 4, WithAttitude> {
 public:
     static constexpr int dim = WithAttitude ? 8 : 4;
+    static constexpr const char* model_name = "OrthogonalTorque";
     static constexpr int tau_index = dim - 1;
     using State = Eigen::Matrix<double, dim, 1>;
     static constexpr const char* family = "orthogonal_torque";
@@ -287,7 +287,7 @@ public:
     // With G = Jω + k and Q = ω × G, −g Q = −Q + (L/n_δ) Q, so f = f_free + f_pert with
     //   f_free = (J⁻¹ G × ω,  ½ q ⊗ (0, ω),  1)      the free gyrostat (exact: FreeBodyFlow), τ = t;
     //   f_pert = (J⁻¹ (L(t) Q/n_δ + ΣM(t, ω)),  0,  −L(t)/n_δ)   the servo torque and the other
-    //            torques with t frozen: one 8th-order step on (ω, τ) (integrate::dop853_substep).
+    //            torques with t frozen: one 8th-order step on (ω, τ) (integrate::PerturbationFlow).
     // With L = 0 and no other torque the splitting is the exact flow. The servo torque is along
     // Q ⊥ G, so each sub-flow keeps |G| (the free one exactly, the 8th-order step to its order).
 
@@ -309,43 +309,24 @@ public:
     /// torque keeps it; the servo torque always does).
     bool keeps_momentum_norm() const { return body_.rotor().squaredNorm() == 0.0 && torques_.keeps_momentum_norm(); }
 
-    struct Perturbation {
-        double h = 0.0;
-    };
-    Perturbation perturbation(double h) const { return {h}; }
-    /// y ← the perturbation's flow over p.h at frozen time t: (ω, τ) by one 8th-order step.
-    void perturb(const Perturbation& p, double t, State& y) const {
-        const Vec3& J = body_.moments();
-        Eigen::Vector4d x(y[0], y[1], y[2], y[tau_index]);
-        integrate::dop853_substep(p.h, x, [&](const Eigen::Vector4d& state) -> Eigen::Vector4d {
-            const Vec3 omega = state.template head<3>();
-            const Vec3 G = J.cwiseProduct(omega) + body_.rotor();
-            const Vec3 Q = omega.cross(G);
-            const double servo = servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm());
-            Vec3 m = servo * Q;
-            if (!torques_.empty()) m += torques_.total(t, omega, J);
-            Eigen::Vector4d rate;
-            rate.template head<3>() = body_.inverse_moments().cwiseProduct(m);
-            rate[3] = -servo;
-            return rate;
-        });
+    /// The perturbation (model/system.hpp): a rate on (ω, τ) at frozen time t.
+    Eigen::Vector4d perturbed_part(const State& y) const { return Eigen::Vector4d(y[0], y[1], y[2], y[tau_index]); }
+    void set_perturbed_part(State& y, const Eigen::Vector4d& x) const {
         y.template head<3>() = x.template head<3>();
         y[tau_index] = x[3];
     }
-
-    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (only with
-    /// the attitude: without it the model has no projection at all).
-    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
-    void project(State& y) const {
-        y.template segment<4>(3).normalize();
-    }
-    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
-    void check_state(const State& y) const {
-        check_quaternion(y.template segment<4>(3), "OrthogonalTorque");
-    }
-    /// ω (or ω and the quaternion) alone: identity attitude, τ(t0) = 0.
-    State initial_state(const Eigen::VectorXd& given) const {
-        return complete_rate_state<State>(given, WithAttitude, states);
+    Eigen::Vector4d perturbation_rate(double t, const Eigen::Vector4d& state) const {
+        const Vec3& J = body_.moments();
+        const Vec3 omega = state.template head<3>();
+        const Vec3 G = J.cwiseProduct(omega) + body_.rotor();
+        const Vec3 Q = omega.cross(G);
+        const double servo = servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm());
+        Vec3 m = servo * Q;
+        if (!torques_.empty()) m += torques_.total(t, omega, J);
+        Eigen::Vector4d rate;
+        rate.template head<3>() = body_.inverse_moments().cwiseProduct(m);
+        rate[3] = -servo;
+        return rate;
     }
 
     static constexpr std::array<OutputInfo, 9> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
@@ -372,7 +353,7 @@ public:
         out[6] = regularised(q_norm, d) ? 1.0 : 0.0;
         out[7] = std::atan2(std::hypot(G[0], G[1]), G[2]);
         out[8] = std::atan2(G[0], G[1]);
-        if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out + 9);
+        this->attitude_outputs(y, out + 9);
     }
 
 private:

@@ -67,6 +67,30 @@ struct OutputInfo {
 ///                                                                model it averages with these slow
 ///                                                                variables, at the fast phase given
 ///                                                                (the model ladder's switch up)
+///   using LaneModel = …;                                         W members side by side in SIMD
+///                                                                lanes (numeric/lanes.hpp), for the
+///                                                                ensembles' batches (integrate/
+///                                                                batch.hpp; default: no batches).
+///                                                                A lane model gives
+///     using System; static constexpr int dim;
+///     explicit LaneModel(const System* const* members);         the W lanes' members
+///     static bool accepts(const System&, bool taylor);          whether a batch takes this member
+///     void rhs(const Lanes& t, const Lanes* y, Lanes* dy) const;
+///     void project(Lanes* y) const;                             (or nothing)
+///   and for the Taylor method
+///     static constexpr int max_taylor_order;
+///     template <int Order> void taylor(Lanes (*c)[dim]) const;  c[0] given, c[1..Order] computed
+/// A system that splits (integrate/splitting.hpp) gives its free part and its perturbation:
+///   void require_splitting() const;                              throws when its free part has
+///                                                                no exact flow
+///   void free_flow(double h, State& y) const;                    the exact free flow over h
+///   const Body& body() const; const TorqueSet& torques() const;  the perturbation: the torques on
+///   Vec3 frozen_moment(const State& y) const;                    ω (y[0..2]) plus, optionally, a
+///                                                                moment frozen over the sub-step
+///   or instead a rate on part of the state, frozen in t:
+///     Part perturbed_part(const State&) const;  void set_perturbed_part(State&, const Part&) const;
+///     Part perturbation_rate(double t, const Part& x) const;
+///   bool keeps_momentum_norm() const;                            |Jω| is kept by both sub-flows
 /// A system that needs no integration gives instead of rhs
 ///   auto flow(double t0, const State& y0) const;                 an object with State at(double t)
 namespace system {
@@ -122,6 +146,24 @@ struct has_full_state : std::false_type {};
 template <class S>
 struct has_full_state<S, std::void_t<decltype(std::declval<const S&>().full_state(
                              std::declval<const typename S::State&>(), 0.0))>> : std::true_type {};
+
+template <class S, class = void>
+struct has_perturbation_rate : std::false_type {};
+template <class S>
+struct has_perturbation_rate<S, std::void_t<decltype(std::declval<const S&>().perturbation_rate(
+                                    0.0, std::declval<const S&>().perturbed_part(std::declval<const typename S::State&>())))>>
+    : std::true_type {};
+
+template <class S, class = void>
+struct has_frozen_moment : std::false_type {};
+template <class S>
+struct has_frozen_moment<S, std::void_t<decltype(std::declval<const S&>().frozen_moment(
+                                std::declval<const typename S::State&>()))>> : std::true_type {};
+
+template <class S, class = void>
+struct has_lanes : std::false_type {};
+template <class S>
+struct has_lanes<S, std::void_t<typename S::LaneModel>> : std::true_type {};
 
 template <class S, class = void>
 struct is_closed_form : std::false_type {};
@@ -249,5 +291,38 @@ State complete_rate_state(const Eigen::VectorXd& given, bool attitude, const std
                                 std::to_string(dim) + " (" + system::join_names(names) + ") or omega alone (3)" +
                                 (attitude && dim > 7 ? " or omega and the quaternion (7)" : ""));
 }
+
+/// The attitude part of a state (ω, then the quaternion (w, x, y, z) when WithAttitude, then what
+/// the model adds), written once for the models that integrate the attitude only when asked
+/// (model/gyrostat.hpp, model/torque_free.hpp, model/orthogonal.hpp): the projection onto
+/// |q| = 1 and the quaternion's check (only with the attitude: without it the model has neither),
+/// the completion of ω alone (identity attitude, what follows zero) and the Euler angles among the
+/// outputs. Derived gives `states` and `model_name` (named in the errors).
+template <class Derived, int Dim, bool WithAttitude>
+class RateAttitude {
+public:
+    using State = Eigen::Matrix<double, Dim, 1>;
+
+    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
+    void project(State& y) const {
+        y.template segment<4>(3).normalize();
+    }
+    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
+    void check_state(const State& y) const {
+        check_quaternion(y.template segment<4>(3), Derived::model_name);
+    }
+    /// ω alone (or ω and the quaternion, when more follows) starts from the identity attitude.
+    State initial_state(const Eigen::VectorXd& given) const {
+        return complete_rate_state<State>(given, WithAttitude, Derived::states);
+    }
+
+protected:
+    /// The Euler angles ψ, θ, φ at out[0..3) (with the attitude; nothing without).
+    static void attitude_outputs(const State& y, double* out) {
+        if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out);
+        (void)y, (void)out;
+    }
+};
 
 }  // namespace gyrostat::model

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gyrostat/body.hpp"
-#include "gyrostat/model/double_double.hpp"
+#include "gyrostat/numeric/double_double.hpp"
 #include "gyrostat/model/system.hpp"
 
 namespace gyrostat::model {
@@ -217,9 +217,10 @@ Eigen::Vector4d rotation_quaternion(const Vec3& v);
 /// no integration (model/system.hpp, `flow`): state ω, or ω and the quaternion; outputs |G| and
 /// T (conserved exactly: the closed form keeps them to rounding), with attitude the Euler angles.
 template <bool WithAttitude>
-class TorqueFreeBody {
+class TorqueFreeBody : public RateAttitude<TorqueFreeBody<WithAttitude>, WithAttitude ? 7 : 3, WithAttitude> {
 public:
     static constexpr int dim = WithAttitude ? 7 : 3;
+    static constexpr const char* model_name = "TorqueFree";
     using State = Eigen::Matrix<double, dim, 1>;
     static constexpr const char* family = "torque_free";
     static constexpr auto states = rate_states<WithAttitude>();
@@ -253,25 +254,13 @@ public:
         dy.template head<3>() = body_.inverse_moments().cwiseProduct(body_.angular_momentum(omega).cross(omega));
         if constexpr (WithAttitude) dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
     }
-    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
-    void project(State& y) const {
-        y.template segment<4>(3).normalize();
-    }
-    template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
-    void check_state(const State& y) const {
-        check_quaternion(y.template segment<4>(3), "TorqueFree");
-    }
-    State initial_state(const Eigen::VectorXd& given) const {
-        return complete_rate_state<State>(given, WithAttitude, states);
-    }
-
     static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     void outputs(double, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();
         out[0] = body_.angular_momentum(omega).norm();
         out[1] = body_.kinetic_energy(omega);
-        if constexpr (WithAttitude) euler_outputs(y.template segment<4>(3), out + 2);
+        this->attitude_outputs(y, out + 2);
     }
 
 private:

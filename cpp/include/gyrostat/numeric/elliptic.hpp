@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "gyrostat/model/double_double.hpp"
+#include "gyrostat/numeric/double_double.hpp"
 
 namespace gyrostat::model {
 

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 namespace gyrostat::lanes {
@@ -32,6 +34,31 @@ inline constexpr const char* instruction_set = "scalar";
 
 /// W doubles, one per trajectory.
 using Lanes = Eigen::Array<double, width, 1>;
+
+/// Whether the lanes fill a register wider than SSE2's (an AVX or AVX-512 build).
+#if defined(__AVX__)
+inline constexpr bool wide = true;
+#else
+inline constexpr bool wide = false;
+#endif
+
+// One trajectory's value (double) or W of them (Lanes) through the same calls, so that one step
+// loop serves both (integrate/dop853.hpp, integrate/taylor.hpp): lane l of a value, and the few
+// operations whose spelling differs between a double and an Eigen array.
+inline double& lane(double& v, int /*l*/) { return v; }
+inline double lane(const double& v, int /*l*/) { return v; }
+inline double& lane(Lanes& v, int l) { return v[l]; }
+inline double lane(const Lanes& v, int l) { return v[l]; }
+inline double sqrt(double x) { return std::sqrt(x); }
+inline Lanes sqrt(const Lanes& x) { return x.sqrt(); }
+inline double min(double a, double b) { return std::min(a, b); }
+inline Lanes min(const Lanes& a, double b) { return a.min(Lanes::Constant(b)); }
+/// cond ? a : b (for lanes: lane by lane; both sides are evaluated).
+inline double select(bool cond, double a, double b) { return cond ? a : b; }
+template <class Cond, class B>
+Lanes select(const Eigen::ArrayBase<Cond>& cond, double a, const B& b) {
+    return cond.select(Lanes::Constant(a), b);
+}
 
 /// The value x in every lane (T = double: x itself), so that one template serves one trajectory
 /// and W of them.
