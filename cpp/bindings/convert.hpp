@@ -43,6 +43,17 @@ inline std::vector<AnyTorque> torques_from(const py::iterable& objects) {
     return torques;
 }
 
+/// Whether a model has torques() (the families with perturbation torques).
+template <class M, class = void>
+struct has_torques : std::false_type {};
+template <class M>
+struct has_torques<M, std::void_t<decltype(std::declval<const M&>().torques())>> : std::true_type {};
+
+/// The user's Python torques of a model (expose_custom.cpp): forget their last exception before a
+/// run; re-raise the first one after it (GIL held), as they raised it.
+void reset_python_torques(const AnyModel& model);
+void rethrow_python_torques(const AnyModel& model);
+
 /// The value as the user wrote it, on one line (runs of white space folded to one space) and
 /// shortened to 60 characters: for error messages.
 inline std::string shown(const py::handle& obj) {
@@ -88,6 +99,7 @@ inline Eigen::MatrixXd numbers(const py::handle& obj, long rows, long cols, cons
     return m;
 }
 inline Vec3 vec3(const py::handle& obj, const std::string& what) { return numbers(obj, 3, 0, what); }
+inline Eigen::Vector4d vec4(const py::handle& obj, const std::string& what) { return numbers(obj, 4, 0, what); }
 inline Mat3 mat3(const py::handle& obj, const std::string& what) { return numbers(obj, 3, 3, what); }
 
 /// A (rows × cols) NumPy view of `data`, kept alive by `owner` (no copy).

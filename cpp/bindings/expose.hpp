@@ -3,8 +3,11 @@
 
 #include <pybind11/pybind11.h>
 
+#include <functional>
+
 namespace gyrostat::bindings {
 void expose_body(pybind11::module_& m);         // body.hpp, torque/*.hpp
+void expose_custom_torque(pybind11::module_& m);  // torque/custom.hpp: the user's torque (called by expose_body)
 void expose_attitude(pybind11::module_& m);     // attitude.hpp
 void expose_integrate(pybind11::module_& m);    // integrate/options.hpp, engine.hpp: Options, Result, solve
 void expose_models(pybind11::module_& m);       // engine.hpp: the model of every family

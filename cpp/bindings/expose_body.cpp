@@ -110,7 +110,8 @@ torque::Values values_from(const py::args& args, const py::kwargs& kwargs) {
     }
     for (const auto& p : parameters) {
         if (p.choice == 0) {
-            if (!values.has(p.name)) throw py::type_error(torque + ": missing parameter '" + p.name + "'");
+            if (!values.has(p.name) && !p.default_value)
+                throw py::type_error(torque + ": missing parameter '" + p.name + "'");
             continue;
         }
         std::string choice;
@@ -133,29 +134,43 @@ void expose_torque(py::module_& m) {
     py::list parameters;
     for (const auto& p : Torque::parameters) {
         doc += std::string("    ") + p.name + " [" + p.unit + "]: " + p.description + " (" +
-               torque::constraint_text(p.constraint) + (p.choice ? "; one of a choice" : "") + ")\n";
+               torque::constraint_text(p.constraint) + (p.choice ? "; one of a choice" : "") +
+               (p.default_value ? std::string("; default ") + p.default_value : std::string()) + ")\n";
         py::dict entry;
         entry["name"] = p.name, entry["label"] = p.label, entry["shape"] = shape_name(p.shape), entry["unit"] = p.unit;
         entry["description"] = p.description, entry["constraint"] = constraint_name(p.constraint);
         entry["choice"] = p.choice, entry["stored"] = p.stored;
+        entry["default"] = p.default_value ? py::object(py::str(p.default_value)) : py::object(py::none());
         parameters.append(entry);
     }
     py::class_<Torque> cls(m, Torque::python_name, doc.c_str());
     cls.def(py::init([](const py::args& args, const py::kwargs& kwargs) { return Torque::from(values_from<Torque>(args, kwargs)); }))
         .def("__call__",
-             [name](const Torque& x, const py::object& t, const py::object& omega, const py::object& moments) {
-                 return x(scalar(t, name + ": t"), vec3(omega, name + ": omega"), vec3(moments, name + ": moments"));
+             [name](const Torque& x, const py::object& t, const py::object& omega, const py::object& moments,
+                    const py::object& quaternion) -> Vec3 {
+                 const double time = scalar(t, name + ": t");
+                 const Vec3 w = vec3(omega, name + ": omega"), J = vec3(moments, name + ": moments");
+                 if constexpr (needs_attitude<Torque>::value) {
+                     if (quaternion.is_none())
+                         throw py::value_error(name + " depends on the attitude: give quaternion=(w, x, y, z)");
+                     return x(time, w, J, unit_quaternion(vec4(quaternion, name + ": quaternion")));
+                 } else {
+                     return x(time, w, J);
+                 }
              },
-             py::arg("t"), py::arg("omega"), py::arg("moments"), "The torque in body axes at (t, omega) on a body with these moments.")
-        .def("averaged",
-             [name](const Torque& x, const py::object& t, const py::object& a, const py::object& r, const py::object& A,
-                    const py::object& C) {
-                 return x.averaged(scalar(t, name + ": t"), scalar(a, name + ": a"), scalar(r, name + ": r"),
-                                   scalar(A, name + ": A"), scalar(C, name + ": C"));
-             },
-             py::arg("t"), py::arg("a"), py::arg("r"), py::arg("A"), py::arg("C"),
-             "Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.")
-        .def("assumptions", [](const Torque& x, const torque::Motion& motion) { return assumptions_of(x, motion); },
+             py::arg("t"), py::arg("omega"), py::arg("moments"), py::arg("quaternion") = py::none(),
+             "The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to "
+             "inertial, for a torque that needs it).");
+    if constexpr (has_averaged<Torque>::value)
+        cls.def("averaged",
+                [name](const Torque& x, const py::object& t, const py::object& a, const py::object& r, const py::object& A,
+                       const py::object& C) {
+                    return x.averaged(scalar(t, name + ": t"), scalar(a, name + ": a"), scalar(r, name + ": r"),
+                                      scalar(A, name + ": A"), scalar(C, name + ": C"));
+                },
+                py::arg("t"), py::arg("a"), py::arg("r"), py::arg("A"), py::arg("C"),
+                "Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.");
+    cls.def("assumptions", [](const Torque& x, const torque::Motion& motion) { return assumptions_of(x, motion); },
              py::arg("motion"), "Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).")
         .def("__repr__",
              [name](const Torque& x) {
@@ -170,6 +185,8 @@ void expose_torque(py::module_& m) {
                  return s + ")";
              })
         .def_property_readonly_static("kind", [](py::object) { return std::string(Torque::name); })
+        .def_property_readonly_static("needs_attitude", [](py::object) { return needs_attitude<Torque>::value; })
+        .def_property_readonly_static("has_averaged", [](py::object) { return has_averaged<Torque>::value; })
         .def_property_readonly_static("description", [](py::object) { return std::string(Torque::description); })
         .def_property_readonly_static("parameters", [parameters](py::object) { return parameters; });
     for (const auto& p : Torque::parameters) {
@@ -180,9 +197,18 @@ void expose_torque(py::module_& m) {
     }
 }
 
+/// A torque declared by its parameters (generated here) or the user's own (expose_custom.cpp).
+template <class Torque>
+void expose_one(py::module_& m) {
+    if constexpr (std::is_same_v<Torque, torque::Custom>)
+        expose_custom_torque(m);
+    else
+        expose_torque<Torque>(m);
+}
+
 template <class... Torques>
 py::list expose_torques(py::module_& m, std::variant<Torques...>*) {
-    (expose_torque<Torques>(m), ...);
+    (expose_one<Torques>(m), ...);
     py::list classes;
     (classes.append(m.attr(Torques::python_name)), ...);
     return classes;
@@ -245,6 +271,19 @@ void expose_body(py::module_& m) {
         .def_property_readonly("kappa", &torque::ViscousCavity::kappa, "kappa = rho P0 / nu")
         .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius,
                                "the radius of the sphere with this P0");
+    bound<torque::GravityGradient>(m).def(
+        "precession_rate",
+        [](const torque::GravityGradient& x, const py::object& moments, const py::object& omega, const py::object& quaternion) {
+            return x.precession_rate(vec3(moments, "GravityGradient.precession_rate: moments"),
+                                     vec3(omega, "GravityGradient.precession_rate: omega"),
+                                     unit_quaternion(vec4(quaternion, "GravityGradient.precession_rate: quaternion")));
+        },
+        py::arg("moments"), py::arg("omega"), py::arg("quaternion"),
+        "The rate (rad/s) at which G precesses about the orbit normal, averaged over the orbit and the free motion "
+        "of a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|).");
+    bound<torque::DipoleFieldTorque>(m).def(
+        "field", [](const torque::DipoleFieldTorque& x, const py::object& t) { return x.field(scalar(t, "DipoleFieldTorque.field: t")); },
+        py::arg("t"), "The planet's field B(t) at the body, in inertial axes [T].");
     bound<torque::MovingMassDamper>(m).def(
         "S",
         [](const torque::MovingMassDamper& x, const py::object& A, const py::object& C) {

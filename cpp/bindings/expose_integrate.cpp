@@ -281,12 +281,14 @@ void expose_integrate(py::module_& m) {
         [](const BoundModel& model, const Eigen::Ref<const Eigen::VectorXd>& y0, double t0, double t1, const Options& options,
            py::object progress, double interval) {
             PythonControl control(std::move(progress), interval);
+            reset_python_torques(model.model);
             Result result;
             {
                 py::gil_scoped_release release;
                 result = solve(model.model, t0, y0, t1, options, control.get());
             }
             control.rethrow();
+            rethrow_python_torques(model.model);
             return result;
         },
         py::arg("model"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("progress") = py::none(),
@@ -299,7 +301,7 @@ void expose_integrate(py::module_& m) {
             const auto starts = initial_states(y0s);
             std::vector<const AnyModel*> models;
             models.reserve(bound.size());
-            for (const BoundModel* b : bound) models.push_back(&b->model);
+            for (const BoundModel* b : bound) models.push_back(&b->model), reset_python_torques(b->model);
             PythonControl control(std::move(progress), interval);
             CallbackErrors errors;
             const Options watched = errors.watch(options);
@@ -310,6 +312,7 @@ void expose_integrate(py::module_& m) {
             }
             control.rethrow();
             errors.rethrow();
+            for (const BoundModel* b : bound) rethrow_python_torques(b->model);
             return results;
         },
         py::arg("models"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("threads") = 0,

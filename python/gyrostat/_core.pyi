@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'Event', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
 class Body:
     def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
@@ -68,11 +68,13 @@ class ConstantTorque:
         moment [N m]: M in body axes (finite)
     """
     description: typing.ClassVar[str] = 'a constant torque in body axes'
+    has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'constant'
-    parameters: typing.ClassVar[list] = [{'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M in body axes', 'constraint': 'finite', 'choice': 0, 'stored': True}]
-    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    needs_attitude: typing.ClassVar[bool] = False
+    parameters: typing.ClassVar[list] = [{'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M in body axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments.
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -100,11 +102,13 @@ class LinearDamping:
         diagonal [N m s]: the diagonal of D (finite; one of a choice)
     """
     description: typing.ClassVar[str] = 'M = -D omega'
+    has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'linear_damping'
-    parameters: typing.ClassVar[list] = [{'name': 'matrix', 'label': 'matrix D (column-major)', 'shape': 'matrix3', 'unit': 'N m s', 'description': 'D (M = -D omega)', 'constraint': 'finite', 'choice': 1, 'stored': True}, {'name': 'diagonal', 'label': 'diagonal of D', 'shape': 'vector3', 'unit': 'N m s', 'description': 'the diagonal of D', 'constraint': 'finite', 'choice': 1, 'stored': False}]
-    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    needs_attitude: typing.ClassVar[bool] = False
+    parameters: typing.ClassVar[list] = [{'name': 'matrix', 'label': 'matrix D (column-major)', 'shape': 'matrix3', 'unit': 'N m s', 'description': 'D (M = -D omega)', 'constraint': 'finite', 'choice': 1, 'stored': True, 'default': None}, {'name': 'diagonal', 'label': 'diagonal of D', 'shape': 'vector3', 'unit': 'N m s', 'description': 'the diagonal of D', 'constraint': 'finite', 'choice': 1, 'stored': False, 'default': None}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments.
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -131,11 +135,13 @@ class ResistiveMedium:
         coefficients [N m s^(k+1)]: D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega) (finite)
     """
     description: typing.ClassVar[str] = 'a resistive medium whose resistance varies with time'
+    has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'resistive_medium'
-    parameters: typing.ClassVar[list] = [{'name': 'coefficients', 'label': 'coefficient', 'shape': 'matrices', 'unit': 'N m s^(k+1)', 'description': 'D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)', 'constraint': 'finite', 'choice': 0, 'stored': True}]
-    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    needs_attitude: typing.ClassVar[bool] = False
+    parameters: typing.ClassVar[list] = [{'name': 'coefficients', 'label': 'coefficient', 'shape': 'matrices', 'unit': 'N m s^(k+1)', 'description': 'D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments.
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -169,16 +175,18 @@ class ViscousCavity:
         radius [m]: radius of a spherical cavity (finite and positive; one of a choice)
     """
     description: typing.ClassVar[str] = 'a cavity filled with a highly viscous fluid'
+    has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'viscous_cavity'
-    parameters: typing.ClassVar[list] = [{'name': 'density', 'label': 'density ρ', 'shape': 'scalar', 'unit': 'kg/m^3', 'description': 'rho', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'viscosity', 'label': 'kinematic viscosity ν', 'shape': 'scalar', 'unit': 'm^2/s', 'description': 'kinematic viscosity nu', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'p0', 'label': 'cavity coefficient P0', 'shape': 'scalar', 'unit': 'm^5', 'description': 'P0 of the cavity tensor P = P0 I', 'constraint': 'positive', 'choice': 1, 'stored': True}, {'name': 'radius', 'label': 'cavity radius b', 'shape': 'scalar', 'unit': 'm', 'description': 'radius of a spherical cavity', 'constraint': 'positive', 'choice': 1, 'stored': False}]
+    needs_attitude: typing.ClassVar[bool] = False
+    parameters: typing.ClassVar[list] = [{'name': 'density', 'label': 'density ρ', 'shape': 'scalar', 'unit': 'kg/m^3', 'description': 'rho', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'viscosity', 'label': 'kinematic viscosity ν', 'shape': 'scalar', 'unit': 'm^2/s', 'description': 'kinematic viscosity nu', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'p0', 'label': 'cavity coefficient P0', 'shape': 'scalar', 'unit': 'm^5', 'description': 'P0 of the cavity tensor P = P0 I', 'constraint': 'positive', 'choice': 1, 'stored': True, 'default': None}, {'name': 'radius', 'label': 'cavity radius b', 'shape': 'scalar', 'unit': 'm', 'description': 'radius of a spherical cavity', 'constraint': 'positive', 'choice': 1, 'stored': False, 'default': None}]
     @staticmethod
     def sphere(density: typing.Any, viscosity: typing.Any, radius: typing.Any) -> ViscousCavity:
         """
         A spherical cavity of this radius.
         """
-    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments.
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -228,15 +236,17 @@ class MovingMassDamper:
         damping [1/s]: lambda = delta/m (finite and non-negative)
     """
     description: typing.ClassVar[str] = "Chernousko's quasi-static moving-mass damper"
+    has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'moving_mass_damper'
-    parameters: typing.ClassVar[list] = [{'name': 'mass', 'label': 'mass m', 'shape': 'scalar', 'unit': 'kg', 'description': 'mass m', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'arm', 'label': 'arm rho', 'shape': 'scalar', 'unit': 'm', 'description': 'distance rho of the mass on the z axis', 'constraint': 'non_negative', 'choice': 0, 'stored': True}, {'name': 'frequency', 'label': 'frequency Omega', 'shape': 'scalar', 'unit': 'rad/s', 'description': 'Omega = sqrt(c/m)', 'constraint': 'positive', 'choice': 0, 'stored': True}, {'name': 'damping', 'label': 'damping lambda', 'shape': 'scalar', 'unit': '1/s', 'description': 'lambda = delta/m', 'constraint': 'non_negative', 'choice': 0, 'stored': True}]
+    needs_attitude: typing.ClassVar[bool] = False
+    parameters: typing.ClassVar[list] = [{'name': 'mass', 'label': 'mass m', 'shape': 'scalar', 'unit': 'kg', 'description': 'mass m', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'arm', 'label': 'arm rho', 'shape': 'scalar', 'unit': 'm', 'description': 'distance rho of the mass on the z axis', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None}, {'name': 'frequency', 'label': 'frequency Omega', 'shape': 'scalar', 'unit': 'rad/s', 'description': 'Omega = sqrt(c/m)', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'damping', 'label': 'damping lambda', 'shape': 'scalar', 'unit': '1/s', 'description': 'lambda = delta/m', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None}]
     def S(self, A: typing.Any, C: typing.Any) -> float:
         """
         S of paper 001 eq. (3) for a symmetric body (A, A, C).
         """
-    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments.
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -270,6 +280,234 @@ class MovingMassDamper:
         """
         mass m [kg]
         """
+class GravityGradient:
+    """
+    the gravity-gradient torque on a circular orbit (needs the attitude) (scene type "gravity_gradient").
+    
+    Parameters:
+        orbit_rate [rad/s]: the orbit's mean motion n = sqrt(mu / r^3) (finite and positive)
+        orbit_normal [1]: the orbit plane's normal in inertial axes (finite; default [0, 0, 1])
+        phase [rad]: the body's angle on the orbit from the ascending node at t = 0 (finite; default 0)
+    """
+    description: typing.ClassVar[str] = 'the gravity-gradient torque on a circular orbit (needs the attitude)'
+    has_averaged: typing.ClassVar[bool] = False
+    kind: typing.ClassVar[str] = 'gravity_gradient'
+    needs_attitude: typing.ClassVar[bool] = True
+    parameters: typing.ClassVar[list] = [{'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
+    def precession_rate(self, moments: typing.Any, omega: typing.Any, quaternion: typing.Any) -> float:
+        """
+        The rate (rad/s) at which G precesses about the orbit normal, averaged over the orbit and the free motion of a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|).
+        """
+    @property
+    def orbit_normal(self) -> typing.Any:
+        """
+        the orbit plane's normal in inertial axes [1]
+        """
+    @property
+    def orbit_rate(self) -> typing.Any:
+        """
+        the orbit's mean motion n = sqrt(mu / r^3) [rad/s]
+        """
+    @property
+    def phase(self) -> typing.Any:
+        """
+        the body's angle on the orbit from the ascending node at t = 0 [rad]
+        """
+class MagneticTorque:
+    """
+    a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude) (scene type "magnetic").
+    
+    Parameters:
+        dipole [A m^2]: the body's magnetic dipole moment m in body axes (finite)
+        field [T]: the magnetic field B in inertial axes (finite)
+    """
+    description: typing.ClassVar[str] = 'a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude)'
+    has_averaged: typing.ClassVar[bool] = False
+    kind: typing.ClassVar[str] = 'magnetic'
+    needs_attitude: typing.ClassVar[bool] = True
+    parameters: typing.ClassVar[list] = [{'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field', 'label': 'field B', 'shape': 'vector3', 'unit': 'T', 'description': 'the magnetic field B in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
+    @property
+    def dipole(self) -> typing.Any:
+        """
+        the body's magnetic dipole moment m in body axes [A m^2]
+        """
+    @property
+    def field(self) -> typing.Any:
+        """
+        the magnetic field B in inertial axes [T]
+        """
+class DipoleFieldTorque:
+    """
+    a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude) (scene type "dipole_field").
+    
+    Parameters:
+        dipole [A m^2]: the body's magnetic dipole moment m in body axes (finite)
+        field_strength [T]: B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius (finite and positive)
+        orbit_rate [rad/s]: the orbit's mean motion n = sqrt(mu / r^3) (finite and positive)
+        dipole_axis [1]: the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole) (finite; default [0, 0, -1])
+        orbit_normal [1]: the orbit plane's normal in inertial axes (finite; default [0, 0, 1])
+        phase [rad]: the body's angle on the orbit from the ascending node at t = 0 (finite; default 0)
+    """
+    description: typing.ClassVar[str] = "a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude)"
+    has_averaged: typing.ClassVar[bool] = False
+    kind: typing.ClassVar[str] = 'dipole_field'
+    needs_attitude: typing.ClassVar[bool] = True
+    parameters: typing.ClassVar[list] = [{'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field_strength', 'label': 'field strength B0', 'shape': 'scalar', 'unit': 'T', 'description': "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'dipole_axis', 'label': 'dipole axis d', 'shape': 'vector3', 'unit': '1', 'description': "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, -1]'}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
+    def field(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The planet's field B(t) at the body, in inertial axes [T].
+        """
+    @property
+    def dipole(self) -> typing.Any:
+        """
+        the body's magnetic dipole moment m in body axes [A m^2]
+        """
+    @property
+    def dipole_axis(self) -> typing.Any:
+        """
+        the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole) [1]
+        """
+    @property
+    def field_strength(self) -> typing.Any:
+        """
+        B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius [T]
+        """
+    @property
+    def orbit_normal(self) -> typing.Any:
+        """
+        the orbit plane's normal in inertial axes [1]
+        """
+    @property
+    def orbit_rate(self) -> typing.Any:
+        """
+        the orbit's mean motion n = sqrt(mu / r^3) [rad/s]
+        """
+    @property
+    def phase(self) -> typing.Any:
+        """
+        the body's angle on the orbit from the ascending node at t = 0 [rad]
+        """
+class InertialTorque:
+    """
+    a constant torque fixed in inertial space (needs the attitude) (scene type "inertial").
+    
+    Parameters:
+        moment [N m]: M_I in inertial axes (finite)
+    """
+    description: typing.ClassVar[str] = 'a constant torque fixed in inertial space (needs the attitude)'
+    has_averaged: typing.ClassVar[bool] = False
+    kind: typing.ClassVar[str] = 'inertial'
+    needs_attitude: typing.ClassVar[bool] = True
+    parameters: typing.ClassVar[list] = [{'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M_I in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        """
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
+        """
+        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        """
+    @property
+    def moment(self) -> typing.Any:
+        """
+        M_I in inertial axes [N m]
+        """
+class CustomTorque:
+    """
+    A torque the user writes, in body axes.
+    
+    M = f(t, omega) or, with ``attitude=True``, f(t, omega, quaternion): omega in rad/s (body axes),
+    the quaternion (w, x, y, z) body to inertial, M in N m (body axes).
+    
+    Parameters
+    ----------
+    function : callable or scipy.LowLevelCallable
+        A Python callable (each call holds the GIL, about a microsecond of Python per call; an
+        ensemble runs it one thread at a time; its exception reaches the caller as raised), or a
+        ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of the C signature::
+    
+            int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)
+    
+        called from C++ without the GIL on every thread (quaternion is NULL without the attitude;
+        it returns 0, and a non-zero code stops the run with an error naming the torque).
+    jacobian : callable or scipy.LowLevelCallable, optional
+        dM/domega, of the same kind and arguments as ``function`` (a 3x3 array; compiled: 9 numbers
+        row-major). None: central difference quotients (6 calls) for the implicit methods.
+    attitude : bool
+        The function takes the quaternion; only models with the attitude take the torque.
+    name : str, optional
+        The name in messages and the repr (default: the function's name).
+    
+    Examples
+    --------
+    >>> import numpy as np, gyrostat as g
+    >>> drag = g.CustomTorque(lambda t, omega: -0.1 * omega, name="drag")
+    >>> drag(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
+    array([-0.1, -0. , -0. ])
+    """
+    description: typing.ClassVar[str] = 'a torque the user writes: M = f(t, omega) or f(t, omega, quaternion) in body axes, a Python callable or a compiled function'
+    has_averaged: typing.ClassVar[bool] = False
+    kind: typing.ClassVar[str] = 'custom'
+    needs_attitude: typing.ClassVar[bool] = False
+    parameters: typing.ClassVar[list] = list()
+    def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The torque in body axes at (t, omega) (and the attitude, when it takes it).
+        """
+    def __init__(self, function: typing.Any, jacobian: typing.Any = None, *, attitude: bool = False, name: typing.Any = None) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def assumptions(self, motion: typing.Any) -> list:
+        """
+        A user's torque states no assumption: an empty list.
+        """
+    @property
+    def attitude(self) -> bool:
+        ...
+    @property
+    def name(self) -> str:
+        ...
 class MagnitudeLaw:
     """
     The magnitude L(t) of paper 004's servo torque, evaluated in C++.
@@ -707,4 +945,4 @@ simd_instruction_set: str
 simd_lanes: int
 small: float = 0.1
 taylor_kernel: str
-torque_types: list = [ConstantTorque, LinearDamping, ResistiveMedium, ViscousCavity, MovingMassDamper]
+torque_types: list = [ConstantTorque, LinearDamping, ResistiveMedium, ViscousCavity, MovingMassDamper, GravityGradient, MagneticTorque, DipoleFieldTorque, InertialTorque, CustomTorque]

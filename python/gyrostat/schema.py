@@ -277,6 +277,19 @@ class _String(_Type):
         return value
 
 
+class NamedValues(_Type):
+    """A table of any keys (named values passed on as they are, e.g. a user function's keyword
+    arguments): only the keys' being strings is checked."""
+
+    kinds = frozenset({"table"})
+    expected, name, plural = "a table of named values", "table of named values", "tables of named values"
+
+    def convert(self, value, path):
+        if not isinstance(value, Mapping) or not all(isinstance(key, str) for key in value):
+            self.fail(value, path)
+        return dict(value)
+
+
 class Choice(_Type):
     """One of some strings: ``Choice("auto", "full", "closed_form")``."""
 

@@ -87,11 +87,13 @@ struct TorqueSubflow {
         if (p.exact) p.flow = AffineRateFlow::over(h, body.inverse_moments(), torques.damping_part());
         return p;
     }
-    Vec3 advance(const Body& body, const TorqueSet& torques, double t, Vec3 omega, const Vec3& extra) const {
+    /// `attitude`: the quaternion, frozen over the sub-step, for the torques that need it.
+    Vec3 advance(const Body& body, const TorqueSet& torques, double t, Vec3 omega, const Vec3& extra,
+                 const Eigen::Vector4d* attitude) const {
         if (exact) return flow.apply(omega, extra + torques.constant_part());
         const Vec3& J = body.moments();
         dop853_substep(h, omega, [&](const Vec3& w) -> Vec3 {
-            return body.inverse_moments().cwiseProduct(extra + torques.total(t, w, J));
+            return body.inverse_moments().cwiseProduct(extra + torques.total(t, w, J, attitude));
         });
         return omega;
     }
@@ -123,12 +125,17 @@ public:
             auto x = system.perturbed_part(y);
             dop853_substep(h_, x, [&](const decltype(x)& part) { return system.perturbation_rate(t, part); });
             system.set_perturbed_part(y, x);
-        } else if constexpr (model::system::has_frozen_moment<System>::value) {
-            y.template head<3>() =
-                torques_.advance(system.body(), system.torques(), t, y.template head<3>(), system.frozen_moment(y));
         } else {
-            if (system.torques().empty()) return;
-            y.template head<3>() = torques_.advance(system.body(), system.torques(), t, y.template head<3>(), Vec3::Zero());
+            Eigen::Vector4d q;  // frozen with t over the sub-step (the perturbation leaves q as it is)
+            const Eigen::Vector4d* attitude = model::system::attitude_of<System>(y, q);
+            if constexpr (model::system::has_frozen_moment<System>::value) {
+                y.template head<3>() = torques_.advance(system.body(), system.torques(), t, y.template head<3>(),
+                                                        system.frozen_moment(y), attitude);
+            } else {
+                if (system.torques().empty()) return;
+                y.template head<3>() =
+                    torques_.advance(system.body(), system.torques(), t, y.template head<3>(), Vec3::Zero(), attitude);
+            }
         }
     }
 

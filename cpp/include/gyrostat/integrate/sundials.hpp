@@ -2,6 +2,8 @@
 // Jacobian adapters, an error handler that keeps SUNDIALS's messages, one flag checker.
 #pragma once
 
+#include <exception>
+
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
@@ -67,12 +69,15 @@ Pointer created(Pointer p, const char* what) {
     return p;
 }
 
-/// What the C callbacks see: the system and whether a non-finite derivative was met.
+/// What the C callbacks see: the system, whether a non-finite derivative was met, and an
+/// exception the system threw (a user's torque function): no exception crosses SUNDIALS' C
+/// frames; the callback returns an unrecoverable failure and the driver rethrows it.
 template <class System>
 struct CallbackData {
     const System* system = nullptr;
     bool non_finite = false;
     double t_non_finite = 0.0;
+    std::exception_ptr error;
 };
 
 template <class System>
@@ -84,7 +89,12 @@ template <class System>
 int rhs_callback(double t, N_Vector y, N_Vector ydot, void* user_data) {
     auto* data = static_cast<CallbackData<System>*>(user_data);
     typename System::State dy;
-    data->system->rhs(t, StateMap<System>(N_VGetArrayPointer(y)), dy);
+    try {
+        data->system->rhs(t, StateMap<System>(N_VGetArrayPointer(y)), dy);
+    } catch (...) {
+        data->error = std::current_exception();
+        return -1;
+    }
     Eigen::Map<typename System::State>(N_VGetArrayPointer(ydot)) = dy;
     if (!all_finite(dy)) {
         data->non_finite = true;
@@ -100,7 +110,12 @@ int jacobian_callback(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void
                       N_Vector) {
     auto* data = static_cast<CallbackData<System>*>(user_data);
     model::system::Jacobian<System> j;
-    data->system->jacobian(t, StateMap<System>(N_VGetArrayPointer(y)), j);
+    try {
+        data->system->jacobian(t, StateMap<System>(N_VGetArrayPointer(y)), j);
+    } catch (...) {
+        data->error = std::current_exception();
+        return -1;
+    }
     Eigen::Map<model::system::Jacobian<System>>(SM_DATA_D(jac)) = j;
     return all_finite(Eigen::Map<const Eigen::VectorXd>(j.data(), j.size())) ? 0 : 1;
 }

@@ -96,6 +96,7 @@ bool drive(const System& system, Stepper& stepper, N_Vector y, double t0, Record
         const double t_before = t;
         // tout matters on the first call only (the initial step is sized against it): the first output
         const int flag = stepper.evolve(cursor.pending() ? cursor.next_time() : t1, y, &t);
+        if (flag < 0 && data.error) std::rethrow_exception(data.error);  // the system's own exception, as thrown
         if (flag < 0) return finish(flag);
         ++steps;
         auto dense = [&](double time) {
@@ -146,7 +147,8 @@ bool segment(const System& system, Recording<System>& run, double t0, const type
     typename System::State start = y0;
     model::system::project(system, start);
     Eigen::Map<typename System::State>(N_VGetArrayPointer(y.get())) = start;
-    CallbackData<System> data{&system};
+    CallbackData<System> data;
+    data.system = &system;
     ErrorLog log;
     auto stepper = make(t0, context, y.get(), data, log);
     return drive(system, stepper, y.get(), t0, run, options, data, log, control, monitor);

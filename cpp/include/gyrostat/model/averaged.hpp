@@ -46,6 +46,11 @@ public:
         if (A_ == C_)
             throw std::invalid_argument("AveragedSymmetric: A = C = " + format_value(A_) +
                                         ": a spherical body has no fast rotation of (p, q) to average over");
+        if (const char* name = torques_.without_averaged())
+            throw std::invalid_argument(std::string("AveragedSymmetric: ") + name +
+                                        " has no contribution to the (a, r) system (a torque that depends on the "
+                                        "attitude, which the averaged model does not carry, or a user's torque): use "
+                                        "the full model");
     }
 
     const Body& body() const { return body_; }

@@ -46,7 +46,9 @@ public:
     static constexpr auto states = rate_states<WithAttitude>();
 
     Gyrostat(Body body, TorqueSet torques)
-        : body_(std::move(body)), torques_(std::move(torques)), affine_(AffineEuler<double>::of(body_, torques_)) {}
+        : body_(std::move(body)), torques_(std::move(torques)), affine_(AffineEuler<double>::of(body_, torques_)) {
+        if constexpr (!WithAttitude) torques_.require_no_attitude("Model(attitude=False)");
+    }
 
     const Body& body() const { return body_; }
     /// The Taylor recursion covers constant and linear torques (a quadratic right-hand side).
@@ -57,8 +59,9 @@ public:
     void rhs(double t, const State& y, State& dy) const {
         const Vec3 omega = y.template head<3>();
         const Vec3 momentum = body_.moments().cwiseProduct(omega) + body_.rotor();
-        dy.template head<3>() =
-            body_.inverse_moments().cwiseProduct(torques_.total(t, omega, body_.moments()) - omega.cross(momentum));
+        Eigen::Vector4d q;
+        const Vec3 torque = torques_.total(t, omega, body_.moments(), system::attitude_of<Gyrostat>(y, q));
+        dy.template head<3>() = body_.inverse_moments().cwiseProduct(torque - omega.cross(momentum));
         if constexpr (WithAttitude) {
             dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
         }
@@ -69,8 +72,10 @@ public:
         jac.setZero();
         const Vec3 omega = y.template head<3>();
         const Vec3 momentum = body_.moments().cwiseProduct(omega) + body_.rotor();
+        Eigen::Vector4d q;
+        const Mat3 d_torque = torques_.jacobian(t, omega, body_.moments(), system::attitude_of<Gyrostat>(y, q));
         const Mat3 d_omega = body_.inverse_moments().asDiagonal() *
-                             (torques_.jacobian(t, omega, body_.moments()) - skew(omega) * body_.moments().asDiagonal() +
+                             (d_torque - skew(omega) * body_.moments().asDiagonal() +
                               skew(momentum));
         jac.template topLeftCorner<3, 3>() = d_omega;
         if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);

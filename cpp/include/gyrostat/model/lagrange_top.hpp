@@ -96,6 +96,7 @@ public:
     using State = Eigen::Matrix<double, 7, 1>;
     static constexpr const char* family = "lagrange_top";
     static constexpr auto states = rate_states<true>();
+    static constexpr bool carries_attitude = true;
 
     LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)), mu_(mu) {
         const Vec3& J = body_.moments();
@@ -124,7 +125,8 @@ public:
         const double p = y[0], q = y[1], r = y[2];
         const double w = y[3], x = y[4], yy = y[5], z = y[6];
         const Vec3 g = vertical_in_body(w, x, yy, z);
-        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, Vec3(p, q, r), body_.moments());
+        const Eigen::Vector4d attitude(w, x, yy, z);
+        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, Vec3(p, q, r), body_.moments(), &attitude);
         dy[0] = ((A_ - C_) * q * r + mu_ * g[1] + M[0]) / A_;
         dy[1] = ((C_ - A_) * p * r - mu_ * g[0] + M[1]) / A_;
         dy[2] = M[2] / C_;
@@ -140,7 +142,8 @@ public:
         const double w = y[3], x = y[4], yy = y[5], z = y[6];
         jac.setZero();
         if (!torques_.empty()) {
-            const Mat3 dM = torques_.jacobian(t, Vec3(p, q, r), body_.moments());
+            const Eigen::Vector4d attitude(w, x, yy, z);
+            const Mat3 dM = torques_.jacobian(t, Vec3(p, q, r), body_.moments(), &attitude);
             jac.template block<2, 3>(0, 0) = dM.template topRows<2>() / A_;
             jac.template block<1, 3>(2, 0) = dM.row(2) / C_;
         }

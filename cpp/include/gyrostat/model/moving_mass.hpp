@@ -48,6 +48,7 @@ public:
         // the parameters are validated as those of the reduced torque
         torque::MovingMassDamper check(mass, arm, frequency, damping);
         (void)check;
+        torques_.require_no_attitude("MovingMassModel");
         const double shift = mu_ * rho_ * rho_;
         carrier_ = Vec3(body_.moments()[0] - shift, body_.moments()[1] - shift, body_.moments()[2]);
         if (!(carrier_[0] > 0.0) || !(carrier_[1] > 0.0))

@@ -190,6 +190,7 @@ public:
         if (!std::isfinite(eta) || eta <= 0.0)
             throw std::invalid_argument("OrthogonalTorque: regularisation eta = " + format_value(eta) +
                                         " must be finite and positive (the torque direction Q/|Q| is undefined at Q = 0)");
+        if constexpr (!WithAttitude) torques_.require_no_attitude("OrthogonalModel(attitude=False)");
     }
 
     const Body& body() const { return body_; }
@@ -234,7 +235,8 @@ public:
         const Vec3 Q = omega.cross(G);
         const double g = 1.0 - servo_gain(t, Q.norm(), eta_ * omega.norm() * G.norm());
         Vec3 m = -g * Q;
-        if (!torques_.empty()) m += torques_.total(t, omega, body_.moments());
+        Eigen::Vector4d attitude;
+        if (!torques_.empty()) m += torques_.total(t, omega, body_.moments(), system::attitude_of<OrthogonalTorque>(y, attitude));
         dy.template head<3>() = body_.inverse_moments().cwiseProduct(m);
         if constexpr (WithAttitude) {
             dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
@@ -277,7 +279,8 @@ public:
             dg = L / (n * n) * dn;
         }
         Mat3 dm = -Q * dg - g * dQ;
-        if (!torques_.empty()) dm += torques_.jacobian(t, omega, J);
+        Eigen::Vector4d attitude;
+        if (!torques_.empty()) dm += torques_.jacobian(t, omega, J, system::attitude_of<OrthogonalTorque>(y, attitude));
         jac.template topLeftCorner<3, 3>() = body_.inverse_moments().asDiagonal() * dm;
         jac.template block<1, 3>(tau_index, 0) = dg;
         if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
@@ -293,7 +296,13 @@ public:
 
     /// Throws std::invalid_argument naming the body when the free gyrostat has no exact flow (a
     /// rotor off the symmetry axis, or an asymmetric body with a rotor).
-    void require_splitting() const { FreeBodyFlow::require_closed_form(body_, "splitting"); }
+    void require_splitting() const {
+        FreeBodyFlow::require_closed_form(body_, "splitting");
+        if (const char* name = torques_.needs_attitude())
+            throw std::invalid_argument(std::string("splitting: ") + name +
+                                        " depends on the attitude, which the orthogonal-torque model's perturbation "
+                                        "sub-flow (omega, tau) does not carry: use dop853 or an implicit method");
+    }
     /// y ← the exact free flow over h; τ advances by h.
     void free_flow(double h, State& y) const {
         if constexpr (WithAttitude) {

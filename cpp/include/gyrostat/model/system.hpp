@@ -81,6 +81,9 @@ struct OutputInfo {
 ///     static constexpr int max_taylor_order;
 ///     template <int Order> void taylor(Lanes (*c)[dim]) const;  c[0] given, c[1..Order] computed
 /// A system that splits (integrate/splitting.hpp) gives its free part and its perturbation:
+///   static constexpr bool carries_attitude;                      the unit quaternion body → inertial
+///                                                                is y[3..7) (the torques that need
+///                                                                the attitude read it; default: no)
 ///   void require_splitting() const;                              throws when its free part has
 ///                                                                no exact flow
 ///   void free_flow(double h, State& y) const;                    the exact free flow over h
@@ -153,6 +156,23 @@ template <class S>
 struct has_perturbation_rate<S, std::void_t<decltype(std::declval<const S&>().perturbation_rate(
                                     0.0, std::declval<const S&>().perturbed_part(std::declval<const typename S::State&>())))>>
     : std::true_type {};
+
+template <class S, class = void>
+struct carries_attitude : std::false_type {};
+template <class S>
+struct carries_attitude<S, std::enable_if_t<S::carries_attitude>> : std::true_type {};
+
+/// The attitude quaternion of y (y[3..7)) where the model carries it, else nullptr; `q` holds it.
+template <class S>
+const Eigen::Vector4d* attitude_of(const typename S::State& y, Eigen::Vector4d& q) {
+    if constexpr (carries_attitude<S>::value) {
+        q = y.template segment<4>(3);
+        return &q;
+    } else {
+        (void)y, (void)q;
+        return nullptr;
+    }
+}
 
 template <class S, class = void>
 struct has_frozen_moment : std::false_type {};
@@ -302,6 +322,7 @@ template <class Derived, int Dim, bool WithAttitude>
 class RateAttitude {
 public:
     using State = Eigen::Matrix<double, Dim, 1>;
+    static constexpr bool carries_attitude = WithAttitude;
 
     /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
     template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>

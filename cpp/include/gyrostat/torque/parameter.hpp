@@ -36,7 +36,8 @@ enum class Constraint {
 /// One parameter of a torque. `choice` = 0: required; `choice` = k > 0: exactly one of the
 /// parameters with the same k is given (alternative ways to say the same thing, e.g. a matrix or
 /// its diagonal); `stored` says whether the torque keeps it (a property in Python) or only
-/// builds from it.
+/// builds from it; `default_value`, when given, makes it optional: the value it takes when left
+/// out, as a scene writes it ("0", "[0, 0, 1]"; `from` supplies the same value).
 struct Parameter {
     const char* name;         ///< its key in a scene and its keyword in Python
     const char* label;        ///< how an error message names it (e.g. "cavity radius b")
@@ -46,6 +47,7 @@ struct Parameter {
     Constraint constraint = Constraint::Finite;
     int choice = 0;
     bool stored = true;
+    const char* default_value = nullptr;
 };
 
 /// A parameter's value.
@@ -61,6 +63,9 @@ public:
 
     double scalar(const std::string& name) const { return std::get<double>(at(name)); }
     const Vec3& vector(const std::string& name) const { return std::get<Vec3>(at(name)); }
+    /// An optional parameter's value, or its default when it was left out.
+    double scalar_or(const std::string& name, double otherwise) const { return has(name) ? scalar(name) : otherwise; }
+    Vec3 vector_or(const std::string& name, const Vec3& otherwise) const { return has(name) ? vector(name) : otherwise; }
     const Mat3& matrix(const std::string& name) const { return std::get<Mat3>(at(name)); }
     const std::vector<Mat3>& matrices(const std::string& name) const { return std::get<std::vector<Mat3>>(at(name)); }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <string>
@@ -10,7 +11,12 @@
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/constant.hpp"
+#include "gyrostat/torque/custom.hpp"
+#include "gyrostat/torque/dipole_field.hpp"
+#include "gyrostat/torque/gravity_gradient.hpp"
+#include "gyrostat/torque/inertial.hpp"
 #include "gyrostat/torque/linear_damping.hpp"
+#include "gyrostat/torque/magnetic.hpp"
 #include "gyrostat/torque/moving_mass_damper.hpp"
 #include "gyrostat/torque/resistive_medium.hpp"
 #include "gyrostat/torque/viscous_cavity.hpp"
@@ -20,9 +26,17 @@ namespace gyrostat {
 /// Every torque the library knows: adding a torque is its header and its line here. Each is a
 /// small value type with
 ///   Vec3 operator()(t, ω, J)                       the torque in body axes (J: principal moments),
-///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω,
+///                                                  or, for a torque that depends on the attitude,
+///   Vec3 operator()(t, ω, J, q)                    with `static constexpr bool needs_attitude = true`
+///                                                  (q: the unit quaternion body → inertial; only
+///                                                  models that carry q take it),
+///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω (an attitude
+///                                                  torque's ∂M/∂q is left out of the Jacobian: the
+///                                                  implicit methods' Newton iteration only needs an
+///                                                  approximation, the answer is the right-hand side's),
 ///   Vector2d averaged(t, a, r, A, C)               its contribution (ȧ, ṙ) to the system averaged
-///                                                  over the symmetric Euler–Poinsot motion,
+///                                                  over the symmetric Euler–Poinsot motion (a torque
+///                                                  without it is refused by the averaged model),
 ///   bool axisymmetric()                            it commutes with rotations about body z,
 /// and declares beside its equations (torque/parameter.hpp)
 ///   static name, python_name, description          its scene type, its Python class, one line,
@@ -33,12 +47,42 @@ namespace gyrostat {
 /// and may declare `static constexpr bool keeps_momentum_norm = true` when Jω·M ≡ 0.
 /// The Python classes, the scene schema and every list of torques are generated from these.
 using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
-                               torque::ViscousCavity, torque::MovingMassDamper>;
+                               torque::ViscousCavity, torque::MovingMassDamper, torque::GravityGradient,
+                               torque::MagneticTorque, torque::DipoleFieldTorque, torque::InertialTorque,
+                               torque::Custom>;
 
 template <class T, class = void>
 struct keeps_momentum_norm : std::false_type {};
 template <class T>
 struct keeps_momentum_norm<T, std::enable_if_t<T::keeps_momentum_norm>> : std::true_type {};
+
+template <class T, class = void>
+struct needs_attitude : std::false_type {};
+template <class T>
+struct needs_attitude<T, std::enable_if_t<T::needs_attitude>> : std::true_type {};
+
+/// A torque whose dependence on the attitude is decided per instance (a user's torque): it
+/// declares `optional_attitude = true`, `bool uses_attitude() const` and takes the attitude as a
+/// pointer (nullptr: none), in operator() and add_jacobian.
+template <class T, class = void>
+struct optional_attitude : std::false_type {};
+template <class T>
+struct optional_attitude<T, std::enable_if_t<T::optional_attitude>> : std::true_type {};
+
+/// Whether this torque reads the attitude.
+template <class T>
+bool uses_attitude(const T& x) {
+    if constexpr (optional_attitude<T>::value)
+        return x.uses_attitude();
+    else
+        return needs_attitude<T>::value;
+}
+
+template <class T, class = void>
+struct has_averaged : std::false_type {};
+template <class T>
+struct has_averaged<T, std::void_t<decltype(std::declval<const T&>().averaged(0.0, 0.0, 0.0, 1.0, 1.0))>>
+    : std::true_type {};
 
 template <class T, class = void>
 struct has_assumptions : std::false_type {};
@@ -95,6 +139,36 @@ public:
         return true;
     }
 
+    /// The first torque that needs the attitude (nullptr: none does).
+    const char* needs_attitude() const {
+        for (const auto& part : parts_) {
+            const char* name = std::visit([](const auto& x) -> const char* {
+                using T = std::decay_t<decltype(x)>;
+                return gyrostat::uses_attitude(x) ? T::python_name : nullptr;
+            }, part);
+            if (name) return name;
+        }
+        return nullptr;
+    }
+    /// Throws std::invalid_argument naming the torque when one needs the attitude and the model
+    /// (`model`, e.g. "Model(attitude=False)") does not carry it.
+    void require_no_attitude(const std::string& model) const {
+        if (const char* name = needs_attitude())
+            throw std::invalid_argument(std::string(name) + " depends on the attitude, which " + model +
+                                        " does not carry: use a model with the attitude quaternion (attitude=True)");
+    }
+    /// The first torque without an averaged contribution (nullptr: every one has it).
+    const char* without_averaged() const {
+        for (const auto& part : parts_) {
+            const char* name = std::visit([](const auto& x) -> const char* {
+                using T = std::decay_t<decltype(x)>;
+                return has_averaged<T>::value ? nullptr : T::python_name;
+            }, part);
+            if (name) return name;
+        }
+        return nullptr;
+    }
+
     /// Every torque commutes with rotations about body z (none at all counts).
     bool axisymmetric() const {
         for (const auto& part : parts_)
@@ -102,16 +176,34 @@ public:
         return true;
     }
 
-    /// Σ M_i(t, ω).
-    Vec3 total(double t, const Vec3& omega, const Vec3& moments) const {
+    /// Σ M_i(t, ω) (q: the attitude, for the torques that need it; a model without the attitude
+    /// refused them at construction with require_no_attitude).
+    Vec3 total(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* attitude = nullptr) const {
         Vec3 m = has_damping_ ? Vec3(constant_ - damping_ * omega) : constant_;
-        for (const auto& part : others_) m += std::visit([&](const auto& x) { return x(t, omega, moments); }, part);
+        for (const auto& part : others_)
+            m += std::visit([&](const auto& x) -> Vec3 {
+                using T = std::decay_t<decltype(x)>;
+                if constexpr (gyrostat::optional_attitude<T>::value) {
+                    return x(t, omega, moments, attitude);
+                } else if constexpr (gyrostat::needs_attitude<T>::value) {
+                    if (!attitude) throw std::logic_error(std::string(x.python_name) + ": evaluated without the attitude");
+                    return x(t, omega, moments, *attitude);
+                } else {
+                    return x(t, omega, moments);
+                }
+            }, part);
         return m;
     }
-    /// Σ ∂M_i/∂ω.
-    Mat3 jacobian(double t, const Vec3& omega, const Vec3& moments) const {
+    /// Σ ∂M_i/∂ω (at the attitude, for the torques that read it).
+    Mat3 jacobian(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* attitude = nullptr) const {
         Mat3 d = -damping_;
-        for (const auto& part : others_) std::visit([&](const auto& x) { x.add_jacobian(t, omega, moments, d); }, part);
+        for (const auto& part : others_)
+            std::visit([&](const auto& x) {
+                if constexpr (gyrostat::optional_attitude<std::decay_t<decltype(x)>>::value)
+                    x.add_jacobian(t, omega, moments, attitude, d);
+                else
+                    x.add_jacobian(t, omega, moments, d);
+            }, part);
         return d;
     }
     /// The folded affine part: M = M0 − D ω (for the Taylor recursion).
@@ -121,7 +213,13 @@ public:
     /// Σ (ȧ, ṙ)_i over the symmetric Euler–Poinsot motion with moments (A, A, C).
     Eigen::Vector2d averaged(double t, double a, double r, double A, double C) const {
         Eigen::Vector2d rates = Eigen::Vector2d::Zero();
-        for (const auto& part : parts_) rates += std::visit([&](const auto& x) { return x.averaged(t, a, r, A, C); }, part);
+        for (const auto& part : parts_)
+            rates += std::visit([&](const auto& x) -> Eigen::Vector2d {
+                if constexpr (has_averaged<std::decay_t<decltype(x)>>::value)
+                    return x.averaged(t, a, r, A, C);
+                else
+                    throw std::logic_error(std::string(x.python_name) + ": no averaged contribution");
+            }, part);
         return rates;
     }
 

@@ -1,0 +1,228 @@
+// The user's torque (torque/custom.hpp): a Python callable, or a compiled function given as a
+// scipy.LowLevelCallable, behind the core's TorqueFunction. Translation only: the Python call
+// takes the GIL, converts ω (and q) to arrays and M back, and keeps the user's exception so that
+// it reaches the caller as it was raised.
+#include <Python.h>
+
+#include <algorithm>
+#include <functional>
+#include <tuple>
+#include <memory>
+#include <string>
+
+#include "convert.hpp"
+#include "expose.hpp"
+#include "gyrostat/torque/custom.hpp"
+
+namespace gyrostat::bindings {
+
+namespace {
+
+/// A Python callable f(t, omega[, quaternion]) -> M and its optional jac(t, omega[, quaternion]) -> dM/domega.
+/// Each call holds the GIL (ensembles call it one thread at a time). The first exception it
+/// raises is kept for solve_ensemble to re-raise (a single solve propagates it directly).
+class PythonTorqueFunction final : public torque::TorqueFunction {
+public:
+    PythonTorqueFunction(py::object function, py::object jacobian, std::string label)
+        : function_(std::move(function)), jacobian_(std::move(jacobian)), label_(std::move(label)) {}
+    ~PythonTorqueFunction() override {
+        if (!Py_IsInitialized()) {  // at exit: leak rather than touch a finalised interpreter
+            function_.release(), jacobian_.release();
+            return;
+        }
+        py::gil_scoped_acquire gil;
+        function_ = py::object(), jacobian_ = py::object();
+    }
+
+    Vec3 torque(double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const override {
+        py::gil_scoped_acquire gil;
+        const py::object value = call(function_, t, omega, quaternion);
+        return numbers(value, 3, 0, "CustomTorque '" + label_ + "' returned a value that, as M in body axes,");
+    }
+    bool jacobian(double t, const Vec3& omega, const Eigen::Vector4d* quaternion, Mat3& d) const override {
+        if (jacobian_.is_none()) return false;
+        py::gil_scoped_acquire gil;
+        const py::object value = call(jacobian_, t, omega, quaternion);
+        d = numbers(value, 3, 3, "CustomTorque '" + label_ + "' Jacobian returned a value that, as dM/domega,");
+        return true;
+    }
+
+    /// Forgets an earlier run's exception (GIL held).
+    void reset() const { error_.reset(); }
+    /// Re-raises the first exception the user's function raised in the last run (GIL held).
+    void rethrow() const {
+        if (error_) {
+            auto error = std::move(error_);
+            throw std::move(*error);
+        }
+    }
+
+private:
+    py::object call(const py::object& f, double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const {
+        try {
+            py::array_t<double> w(3, omega.data());
+            if (quaternion) return f(t, w, py::array_t<double>(4, quaternion->data()));
+            return f(t, w);
+        } catch (py::error_already_set& e) {
+            if (!error_) error_ = std::make_unique<py::error_already_set>(e);
+            throw;
+        }
+    }
+
+    py::object function_;
+    py::object jacobian_;
+    std::string label_;
+    mutable std::unique_ptr<py::error_already_set> error_;  // guarded by the GIL
+};
+
+/// "int (double, double *, double *, double *, void *)" with or without const: the accepted
+/// signature of a compiled torque (torque/custom.hpp), spaces and const removed.
+bool accepted_signature(std::string signature) {
+    for (const std::string word : {"const"}) {
+        for (auto at = signature.find(word); at != std::string::npos; at = signature.find(word)) signature.erase(at, word.size());
+    }
+    signature.erase(std::remove_if(signature.begin(), signature.end(), [](char c) { return c == ' '; }), signature.end());
+    return signature == "int(double,double*,double*,double*,void*)";
+}
+
+bool is_low_level_callable(const py::handle& obj) {
+    return PyTuple_Check(obj.ptr()) && std::string(py::str(py::type::of(obj).attr("__name__"))) == "LowLevelCallable";
+}
+
+/// The function pointer and user_data of a scipy.LowLevelCallable, its signature checked.
+std::pair<torque::TorqueFunctionPointer, void*> compiled(const py::handle& callable, const std::string& what) {
+    PyObject* capsule = PyTuple_GET_ITEM(callable.ptr(), 0);
+    const char* signature = PyCapsule_GetName(capsule);
+    if (!signature || !accepted_signature(signature))
+        throw py::value_error(what + ": the LowLevelCallable's signature is '" + std::string(signature ? signature : "") +
+                              "'; a compiled torque is int (double t, const double *omega, const double *quaternion, "
+                              "double *moment, void *user_data)");
+    void* pointer = PyCapsule_GetPointer(capsule, signature);
+    if (!pointer) throw py::error_already_set();
+    return {reinterpret_cast<torque::TorqueFunctionPointer>(pointer), PyCapsule_GetContext(capsule)};
+}
+
+std::string label_of(const py::handle& function, const py::object& name) {
+    if (!name.is_none()) return py::str(name);
+    if (is_low_level_callable(function)) {
+        const py::object inner = function.attr("function");
+        if (py::hasattr(inner, "__name__")) return py::str(inner.attr("__name__"));
+        return "compiled";
+    }
+    if (py::hasattr(function, "__qualname__")) return py::str(function.attr("__qualname__"));
+    return py::str(py::type::of(function).attr("__name__"));
+}
+
+torque::Custom make_custom(const py::object& function, const py::object& jacobian, bool attitude, const py::object& name) {
+    const std::string label = label_of(function, name);
+    const std::string what = "CustomTorque '" + label + "'";
+    const bool low_level = is_low_level_callable(function);
+    if (!low_level && !PyCallable_Check(function.ptr()))
+        throw py::type_error(what + ": the function must be a Python callable f(t, omega[, quaternion]) or a "
+                             "scipy.LowLevelCallable, got " + shown(function));
+    if (!jacobian.is_none() && is_low_level_callable(jacobian) != low_level)
+        throw py::type_error(what + ": give the function and its Jacobian both as Python callables or both as "
+                             "LowLevelCallables");
+    if (!jacobian.is_none() && !low_level && !PyCallable_Check(jacobian.ptr()))
+        throw py::type_error(what + ": the Jacobian must be callable, got " + shown(jacobian));
+    std::shared_ptr<const torque::TorqueFunction> core;
+    if (low_level) {
+        const auto [f, data] = compiled(function, what);
+        torque::JacobianFunctionPointer df = nullptr;
+        void* jacobian_data = nullptr;
+        if (!jacobian.is_none()) std::tie(df, jacobian_data) = compiled(jacobian, what + " Jacobian");
+        core = std::make_shared<torque::CompiledTorqueFunction>(label, f, data, df, jacobian_data);
+    } else {
+        core = std::make_shared<PythonTorqueFunction>(function, jacobian, label);
+    }
+    return torque::Custom(core, label, attitude);
+}
+
+}  // namespace
+
+static void for_each_python_torque(const AnyModel& model, const std::function<void(const torque::TorqueFunction&)>& f) {
+    std::visit(
+        [&](const auto& m) {
+            if constexpr (has_torques<std::decay_t<decltype(m)>>::value) {
+                for (const auto& part : m.torques().parts())
+                    if (const auto* custom = std::get_if<torque::Custom>(&part)) f(*custom->function);
+            }
+        },
+        model);
+}
+
+void reset_python_torques(const AnyModel& model) {
+    for_each_python_torque(model, [](const torque::TorqueFunction& f) {
+        if (const auto* p = dynamic_cast<const PythonTorqueFunction*>(&f)) p->reset();
+    });
+}
+void rethrow_python_torques(const AnyModel& model) {
+    for_each_python_torque(model, [](const torque::TorqueFunction& f) {
+        if (const auto* p = dynamic_cast<const PythonTorqueFunction*>(&f)) p->rethrow();
+    });
+}
+
+void expose_custom_torque(py::module_& m) {
+    using torque::Custom;
+    py::class_<Custom>(m, Custom::python_name,
+                       R"doc(A torque the user writes, in body axes.
+
+M = f(t, omega) or, with ``attitude=True``, f(t, omega, quaternion): omega in rad/s (body axes),
+the quaternion (w, x, y, z) body to inertial, M in N m (body axes).
+
+Parameters
+----------
+function : callable or scipy.LowLevelCallable
+    A Python callable (each call holds the GIL, about a microsecond of Python per call; an
+    ensemble runs it one thread at a time; its exception reaches the caller as raised), or a
+    ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of the C signature::
+
+        int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)
+
+    called from C++ without the GIL on every thread (quaternion is NULL without the attitude;
+    it returns 0, and a non-zero code stops the run with an error naming the torque).
+jacobian : callable or scipy.LowLevelCallable, optional
+    dM/domega, of the same kind and arguments as ``function`` (a 3x3 array; compiled: 9 numbers
+    row-major). None: central difference quotients (6 calls) for the implicit methods.
+attitude : bool
+    The function takes the quaternion; only models with the attitude take the torque.
+name : str, optional
+    The name in messages and the repr (default: the function's name).
+
+Examples
+--------
+>>> import numpy as np, gyrostat as g
+>>> drag = g.CustomTorque(lambda t, omega: -0.1 * omega, name="drag")
+>>> drag(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
+array([-0.1, -0. , -0. ])
+)doc")
+        .def(py::init(&make_custom), py::arg("function"), py::arg("jacobian") = py::none(), py::kw_only(),
+             py::arg("attitude") = false, py::arg("name") = py::none())
+        .def("__call__",
+             [](const Custom& x, const py::object& t, const py::object& omega, const py::object& moments,
+                const py::object& quaternion) {
+                 const std::string what = "CustomTorque '" + x.label + "'";
+                 if (x.attitude && quaternion.is_none())
+                     throw py::value_error(what + " depends on the attitude: give quaternion=(w, x, y, z)");
+                 const Eigen::Vector4d q = x.attitude ? unit_quaternion(vec4(quaternion, what + ": quaternion"))
+                                                      : Eigen::Vector4d(1, 0, 0, 0);
+                 return x(scalar(t, what + ": t"), vec3(omega, what + ": omega"), vec3(moments, what + ": moments"),
+                          x.attitude ? &q : nullptr);
+             },
+             py::arg("t"), py::arg("omega"), py::arg("moments"), py::arg("quaternion") = py::none(),
+             "The torque in body axes at (t, omega) (and the attitude, when it takes it).")
+        .def_readonly("name", &Custom::label)
+        .def_readonly("attitude", &Custom::attitude)
+        .def("assumptions", [](const Custom&, const py::object&) { return py::list(); }, py::arg("motion"),
+             "A user's torque states no assumption: an empty list.")
+        .def("__repr__", [](const Custom& x) {
+            return "CustomTorque(" + x.label + (x.attitude ? ", attitude=True" : "") + ")";
+        })
+        .def_property_readonly_static("kind", [](py::object) { return std::string(Custom::name); })
+        .def_property_readonly_static("description", [](py::object) { return std::string(Custom::description); })
+        .def_property_readonly_static("needs_attitude", [](py::object) { return false; })
+        .def_property_readonly_static("has_averaged", [](py::object) { return false; })
+        .def_property_readonly_static("parameters", [](py::object) { return py::list(); });
+}
+
+}  // namespace gyrostat::bindings

@@ -1,0 +1,123 @@
+// A torque the user writes: a function the core calls, compiled or given by the bindings.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "gyrostat/body.hpp"
+#include "gyrostat/torque/parameter.hpp"
+
+namespace gyrostat::torque {
+
+/// The C signature of a compiled torque function (SciPy's LowLevelCallable convention: the last
+/// argument is the callable's user_data):
+///
+///   int torque(double t, const double* omega, const double* quaternion, double* moment, void* user_data)
+///
+/// omega: ω (3 numbers, body axes); quaternion: q = (w, x, y, z), body → inertial (4 numbers), or
+/// NULL for a torque declared without the attitude; moment: M (3 numbers, body axes) to write.
+/// It returns 0, or a non-zero code that stops the run with an error naming the torque. It is
+/// called from any thread at once (ensembles), so it must not keep state between calls.
+using TorqueFunctionPointer = int (*)(double, const double*, const double*, double*, void*);
+/// The optional Jacobian, same arguments: writes ∂M/∂ω, 9 numbers row-major (d[3 i + j] = ∂M_i/∂ω_j).
+using JacobianFunctionPointer = TorqueFunctionPointer;
+
+/// What the core calls for a user's torque: a compiled function (below) or what the bindings make
+/// of a Python callable (which takes the GIL).
+class TorqueFunction {
+public:
+    virtual ~TorqueFunction() = default;
+    /// M(t, ω[, q]) in body axes; throws (naming the torque) when the function fails.
+    virtual Vec3 torque(double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const = 0;
+    /// ∂M/∂ω into d and true, or false when the user gave no Jacobian.
+    virtual bool jacobian(double t, const Vec3& omega, const Eigen::Vector4d* quaternion, Mat3& d) const = 0;
+};
+
+/// A compiled torque function and its optional Jacobian (C signature above).
+class CompiledTorqueFunction final : public TorqueFunction {
+public:
+    CompiledTorqueFunction(std::string label, TorqueFunctionPointer torque, void* user_data,
+                           JacobianFunctionPointer jacobian = nullptr, void* jacobian_data = nullptr)
+        : label_(std::move(label)), torque_(torque), data_(user_data), jacobian_(jacobian), jacobian_data_(jacobian_data) {
+        if (!torque_) throw std::invalid_argument("CustomTorque '" + label_ + "': the function pointer is null");
+    }
+    Vec3 torque(double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const override {
+        Vec3 m = Vec3::Zero();
+        const int status = torque_(t, omega.data(), quaternion ? quaternion->data() : nullptr, m.data(), data_);
+        if (status != 0)
+            throw std::runtime_error("CustomTorque '" + label_ + "': the compiled function returned " +
+                                     std::to_string(status) + " at t = " + format_value(t));
+        return m;
+    }
+    bool jacobian(double t, const Vec3& omega, const Eigen::Vector4d* quaternion, Mat3& d) const override {
+        if (!jacobian_) return false;
+        double rows[9] = {};
+        const int status = jacobian_(t, omega.data(), quaternion ? quaternion->data() : nullptr, rows, jacobian_data_);
+        if (status != 0)
+            throw std::runtime_error("CustomTorque '" + label_ + "': the compiled Jacobian returned " +
+                                     std::to_string(status) + " at t = " + format_value(t));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) d(i, j) = rows[3 * i + j];
+        return true;
+    }
+
+private:
+    std::string label_;
+    TorqueFunctionPointer torque_;
+    void* data_;
+    JacobianFunctionPointer jacobian_;
+    void* jacobian_data_;
+};
+
+/// A torque the user writes, M = f(t, ω) or f(t, ω, q) in body axes (`attitude`: f takes q; only
+/// models that carry the attitude take such a torque). Its Jacobian ∂M/∂ω is the user's, or
+/// central difference quotients with steps h_j = 1e-6 max(1, |ω_j|) (error O(h²) relative, ~1e-12;
+/// 6 calls). It has no averaged contribution and no Taylor coefficients (the models refuse it
+/// there), and is never folded into the affine part or batched in SIMD lanes.
+struct Custom {
+    static constexpr const char* name = "custom";
+    static constexpr const char* python_name = "CustomTorque";
+    static constexpr const char* description =
+        "a torque the user writes: M = f(t, omega) or f(t, omega, quaternion) in body axes, a Python callable or a "
+        "compiled function";
+    static constexpr bool optional_attitude = true;
+
+    std::shared_ptr<const TorqueFunction> function;
+    std::string label;      ///< the function's name, for messages and the repr
+    bool attitude = false;  ///< f takes the quaternion
+
+    Custom(std::shared_ptr<const TorqueFunction> f, std::string name, bool with_attitude)
+        : function(std::move(f)), label(std::move(name)), attitude(with_attitude) {
+        if (!function) throw std::invalid_argument("CustomTorque '" + label + "': no function");
+    }
+
+    bool uses_attitude() const { return attitude; }
+
+    /// M = f(t, ω[, q]).
+    Vec3 operator()(double t, const Vec3& omega, const Vec3& /*moments*/, const Eigen::Vector4d* quaternion) const {
+        return function->torque(t, omega, attitude ? quaternion : nullptr);
+    }
+    /// The user's ∂M/∂ω, or central difference quotients.
+    void add_jacobian(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* quaternion, Mat3& d) const {
+        const Eigen::Vector4d* q = attitude ? quaternion : nullptr;
+        Mat3 user;
+        if (function->jacobian(t, omega, q, user)) {
+            d += user;
+            return;
+        }
+        for (int j = 0; j < 3; ++j) {
+            const double h = 1e-6 * std::max(1.0, std::abs(omega[j]));
+            Vec3 up = omega, down = omega;
+            up[j] += h, down[j] -= h;
+            d.col(j) += ((*this)(t, up, moments, q) - (*this)(t, down, moments, q)) / (up[j] - down[j]);
+        }
+    }
+    bool axisymmetric() const { return false; }
+};
+
+}  // namespace gyrostat::torque

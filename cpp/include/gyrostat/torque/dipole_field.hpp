@@ -1,0 +1,93 @@
+// The torque on a magnetic dipole fixed in the body, on a circular orbit in a planet's tilted dipole field.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <stdexcept>
+#include <string>
+
+#include "gyrostat/attitude.hpp"
+#include "gyrostat/body.hpp"
+#include "gyrostat/torque/orbit.hpp"
+#include "gyrostat/torque/parameter.hpp"
+
+namespace gyrostat::torque {
+
+/// A magnetic dipole m fixed in the body, on a circular orbit in a planet's tilted dipole field:
+///
+///   B_I(t) = B0 [3 (d·ĉ) ĉ − d],     M = m × R(q)ᵀ B_I(t),
+///
+/// d the unit direction of the planet's dipole moment (inertial axes, fixed: the planet's own
+/// rotation is left out), ĉ(t) the unit vector planet → body on the orbit (torque/orbit.hpp),
+/// B0 = μ0 |m_planet| / (4π r³) the field's magnitude at the magnetic equator at the orbit's
+/// radius (about 2.4e-5 T in a low Earth orbit; the Earth's d is near −ẑ, tilted by about 10°).
+/// Needs the attitude; ∂M/∂ω = 0; no averaged contribution.
+struct DipoleFieldTorque {
+    static constexpr const char* name = "dipole_field";
+    static constexpr const char* python_name = "DipoleFieldTorque";
+    static constexpr const char* description =
+        "a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude)";
+    static constexpr std::array<Parameter, 6> parameters{{
+        {"dipole", "dipole m", Shape::Vector3, "A m^2", "the body's magnetic dipole moment m in body axes"},
+        {"field_strength", "field strength B0", Shape::Scalar, "T",
+         "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", Constraint::Positive},
+        {"orbit_rate", "orbit rate n", Shape::Scalar, "rad/s", "the orbit's mean motion n = sqrt(mu / r^3)",
+         Constraint::Positive},
+        {"dipole_axis", "dipole axis d", Shape::Vector3, "1",
+         "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)",
+         Constraint::Finite, 0, true, "[0, 0, -1]"},
+        {"orbit_normal", "orbit normal N", Shape::Vector3, "1", "the orbit plane's normal in inertial axes",
+         Constraint::Finite, 0, true, "[0, 0, 1]"},
+        {"phase", "orbit phase", Shape::Scalar, "rad", "the body's angle on the orbit from the ascending node at t = 0",
+         Constraint::Finite, 0, true, "0"},
+    }};
+    static constexpr bool needs_attitude = true;
+
+    Vec3 dipole = Vec3::Zero();
+    double field_strength = 0.0;
+    Vec3 axis = -Vec3::UnitZ();
+    CircularOrbit orbit;
+
+    DipoleFieldTorque(const Vec3& m, double b0, double n, const Vec3& d, const Vec3& normal, double phase)
+        : dipole(m), field_strength(b0), orbit(n, normal, phase, python_name) {
+        require(python_name, parameters[0], m);
+        require(python_name, parameters[1], b0);
+        require(python_name, parameters[2], n);
+        require(python_name, parameters[3], d);
+        require(python_name, parameters[4], normal);
+        require(python_name, parameters[5], phase);
+        if (!(d.norm() > 0.0))
+            throw std::invalid_argument(std::string(python_name) + ": dipole_axis = [" + format_value(d.x()) + ", " +
+                                        format_value(d.y()) + ", " + format_value(d.z()) + "] must not be zero");
+        axis = d.normalized();
+    }
+    static DipoleFieldTorque from(const Values& v) {
+        return DipoleFieldTorque(v.vector("dipole"), v.scalar("field_strength"), v.scalar("orbit_rate"),
+                                 v.vector_or("dipole_axis", -Vec3::UnitZ()), v.vector_or("orbit_normal", Vec3::UnitZ()),
+                                 v.scalar_or("phase", 0.0));
+    }
+    Values values() const {
+        Values v;
+        v.set("dipole", dipole);
+        v.set("field_strength", field_strength);
+        v.set("orbit_rate", orbit.rate);
+        v.set("dipole_axis", axis);
+        v.set("orbit_normal", orbit.normal);
+        v.set("phase", orbit.phase);
+        return v;
+    }
+
+    /// B_I(t) = B0 [3 (d·ĉ) ĉ − d] in inertial axes.
+    Vec3 field(double t) const {
+        const Vec3 c = orbit.position(t);
+        return field_strength * (3.0 * axis.dot(c) * c - axis);
+    }
+    /// M = m × R(q)ᵀ B_I(t).
+    Vec3 operator()(double t, const Vec3& /*omega*/, const Vec3& /*moments*/, const Eigen::Vector4d& quaternion) const {
+        return dipole.cross(rotation_matrix(quaternion).transpose() * field(t));
+    }
+    void add_jacobian(double, const Vec3&, const Vec3&, Mat3&) const {}
+    bool axisymmetric() const { return false; }
+};
+
+}  // namespace gyrostat::torque
