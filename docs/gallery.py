@@ -67,7 +67,8 @@ def generate(out: Path) -> None:
     scenes = sorted(SCENES.glob("*.toml"))
     gallery = ["# Gallery: every shipped scene", "",
                "Generated when the site is built: each shipped scene (`gyrostat examples`) run with the",
-               "installed library, and its plots.", ""]
+               "installed library, and its plots. Each scene's command runs from the root of a clone once the",
+               "package is installed (`bash run.sh main` installs it into `.venv`: `source .venv/bin/activate`).", ""]
     for scene in scenes:
         gallery += scene_pages(scene, plots, "##")
     (out / "gallery.md").write_text("\n".join(gallery))
