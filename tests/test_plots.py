@@ -24,7 +24,7 @@ def figures(tmp_path_factory):
         fig.tight_layout()  # as finish() lays it out: the legends' places are the saved ones
         fig.canvas.draw()
         recorded[(path.parent.name, path.stem)] = [dict(
-            drawn=_drawn(ax), hidden=_hidden_by_legend(ax),
+            drawn=_drawn(ax), hidden=_hidden_by_legend(ax), title=ax.get_title(),
             xlabel=ax.get_xlabel(), ylabel=ax.get_ylabel(), yscale=ax.get_yscale(),
             x_offset=ax.xaxis.get_major_formatter().get_offset(),
             legend_sizes=[text.get_fontsize() for text in ax.get_legend().get_texts()] if ax.get_legend() else [],
@@ -118,6 +118,10 @@ def test_invariants_are_relative_changes_on_a_log_scale(figures):
     damped = figures[("forced_damped", "invariants")]  # changed by the torques: signed, linear
     assert [ax["ylabel"] for ax in damped] == ["|G|(t)/|G|(0) − 1 [1]", "T(t)/T(0) − 1 [1]"]
     assert all(ax["yscale"] == "linear" for ax in damped)
+    # each panel says whether the model keeps it (C++: Model::keeps) or its torques change it
+    assert [ax["title"] for ax in damped] == ["|G|: a first integral of the free body, changed by the torques",
+                                              "T: a first integral of the free body, changed by the torques"]
+    assert [ax["title"] for ax in axes] == ["|G|: conserved by the model", "T: conserved by the model"]
 
 
 @pytest.mark.parametrize("scene", ["forced_damped", "p004_triaxial"])

@@ -137,7 +137,7 @@ def omega(solution: Solution, title: str, path: Path, reference: Solution | None
             ax.set_title(f"{'first' if k == 0 else 'last'} {WINDOW_PERIODS} of {n_periods:.0f} periods", fontsize=10)
         legend_outside(ax)
         ax.grid(alpha=0.3)
-    fig.suptitle(title, fontsize=11)
+    fig.suptitle(textwrap.fill(title, 80), fontsize=11)
     return finish(fig, path)
 
 
@@ -152,9 +152,12 @@ def invariants(solution: Solution, title: str, path: Path) -> Path:
                              squeeze=False)
     axes = axes[:, 0]
     symbols = {"angular_momentum_norm": "|G|", "kinetic_energy": "T", "energy": "E"}
+    kept = set(solution.kept)
     for ax, (name, values) in zip(axes, items):
         symbol = symbols.get(name, name)
         change = relative_change(values)
+        ax.set_title(f"{symbol}: " + ("conserved by the model" if name in kept else
+                                      "a first integral of the free body, changed by the torques"), fontsize=9)
         if np.abs(change).max() < CONSERVED:  # kept to rounding or integration error: spans decades
             envelope = np.maximum.accumulate(np.abs(change))
             shown = np.where(envelope > 0, envelope, np.nan)  # exactly kept so far: nothing to draw on a log scale
@@ -169,7 +172,7 @@ def invariants(solution: Solution, title: str, path: Path) -> Path:
         ax.grid(alpha=0.3, which="both")
         legend_outside(ax)
     axes[-1].set_xlabel("t [s]")
-    axes[0].set_title(f"{title}: relative change of the invariants")
+    fig.suptitle(textwrap.fill(f"{title}: relative change of the first integrals", 80), fontsize=11)
     return finish(fig, path)
 
 
