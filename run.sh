@@ -2,7 +2,8 @@
 # gyrostat's set-up and entry points; every command first installs what is missing:
 # Debian packages (compiler, Eigen, SUNDIALS, GSL), a virtual environment in .venv, the package.
 #
-#   bash run.sh main [OUT]   run every example scene, results and plots in OUT (default: results/)
+#   bash run.sh main [OUT]   run every example scene, results and plots in OUT/<scene>/ (default: results/);
+#                            ends with a summary table and writes OUT/index.html (and index.md) linking them
 #   bash run.sh test         run the whole test suite (C++ tests, plain and under sanitizers, then pytest)
 #   bash run.sh bench        build the benchmark executable and chart work-precision (bench/)
 #   bash run.sh docs         build the documentation site into docs/_build/html (warnings are errors)

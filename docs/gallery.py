@@ -24,13 +24,19 @@ def paper_numbers(record: Path) -> list[str]:
     return re.findall(r"(?:^|_)(\d{3})(?=_)", record.stem)
 
 
+def run_command(scene: Path) -> str:
+    """The command that runs a shipped scene from the root of a clone (after ``bash run.sh main``
+    or ``pip install .``): the scene's path in the repository; its results go to results/<scene>/."""
+    return f"gyrostat run {scene.relative_to(HERE.parent).as_posix()} --out results   # results in results/{scene.stem}/"
+
+
 def scene_pages(scene: Path, plots: Path, heading: str) -> list[str]:
     """Markdown of one scene: its title, description, how to run it, and its plots."""
     spec = tomllib.loads(scene.read_text())
     lines = [f"{heading} {scene.stem}", "", f"**{spec.get('title', scene.stem)}**", ""]
     if spec.get("description"):
         lines += [" ".join(spec["description"].split()), ""]
-    lines += ["```bash", f"gyrostat run {scene.stem}.toml --out results/{scene.stem}", "```", ""]
+    lines += ["```bash", run_command(scene), "```", ""]
     for png in sorted((plots / scene.stem).glob("*.png")):
         plot = png.stem.removeprefix(f"{scene.stem}_")
         lines += [f"![{scene.stem}: {plot}](gallery/{scene.stem}/{png.name})", ""]
@@ -50,7 +56,10 @@ def generate(out: Path) -> None:
     plots = out / "gallery"
     run_scenes(plots)
     for scene_dir in plots.iterdir():  # keep the plots only, named after their scene (Sphinx copies
-        for f in scene_dir.iterdir():    # every image into one folder)
+        if not scene_dir.is_dir():       # every image into one folder); the run's index is not needed
+            scene_dir.unlink()
+            continue
+        for f in scene_dir.iterdir():
             if f.suffix == ".png":
                 f.rename(scene_dir / f"{scene_dir.name}_{f.name}")
             else:
@@ -58,7 +67,8 @@ def generate(out: Path) -> None:
     scenes = sorted(SCENES.glob("*.toml"))
     gallery = ["# Gallery: every shipped scene", "",
                "Generated when the site is built: each shipped scene (`gyrostat examples`) run with the",
-               "installed library, and its plots.", ""]
+               "installed library, and its plots. Each scene's command runs from the root of a clone once the",
+               "package is installed (`bash run.sh main` installs it into `.venv`: `source .venv/bin/activate`).", ""]
     for scene in scenes:
         gallery += scene_pages(scene, plots, "##")
     (out / "gallery.md").write_text("\n".join(gallery))

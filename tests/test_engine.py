@@ -287,5 +287,6 @@ def test_unreachable_and_oversized_requests_are_refused():
     # the memory the outputs would take is named before anything is allocated
     with pytest.raises(ValueError, match=r"n_out = 1000000000 output times would take at least 22\.35.* GiB"):
         g.solve(g.Model(BODY), W0, (0, 1), n_out=10**9)
-    with pytest.raises(ValueError, match=r"would take .* GiB for this model's 8 state components and 12 outputs"):
+    # 13 outputs: |G|, h, g, L, |Q|, δ, regularised, θ_G, φ_G, the nutation angle, ψ, θ, φ
+    with pytest.raises(ValueError, match=r"would take .* GiB for this model's 8 state components and 13 outputs"):
         g.solve(orthogonal.OrthogonalModel(g.Body([2.0, 3.0, 4.0]), 0.1, attitude=True), W0, (0, 1), n_out=20_000_000)

@@ -163,7 +163,7 @@ def test_scene_events_are_located_and_reported(tmp_path):
     # r = 0 in both models (the reduction is exact here: the same time to the tolerance);
     # slow_to_fast is an output of the averaged model only
     assert len(full["r = 0"]) == 1 and abs(full["r = 0"][0] - slow["r = 0"][0]) < 1e-6
-    assert "slow_to_fast = 0.5" not in full and len(slow["slow_to_fast = 0.5"]) == 1
+    assert "slow_to_fast rises through 0.5" not in full and len(slow["slow_to_fast rises through 0.5"]) == 1
     doc["events"] = [{"quantity": "theta"}]
     with pytest.raises(SceneError, match=r"\[events\[0\]\] quantity = 'theta' is neither"):
         Scene.from_dict(doc)

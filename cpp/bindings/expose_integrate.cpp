@@ -199,6 +199,7 @@ void expose_integrate(py::module_& m) {
         .def_readonly("output_units", &Result::output_units)
         .def_readonly("output_descriptions", &Result::output_descriptions)
         .def_readonly("output_conserved", &Result::output_conserved)
+        .def_readonly("output_kept", &Result::output_kept)
         .def_readonly("options", &Result::options, "The options the run was made with (without t_eval and events).")
         .def_property_readonly("t",
                                [](py::object self) {
@@ -319,6 +320,8 @@ void expose_integrate(py::module_& m) {
         py::arg("progress") = py::none(), py::arg("interval") = 0.1, py::arg("batch") = true);
 
     m.def("methods", &integrate::method_names);
+    m.def("method_descriptions", &integrate::method_descriptions,
+          "One line per integrator, in the order of methods(): what it is and what it is for.");
     m.attr("simd_lanes") = lanes::width;
     m.attr("max_output_bytes") = integrate::kMaxOutputBytes;
     m.attr("simd_instruction_set") = lanes::instruction_set;

@@ -36,7 +36,7 @@ std::vector<std::string> state_names(const AnyModel& model) {
 integrate::Result described(const AnyModel& model) {
     return visit(model, [](const auto& m) {
         integrate::Result r;
-        integrate::describe<std::decay_t<decltype(m)>>(r);
+        integrate::describe<std::decay_t<decltype(m)>>(r, &m);
         return r;
     });
 }
@@ -159,7 +159,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         r.options = integrate::recorded(options);
         if (!r.state_names.empty()) continue;
         visit(*(models.size() == 1 ? models[0] : models[i]),
-              [&](const auto& m) { integrate::describe<std::decay_t<decltype(m)>>(r); });
+              [&](const auto& m) { integrate::describe<std::decay_t<decltype(m)>>(r, &m); });
         r.method = integrate::method_name(options.method);
     }
     return results;

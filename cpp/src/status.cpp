@@ -12,16 +12,17 @@ namespace {
 struct NamedMethod {
     const char* name;
     Method method;
+    const char* description;  ///< one line (docs/integrators.md has the details)
 };
 constexpr NamedMethod kMethods[] = {
-    {"dop853", Method::Dop853},
-    {"cvode_bdf", Method::CvodeBdf},
-    {"cvode_adams", Method::CvodeAdams},
-    {"arkode_verner6", Method::ArkodeVerner6},
-    {"arkode_fehlberg8", Method::ArkodeFehlberg8},
-    {"taylor", Method::Taylor},
-    {"splitting", Method::Splitting},
-    {"auto", Method::Auto},
+    {"dop853", Method::Dop853, "Dormand-Prince 8(5,3) explicit Runge-Kutta, 7th-order dense output: non-stiff problems"},
+    {"cvode_bdf", Method::CvodeBdf, "SUNDIALS CVODE, variable-order BDF (1-5) with Newton iterations: stiff problems"},
+    {"cvode_adams", Method::CvodeAdams, "SUNDIALS CVODE, variable-order Adams-Moulton (1-12): smooth non-stiff problems"},
+    {"arkode_verner6", Method::ArkodeVerner6, "SUNDIALS ARKODE Verner 6(5) explicit Runge-Kutta, 8 stages: cross-checks (converges at order 3 in SUNDIALS 6.4)"},
+    {"arkode_fehlberg8", Method::ArkodeFehlberg8, "SUNDIALS ARKODE Fehlberg 8(7) explicit Runge-Kutta, 13 stages: cross-checks"},
+    {"taylor", Method::Taylor, "Taylor series of adaptive order by automatic differentiation: gyrostat with constant and linear torques, tight tolerances"},
+    {"splitting", Method::Splitting, "the exact free-body flow composed with the perturbation's flow, fixed step, order 2, 4 or 6"},
+    {"auto", Method::Auto, "dop853 while the problem is not stiff, cvode_bdf while it is, switched along the run"},
 };
 
 }  // namespace
@@ -45,6 +46,12 @@ std::vector<std::string> method_names() {
     std::vector<std::string> names;
     for (const auto& m : kMethods) names.emplace_back(m.name);
     return names;
+}
+
+std::vector<std::string> method_descriptions() {
+    std::vector<std::string> lines;
+    for (const auto& m : kMethods) lines.emplace_back(m.description);
+    return lines;
 }
 
 const char* status_name(Status s) {

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
 class Body:
     def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
@@ -755,6 +755,9 @@ class Result:
     def output_descriptions(self) -> list[str]:
         ...
     @property
+    def output_kept(self) -> list[bool]:
+        ...
+    @property
     def output_names(self) -> list[str]:
         ...
     @property
@@ -910,6 +913,10 @@ def lagrange_top_model(body: Body, mu: typing.SupportsFloat | typing.SupportsInd
 def mean_sn_squared(m: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     W(m) = (K - E)/(m K) = <sn^2>
+    """
+def method_descriptions() -> list[str]:
+    """
+    One line per integrator, in the order of methods(): what it is and what it is for.
     """
 def methods() -> list[str]:
     ...

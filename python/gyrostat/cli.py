@@ -8,6 +8,8 @@ Exit codes: 0 every scene ran and succeeded; 1 a run failed (its partial results
 from __future__ import annotations
 
 import argparse
+import html
+import os
 import sys
 from importlib import resources
 from pathlib import Path
@@ -19,10 +21,20 @@ def example_scenes() -> list[Path]:
     return sorted(Path(str(p)) for p in folder.iterdir() if p.name.endswith(".toml"))
 
 
+def _changes(entries: dict) -> str:
+    """``name +1.2e-09`` (relative change) or ``name 3.4e-12 (absolute)`` where a relative
+    change means nothing (the quantity starts at zero)."""
+    return ", ".join(f"{k} {v['relative_change']:+.3e}" if "relative_change" in v else
+                     f"{k} {v['max_abs_change']:.3e} (absolute)" for k, v in entries.items()
+                     if v.get("relative_change", v.get("max_abs_change")) is not None)
+
+
 def _print_report(report: dict) -> None:
     print(f"{report['scene']}: {report['title']}")
+    total = report.get("seconds_total")
     print(f"  model: {report['model']} ({report['model_reason']}); status: {report['status']}; "
-          f"time: {report['seconds']:.3g} s")
+          f"solving took {report['seconds']:.3g} s"
+          + (f" ({total:.3g} s with the checks, files and plots)" if total is not None else ""))
     if "ladder" in report:
         ladder = report["ladder"]
         switches = ladder["switches"]
@@ -32,12 +44,14 @@ def _print_report(report: dict) -> None:
             print(f"    t = {switch['t']:.6g}: {switch['from']} -> {switch['to']} ({switch['reason']})")
     for name, run in report.get("runs", {}).items():
         stats = run["stats"]
-        drift = ", ".join(f"{k} {v['relative_change']:+.3e}" if "relative_change" in v else
-                          f"{k} {v['max_abs_change']:.3e} (absolute)" for k, v in run["conserved"].items()
-                          if v.get("relative_change", v.get("max_abs_change")) is not None)
+        kept, changed = _changes(run["conserved"]), _changes(run.get("changed_by_torques", {}))
         used = f" ({' then '.join(run['methods_used'])})" if run.get("methods_used") else ""
         print(f"  {name}: {run['method']}{used}, {run['status']}; steps {stats['steps']}, rhs evaluations "
-              f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}" + (f"; change of {drift}" if drift else ""))
+              f"{stats['rhs_evals']}, rejected {stats['rejected_steps']}")
+        if kept:
+            print(f"    conserved, relative change from t0 to the end (integration error): {kept}")
+        if changed:
+            print(f"    changed by the torques, relative change from t0 to the end: {changed}")
         for switch in run.get("method_switches", [])[:4]:
             print(f"    t = {switch['t']:.6g}: -> {switch['to']} ({switch['reason']})")
         for event, times in run.get("events", {}).items():
@@ -49,8 +63,15 @@ def _print_report(report: dict) -> None:
         if key.startswith("averaged_vs_full") and isinstance(diff, dict):
             text = ", ".join(f"{name} {value:.3e}" for name, value in diff.items() if isinstance(value, float))
             print(f"  averaged vs full: {text}")
-    for broken in report.get("broken_assumptions", []):
+    for broken in report.get("unexpected_broken", report.get("broken_assumptions", [])):
         print(f"  WARNING assumption broken: {broken}")
+    for expected in report.get("expected_broken", []):
+        print(f"  expected, the scene breaks it on purpose: {expected['assumption']}")
+        print(f"    why: {' '.join(expected['why'].split())}")
+    if report.get("expected_broken") and report.get("agreement"):
+        print(f"    measured: {report['agreement']}")
+    for held in report.get("expected_but_held", []):
+        print(f"  NOTE the scene expects '{held}' to break, but it holds: its [[expected_broken]] entry is stale")
     for doubt in report.get("accuracy_warnings", []):
         print(f"  WARNING accuracy: {doubt}")
     for plot in report.get("plots_skipped", []):
@@ -68,9 +89,13 @@ def _print_sweep(report: dict) -> None:
     print(f"  {statuses}; {report['seconds']:.3g} s ({report['members_per_second']:.3g} members/s)")
     if report["summary_range"]:
         print(f"  {report['summary']}: from {report['summary_range'][0]:.6g} to {report['summary_range'][1]:.6g}")
-    if report["members_with_broken_assumptions"]:
+    unexpected = report.get("unexpected_broken", report["broken_assumptions"])
+    if report["members_with_broken_assumptions"] and unexpected:
         print(f"  WARNING {report['members_with_broken_assumptions']} member(s) break an assumption of their model: "
-              + "; ".join(report["broken_assumptions"][:3]) + (" ..." if len(report["broken_assumptions"]) > 3 else ""))
+              + "; ".join(unexpected[:3]) + (" ..." if len(unexpected) > 3 else ""))
+    elif report["members_with_broken_assumptions"]:
+        print(f"  expected: {report['members_with_broken_assumptions']} member(s) break only the assumptions the scene "
+              f"expects to break ({'; '.join(sorted(set(report.get('expected_parts', []))))})")
     if report["members_with_accuracy_warnings"]:
         print(f"  WARNING {report['members_with_accuracy_warnings']} member(s) doubt their own answer: "
               + report["accuracy_warnings"][0] + (" ..." if len(report["accuracy_warnings"]) > 1 else ""))
@@ -124,18 +149,109 @@ def _sweep(args) -> int:
     return 130 if report["interrupted"] else 0
 
 
+SUMMARY_COLUMNS = ("scene", "model", "verdict", "time [s]", "folder")
+
+
+def _summary_row(report: dict, out: Path) -> tuple[str, ...]:
+    return (report["scene"], report["model"], report["verdict"], f"{report.get('seconds_total', report['seconds']):.3g}",
+            str(Path(report.get("folder", out / report["scene"]))))
+
+
+def _print_summary(rows: list[tuple[str, ...]]) -> None:
+    """The table that ends a run of several scenes: scene, model chosen, verdict, time, folder."""
+    widths = [max(len(r[i]) for r in [SUMMARY_COLUMNS, *rows]) for i in range(len(SUMMARY_COLUMNS))]
+    print("\nsummary (time: solving, checks, files and plots)")
+    for row in [SUMMARY_COLUMNS, tuple("-" * w for w in widths), *rows]:
+        print("  " + "  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip())
+
+
+def write_index(out: Path) -> list[Path]:
+    """OUT/index.html and OUT/index.md: every scene folder in OUT with a report.json, its title,
+    model, verdict and time, linked to its report and its plots (the HTML shows the plots)."""
+    import json
+
+    out = Path(out)
+    entries = []
+    for report_path in sorted(out.glob("*/report.json")):
+        try:
+            report = json.loads(report_path.read_text())
+        except (OSError, ValueError):
+            continue
+        folder = report_path.parent
+        entries.append((folder.name, report, sorted(p.name for p in folder.glob("*.png"))))
+    md = ["# gyrostat results", "", "| scene | model | verdict | time [s] | report | plots |", "|---|---|---|---|---|---|"]
+    page = ["<!doctype html><meta charset='utf-8'><title>gyrostat results</title>",
+            "<style>body{font-family:sans-serif;max-width:1200px;margin:auto}img{width:380px;margin:4px;"
+            "border:1px solid #ccc}td,th{padding:2px 8px;text-align:left}</style><h1>gyrostat results</h1><table>",
+            "<tr><th>scene</th><th>model</th><th>verdict</th><th>time [s]</th></tr>"]
+    for name, report, images in entries:
+        verdict = report.get("verdict", report.get("status", ""))
+        seconds = f"{report.get('seconds_total', report.get('seconds', float('nan'))):.3g}"
+        links = ", ".join(f"[{image}]({name}/{image})" for image in images)
+        md.append(f"| {name} | {report.get('model', '')} | {verdict} | {seconds} | [report.json]({name}/report.json) "
+                  f"| {links} |")
+        page.append(f"<tr><td><a href='#{html.escape(name)}'>{html.escape(name)}</a></td><td>"
+                    f"{html.escape(report.get('model', ''))}</td><td>{html.escape(verdict)}</td><td>{seconds}</td></tr>")
+    page.append("</table>")
+    for name, report, images in entries:
+        page.append(f"<h2 id='{html.escape(name)}'>{html.escape(name)}: {html.escape(report.get('title', ''))}</h2>")
+        page.append(f"<p>{html.escape(report.get('verdict', ''))}; <a href='{html.escape(name)}/report.json'>"
+                    "report.json</a></p>")
+        for expected in report.get("expected_broken", []):
+            page.append(f"<p>expected: {html.escape(expected['assumption'])}<br>why: {html.escape(expected['why'])}</p>")
+        page += [f"<a href='{html.escape(name)}/{html.escape(i)}'><img src='{html.escape(name)}/{html.escape(i)}' "
+                 f"alt='{html.escape(i)}'></a>" for i in images]
+    (out / "index.md").write_text("\n".join(md) + "\n")
+    (out / "index.html").write_text("\n".join(page) + "\n")
+    return [out / "index.html", out / "index.md"]
+
+
+RUN_DESCRIPTION = """Solves each scene file and writes its results to OUT/<scene>/ (<scene>: the file's
+name without .toml): result.csv and result.npz (t, the state and every output, with units),
+the plots the scene asks for (PNG) and report.json (method, statistics, conserved quantities,
+assumptions checked, events). Several scenes end with a summary table; OUT/index.html and
+OUT/index.md link every scene's plots and report. A scene with a [sweep] table runs its sweep too.
+The scene format: gyrostat scene-format."""
+RUN_EXAMPLE = """example:
+  gyrostat run my_scene.toml --out results     # results/my_scene/{result.csv,report.json,*.png}
+  gyrostat run a.toml b.toml --out results --overwrite
+
+exit status: 0 every scene ran and succeeded, 1 a run failed (its partial results are written),
+2 a scene file is wrong (a one-line message names the key)."""
+
+
 def main(argv: list[str] | None = None) -> int:
+    """The command line; output cut short by a closed pipe (``gyrostat scene-format | head``)
+    ends quietly."""
+    try:
+        return _main(argv)
+    except BrokenPipeError:
+        # the reader left: send what is still buffered nowhere, so that the exit does not fail again
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
+
+
+def _main(argv: list[str] | None = None) -> int:
     from gyrostat import __version__
 
     parser = argparse.ArgumentParser(prog="gyrostat", description="Perturbed rotation of rigid bodies and gyrostats.")
     parser.add_argument("--version", action="version", version=f"gyrostat {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help="solve one or more scene files, save results and plots")
+    run = sub.add_parser("run", help="solve one or more scene files, save results and plots in OUT/<scene>/",
+                         description=RUN_DESCRIPTION, epilog=RUN_EXAMPLE,
+                         formatter_class=argparse.RawDescriptionHelpFormatter)
     run.add_argument("scenes", nargs="+", type=Path, help="scene files (TOML)")
-    run.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
+    run.add_argument("--out", type=Path, default=Path("gyrostat-results"),
+                     help="output folder; each scene's results go to OUT/<scene>/ (default: %(default)s)")
     run.add_argument("--quiet", action="store_true", help="no progress bars")
     run.add_argument("--overwrite", action="store_true", help="replace the results of an earlier run in OUT")
-    examples = sub.add_parser("examples", help="run every example scene shipped with the package")
+    examples = sub.add_parser("examples", help="run every example scene shipped with the package",
+                              description="Runs every scene shipped with the package (gyrostat/scenes/*.toml) as "
+                                          "gyrostat run does: results in OUT/<scene>/, a summary table at the end, "
+                                          "OUT/index.html and OUT/index.md linking every scene's plots and report.",
+                              epilog="example:\n  gyrostat examples --out results --overwrite   # then open "
+                                     "results/index.html", formatter_class=argparse.RawDescriptionHelpFormatter)
     examples.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
     examples.add_argument("--quiet", action="store_true", help="no progress bars")
     examples.add_argument("--overwrite", action="store_true", help="replace the results of an earlier run in OUT")
@@ -160,14 +276,16 @@ def main(argv: list[str] | None = None) -> int:
     sweep.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
     sweep.add_argument("--overwrite", action="store_true", help="replace an earlier sweep of the scene in OUT")
-    sub.add_parser("methods", help="list the integrators")
+    sub.add_parser("methods", help="list the integrators, one line each")
     sub.add_parser("scene-format", help="print the reference of every scene kind (Markdown)")
     args = parser.parse_args(argv)
 
     if args.command == "methods":
-        from gyrostat import METHODS
+        from gyrostat import _core
 
-        print("\n".join(METHODS))
+        names = _core.methods()
+        width = max(map(len, names))
+        print("\n".join(f"{name.ljust(width)}  {line}" for name, line in zip(names, _core.method_descriptions())))
         return 0
     if args.command == "scene-format":
         from gyrostat.scene import scene_format
@@ -187,6 +305,7 @@ def main(argv: list[str] | None = None) -> int:
         return _sweep(args)
     paths = args.scenes if args.command == "run" else example_scenes()
     bad_scenes = failures = 0
+    rows: list[tuple[str, ...]] = []
     for path in paths:
         try:
             scene = Scene.from_toml(path)
@@ -220,10 +339,14 @@ def main(argv: list[str] | None = None) -> int:
             failures += 1
             continue
         _print_report(report)
+        rows.append(_summary_row(report, args.out))
         failures += report["status"] != "success"
         if job is not None and report["status"] != "interrupted":  # the scene's [sweep] as well
             try:
-                _print_sweep(run_sweep(job, args.out, progress=False if args.quiet else None))
+                swept = run_sweep(job, args.out, progress=False if args.quiet else None)
+                _print_sweep(swept)
+                note = "WARNING members break assumptions" if swept.get("unexpected_broken") else "ok"
+                rows[-1] = (*rows[-1][:2], f"{rows[-1][2]}; sweep of {swept['members']}: {note}", *rows[-1][3:])
             except KeyboardInterrupt:
                 print(f"{path}: sweep interrupted", file=sys.stderr)
                 return 130
@@ -233,6 +356,11 @@ def main(argv: list[str] | None = None) -> int:
         if report["status"] == "interrupted":
             print(f"{path}: interrupted; the outputs computed so far are written", file=sys.stderr)
             return 130
+    if len(paths) > 1 and rows:
+        _print_summary(rows)
+    if rows:
+        index, _ = write_index(args.out)
+        print(f"index of every scene's plots and report: {index.resolve()}")
     if bad_scenes + failures < len(paths):
         print(f"results in {args.out.resolve()}")
     return 2 if bad_scenes else (1 if failures else 0)

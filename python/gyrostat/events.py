@@ -49,7 +49,13 @@ class Event:
 
     @property
     def label(self) -> str:
-        return self.name or f"{self.quantity} = {self.value:g}"
+        """The name given, else one from the quantity, the value and the direction: ``r = 0``,
+        ``r rises through 0``, ``r falls through 0`` (two events that differ only in direction
+        get distinct names; :func:`labels` numbers the ones still alike)."""
+        if self.name:
+            return self.name
+        crossing = {0: "=", 1: "rises through", -1: "falls through"}[self.direction]
+        return f"{self.quantity} {crossing} {self.value:g}"
 
 
 def _direction(direction, what: str) -> int:
@@ -84,12 +90,31 @@ def _check_signature(function: Callable, i: int, name: str) -> None:
         raise TypeError(f"event {i} ({name}) must take (t, y): {error}") from None
 
 
-def to_core(events, state_names, output_names) -> list:
-    """The engine's events for a model with these state and output names."""
+def _listed(events) -> list:
     if events is None:
         return []
-    if callable(events) or isinstance(events, Event):
-        events = [events]
+    return [events] if callable(events) or isinstance(events, Event) else list(events)
+
+
+def labels(events) -> list[str]:
+    """The names the events are reported under, one per event, all distinct: an Event's
+    :attr:`Event.label`, a callable's ``__name__``; a name that repeats an earlier one gets
+    " (2)", " (3)", ... (so that ``t_events`` by name and the report keep every event)."""
+    names: list[str] = []
+    for i, event in enumerate(_listed(events)):
+        base = event.label if isinstance(event, Event) else getattr(event, "__name__", f"event {i}")
+        name, count = base, 1
+        while name in names:
+            count += 1
+            name = f"{base} ({count})"
+        names.append(name)
+    return names
+
+
+def to_core(events, state_names, output_names) -> list:
+    """The engine's events for a model with these state and output names."""
+    events = _listed(events)
+    names = labels(events)
     core = []
     for i, event in enumerate(events):
         if isinstance(event, Event):
@@ -101,9 +126,9 @@ def to_core(events, state_names, output_names) -> list:
                 raise ValueError(f"event {i}: {event.quantity!r} is neither a state component "
                                  f"({', '.join(state_names)}) nor an output ({', '.join(output_names)}) of this model")
             core.append(_core.Event(kind, index, float(event.value), event.direction,
-                                    _terminal_count(event.terminal, event.quantity), event.label))
+                                    _terminal_count(event.terminal, event.quantity), names[i]))
         elif callable(event):
-            name = getattr(event, "__name__", f"event {i}")
+            name = names[i]
             direction = _direction(getattr(event, "direction", 0), f"event {i} ({name})")
             _check_signature(event, i, name)
             function: Callable = event

@@ -46,6 +46,30 @@ def relative_change(values: np.ndarray) -> np.ndarray:
 
 
 CONSERVED = 1e-2  # an invariant that changes less than this is drawn as |change| on a log scale
+ROUNDING = 2.0 ** -52  # double precision's ε: relative changes of a few ε are rounding, not drift
+WINDOW_PERIODS = 3  # a long oscillating run's omega plot: windows of about this many periods
+BANDS = 40  # periods in one panel beyond which the curves fill it as solid bands
+
+
+def legend_outside(ax, **extra) -> None:
+    """The legend to the right of the axes, where it covers no curve (for panels whose curves
+    fill the whole area)."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=LEGEND_SIZE, **extra)
+
+
+def periods(values: np.ndarray) -> float:
+    """About how many oscillations a curve makes: half its crossings of its own mean."""
+    values = np.asarray(values, dtype=float)
+    centred = values - np.mean(values)
+    return float(np.count_nonzero(np.diff(np.sign(centred)) != 0)) / 2
+
+
+def oscillations(columns: np.ndarray) -> float:
+    """About how many periods the motion of several curves spans: the fewest oscillations of a
+    curve that oscillates (a component such as dn makes two per period of ω, sn and cn one)."""
+    counts = [periods(columns[:, i]) for i in range(columns.shape[1])] if len(columns) else []
+    counts = [c for c in counts if c > 0]
+    return min(counts) if counts else 0.0
 
 
 def finish(fig, path: Path) -> Path:
@@ -90,37 +114,65 @@ def _split_powers(unit: str) -> list[str]:
 
 
 def omega(solution: Solution, title: str, path: Path, reference: Solution | None = None) -> Path:
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    for i, name in enumerate(("p", "q", "r")):
-        ax.plot(solution.t, solution.omega[:, i], label=f"{name} ({solution.method})")
-        if reference is not None:
-            ax.plot(reference.t, reference.omega[:, i], "k:", lw=1, label=f"{name} (closed form)" if i == 0 else None)
-    ax.set_xlabel(unit_label(solution, "t"))
-    ax.set_ylabel(unit_label(solution, "p", "angular velocity in body axes"))
-    ax.set_title(title)
-    ax.legend(loc="upper right", fontsize=LEGEND_SIZE)
-    ax.grid(alpha=0.3)
+    """p, q, r against t (and the reference dotted). A run of many periods would fill one panel
+    with solid bands: it is drawn instead in two windows of about WINDOW_PERIODS periods, at the
+    start and at the end, where each curve and the reference can be told apart (the difference
+    over the whole span is error.png)."""
+    t = solution.t
+    n_periods = oscillations(solution.omega)
+    windows = [(t[0], t[-1])] if n_periods <= BANDS else [
+        (t[0], t[0] + (t[-1] - t[0]) * WINDOW_PERIODS / n_periods), (t[-1] - (t[-1] - t[0]) * WINDOW_PERIODS / n_periods, t[-1])]
+    fig, axes = plt.subplots(len(windows), 1, figsize=(8, 4.5 if len(windows) == 1 else 6.5), squeeze=False)
+    for k, (ax, (lo, hi)) in enumerate(zip(axes[:, 0], windows)):
+        inside = (t >= lo) & (t <= hi)
+        for i, name in enumerate(("p", "q", "r")):
+            ax.plot(t[inside], solution.omega[inside, i], label=f"{name} ({solution.method})")
+            if reference is not None:
+                near = (reference.t >= lo) & (reference.t <= hi)
+                ax.plot(reference.t[near], reference.omega[near, i], "k:", lw=1.2,
+                        label="closed form" if i == 0 else None)
+        ax.set_xlabel(unit_label(solution, "t"))
+        ax.set_ylabel(unit_label(solution, "p", "angular velocity in body axes"))
+        if len(windows) > 1:
+            ax.set_title(f"{'first' if k == 0 else 'last'} {WINDOW_PERIODS} of {n_periods:.0f} periods", fontsize=10)
+        legend_outside(ax)
+        ax.grid(alpha=0.3)
+    fig.suptitle(textwrap.fill(title, 80), fontsize=11)
     return finish(fig, path)
 
 
 def invariants(solution: Solution, title: str, path: Path) -> Path:
-    """Each invariant's relative change from the start: |X(t)/X(0) − 1| on a log scale where it
-    stays small (conserved), X(t)/X(0) − 1 on a linear scale where the torques change it."""
-    fig, axes = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+    """Each invariant's relative change from the start, one panel per invariant the model
+    records: where it stays small (conserved), the largest |X(t)/X(0) − 1| so far on a log scale
+    (a drift reads as a rising line; a change of a few ε as rounding, not as solid blocks of
+    noise), with the rounding level ε marked; where the torques change it, X(t)/X(0) − 1 signed on
+    a linear scale."""
+    items = list(solution.invariants.items())
+    fig, axes = plt.subplots(max(len(items), 1), 1, figsize=(8, 2.9 * max(len(items), 1) + 0.3), sharex=True,
+                             squeeze=False)
+    axes = axes[:, 0]
     symbols = {"angular_momentum_norm": "|G|", "kinetic_energy": "T", "energy": "E"}
-    for ax, (name, values) in zip(axes, solution.invariants.items()):
+    kept = set(solution.kept)
+    for ax, (name, values) in zip(axes, items):
         symbol = symbols.get(name, name)
         change = relative_change(values)
+        ax.set_title(f"{symbol}: " + ("conserved by the model" if name in kept else
+                                      "a first integral of the free body, changed by the torques"), fontsize=9)
         if np.abs(change).max() < CONSERVED:  # kept to rounding or integration error: spans decades
-            ax.semilogy(solution.t, np.maximum(np.abs(change), 1e-17), label=f"{symbol}(0) = {values[0]:.6g}")
+            envelope = np.maximum.accumulate(np.abs(change))
+            shown = np.where(envelope > 0, envelope, np.nan)  # exactly kept so far: nothing to draw on a log scale
+            ax.semilogy(solution.t, shown, label=f"largest so far; {symbol}(0) = {values[0]:.6g}")
+            ax.axhline(ROUNDING, color="0.5", ls=":", lw=1, label="rounding: ε = 2.2e-16")
+            top = np.nanmax(shown) if np.isfinite(shown).any() else ROUNDING
+            ax.set_ylim(ROUNDING / 10, max(top, ROUNDING) * 10)
             ax.set_ylabel(f"|{symbol}(t)/{symbol}(0) − 1| [1]")
         else:  # changed by the torques: the signed relative change
             ax.plot(solution.t, change, label=f"{symbol}(0) = {values[0]:.6g}")
             ax.set_ylabel(f"{symbol}(t)/{symbol}(0) − 1 [1]")
         ax.grid(alpha=0.3, which="both")
-        ax.legend(loc="lower right", fontsize=LEGEND_SIZE)
+        legend_outside(ax)
     axes[-1].set_xlabel("t [s]")
-    axes[0].set_title(f"{title}: relative change of the invariants")
+    fig.suptitle(textwrap.fill(f"{title}: relative change of the first integrals", 80), fontsize=11)
     return finish(fig, path)
 
 
@@ -142,8 +194,9 @@ def euler_angles(solution: Solution, title: str, path: Path) -> Path:
     """ψ and φ wrapped to [−π, π), θ in [0, π], the singular times (sin θ ≈ 0) shaded."""
     psi, theta, phi = solution.euler_angles().T
     fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
-    curves = (("ψ (precession)", wrap_angle(psi), (-np.pi, np.pi)), ("θ (nutation)", theta, (0, np.pi)),
-              ("φ (proper rotation)", wrap_angle(phi), (-np.pi, np.pi)))
+    curves = (("precession about inertial z\nψ", wrap_angle(psi), (-np.pi, np.pi)),
+              ("body z to inertial z\nθ", theta, (0, np.pi)),
+              ("rotation about body z\nφ", wrap_angle(phi), (-np.pi, np.pi)))
     for ax, (label, values, limits) in zip(axes, curves):
         ax.plot(solution.t, values, lw=1.0)
         mark_singular(ax, solution.t, theta)
@@ -153,9 +206,9 @@ def euler_angles(solution: Solution, title: str, path: Path) -> Path:
         ax.set_ylabel(unit_label(solution, "psi", label))
         ax.grid(alpha=0.3)
     if axes[0].get_legend_handles_labels()[0]:
-        axes[0].legend(loc="upper right", fontsize=LEGEND_SIZE)
+        legend_outside(axes[0])
     axes[-1].set_xlabel("t [s]")
-    axes[0].set_title(f"{title}: attitude, Euler angles z-x-z")
+    axes[0].set_title(f"{title}: attitude, z-x-z Euler angles to the start frame (θ is not the nutation to G)")
     return finish(fig, path)
 
 

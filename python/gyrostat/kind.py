@@ -159,12 +159,23 @@ SWEEP = Field(Table({
         "numeric entries")
 
 
+EXPECTED_BROKEN = Table({
+    "assumption": Field(str, required=True, doc="the start of the broken assumption as the report prints it "
+                                                "(part: statement), e.g. 'viscous cavity: Reynolds number'"),
+    "why": Field(str, required=True, doc="why the scene breaks it (the paper's own parameters) and what holds anyway"),
+}, doc="an assumption the scene breaks on purpose")
+
+
 def title_fields() -> dict[str, Field]:
-    """The top-level keys every kind has: kind, title, description, events and sweep."""
+    """The top-level keys every kind has: kind, title, description, expected_broken, events and sweep."""
     return {
         "kind": Field(str, default=default_kind(), doc="scene kind: " + ", ".join(KINDS)),
         "title": Field(str, default="", doc="a title for plots and reports"),
         "description": Field(str, default="", doc="what the scene shows"),
+        "expected_broken": Field(ArrayOf(EXPECTED_BROKEN), default=[],
+                                 doc="assumptions of its models the scene breaks on purpose (a paper's own parameters): "
+                                     "reported as expected, with the reason and the measured agreement, not as a "
+                                     "warning; one that holds is reported as a stale marker"),
         "events": Field(ArrayOf(EVENT), default=[], doc="events to locate in every run that has the quantity"),
         "sweep": SWEEP,
     }

@@ -385,11 +385,14 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
 def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[dict]:
     """Every rung that can answer, run over the whole span (switching where it would), timed, and
     its largest relative error in the compared quantities against the top at the output times:
-    what the ladder chart draws. (The chart's cost: one run of every rung, the top included.)"""
+    what the ladder chart draws, and for every rung that cannot answer a row with ``skipped``, the
+    reason (the chart lists them). (The chart's cost: one run of every rung, the top included.)"""
     top = choice.rungs[-1]
     runs = {}
+    skipped = []
     for rung in choice.rungs:
         if rung.blocked or rung.model is None:
+            skipped.append({"rung": rung.name, "skipped": rung.blocked or "no model for this scene", "chosen": False})
             continue
         started = time.perf_counter()
         solution = run(Choice(choice.rungs, rung, choice.accuracy), span, options)
@@ -408,5 +411,5 @@ def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[di
         estimate = next((e.get("estimate") for e in choice.entries if e["rung"] == rung.name), None)
         rows.append({"rung": rung.name, "seconds": seconds, "error": error, "chosen": rung is choice.chosen,
                      "estimate": estimate["value"] if estimate else None, "steps": int(solution.stats["steps"]),
-                     "switches": len(solution.switches)})
-    return rows
+                     "switches": len(solution.switches), "reference": rung is top})
+    return rows + skipped

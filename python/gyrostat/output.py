@@ -57,20 +57,23 @@ def change(values: np.ndarray, conserved: bool) -> dict:
 
 def run_report(solution) -> dict:
     """The part of the report for one run: method, status, statistics, where it stopped (t_last,
-    y_last, h_next: what a continuation starts from), and for each conserved output its change
-    (relative where it means something), plus the notes."""
+    y_last, h_next: what a continuation starts from), and the change (relative where it means
+    something) of each first integral: under ``conserved`` those this model keeps with its
+    torques, under ``changed_by_torques`` those its torques change (a forced energy), as the C++
+    model declares (``Solution.kept``); plus the notes."""
     report = {"method": solution.method, "status": solution.status, "success": bool(solution.success),
               "message": solution.message, "stats": solution.stats, "notes": list(solution.notes),
               "t_last": solution.t_last, "y_last": solution.y_last, "h_next": solution.h_next,  # to continue
-              "options": solution.options.to_dict(), "conserved": {}}
+              "options": solution.options.to_dict(), "conserved": {}, "changed_by_torques": {}}
     switches = getattr(solution, "method_switches", [])
     if switches or solution.method == "auto":  # method 'auto': which integrators, switched where
         report["methods_used"] = list(getattr(solution, "methods_used", ()))
         report["method_switches"] = [{"t": t, "to": to, "reason": why} for t, to, why in switches]
     if len(solution):
         outputs = solution.outputs
+        kept = set(solution.kept)
         for name in solution.conserved:
-            report["conserved"][name] = change(outputs[name], True)
+            report["conserved" if name in kept else "changed_by_torques"][name] = change(outputs[name], True)
     if solution.event_names:
         report["events"] = {name: [float(t) for t in times] for name, times in zip(solution.event_names, solution.t_events)}
         if solution.terminal_event is not None:

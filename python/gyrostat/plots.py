@@ -53,14 +53,21 @@ def ladder(rows: list[dict], title: str, path: Path, accuracy: float) -> Path:
     """Each rung's cost (seconds for the whole span) against its error measured against the top
     rung, the chosen one ringed, its estimate drawn as an arrow from the measured error, and the
     requested accuracy as a line: which model was cheap enough and accurate enough, at a glance."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    skipped = [r for r in rows if "skipped" in r]
+    rows = [r for r in rows if "skipped" not in r]
     floor = min([r["error"] for r in rows if r["error"] > 0] + [accuracy]) * 1e-2
     for row in rows:
+        reference = row.get("reference", row["error"] == 0.0 and not row.get("estimate"))
+        label = row["rung"] + (f", {row['switches']} switch(es)" if row.get("switches") else "")
+        if reference:  # no error of its own: marked on the cost axis, not drawn as a measured error
+            ax.plot(row["seconds"], 0.0, "s", ms=9, color="tab:gray", clip_on=False, zorder=5,
+                    transform=ax.get_xaxis_transform())
+            ax.annotate(f"{label}: the reference (no error of its own)", (row["seconds"], 0.0),
+                        xycoords=ax.get_xaxis_transform(), textcoords="offset points", xytext=(8, 6), fontsize=9)
+            continue
         error = max(row["error"], floor)
-        reference = row["error"] == 0.0 and not row.get("estimate")
-        ax.loglog(row["seconds"], error, "s" if reference else "o", ms=9, color="tab:gray" if reference else "tab:blue")
-        label = row["rung"] + (" (reference)" if reference else "") + \
-            (f", {row['switches']} switch(es)" if row.get("switches") else "")
+        ax.loglog(row["seconds"], error, "o", ms=9, color="tab:blue")
         ax.annotate(label, (row["seconds"], error), textcoords="offset points", xytext=(8, 6), fontsize=9)
         if row.get("estimate"):
             ax.plot([row["seconds"]] * 2, [error, max(row["estimate"], floor)], color="tab:orange", lw=1.5)
@@ -70,10 +77,12 @@ def ladder(rows: list[dict], title: str, path: Path, accuracy: float) -> Path:
     ax.axhline(accuracy, color="tab:red", ls="--", lw=1, label=f"requested accuracy {accuracy:g}")
     ax.plot([], [], color="tab:orange", marker="_", lw=1.5, label="error estimate (probe)")
     ax.plot([], [], "o", ms=12, mfc="none", mec="tab:red", mew=2, label="chosen")
-    ax.set_xlabel("cost: time for the whole span [s]")
+    ax.set_xscale("log"), ax.set_yscale("log")
+    ax.set_xlabel("cost: time for the whole span [s]" + "".join(
+        f"\nnot run: {r['rung']} ({r['skipped']})" for r in skipped))
     ax.set_ylabel("error against the most complete model [1] (relative)")
     ax.set_title(title)
-    ax.legend(fontsize=9, loc="best")
+    ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     ax.grid(True, which="both", alpha=0.3)
     return figures.finish(fig, path)
 
@@ -120,12 +129,14 @@ def sweep(ds, expression: str, title: str, path: Path, contour: float | None = N
         mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z), shading="nearest", cmap="viridis", norm=norm)
         fig.colorbar(mesh, ax=ax, label=label)
         handles = []
+        # the level line wide and white under the reference lines, narrow and dashed: where they
+        # coincide, both stay visible (white on either side of the red dashes and between them)
         if contour is not None and finite.size and finite.min() < contour < finite.max():
-            ax.contour(x, y, z, levels=[contour], colors="w", linewidths=2)
-            handles.append(matplotlib.lines.Line2D([], [], color="w", lw=2,
+            ax.contour(x, y, z, levels=[contour], colors="w", linewidths=4.5, zorder=3)
+            handles.append(matplotlib.lines.Line2D([], [], color="w", lw=4.5,
                                                    label=f"gyrostat: {expression} = {contour:g}"))
         for line in lines or ():
-            handles += ax.plot(line["x"], line["y"], "r--", lw=2, label=line["label"])
+            handles += ax.plot(line["x"], line["y"], color="r", ls=(0, (4, 4)), lw=1.5, label=line["label"], zorder=4)
         bad = failed.transpose(names[0], names[1]).values.T
         if bad.any():
             gx, gy = np.meshgrid(x, y)

@@ -72,10 +72,56 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
             derived["ladder"] = _ladder.measure(choice, scene.runs[0].t_span, scene.runs[0].options)
             report["ladder"]["measured"] = derived["ladder"]
     scene.kind.analyse(scene, solutions, report, derived)
+    # the kind's analysis may add broken assumptions of its own: sorted after it
+    expected = scene.doc.get("expected_broken", [])
+    markers = {text: _marker(text, expected) for text in report["broken_assumptions"]}
+    report["expected_broken"] = [{"assumption": text, "why": m["why"]} for text, m in markers.items() if m]
+    report["unexpected_broken"] = [text for text, m in markers.items() if not m]
+    report["expected_but_held"] = [m["assumption"] for m in expected
+                                   if not any(text.startswith(m["assumption"]) for text in report["broken_assumptions"])]
     statuses = {s.status for s in solutions.values()}
     report["status"] = ("success" if statuses == {"success"} else
                         "interrupted" if "interrupted" in statuses else "failed")
+    report["agreement"] = agreement(report)
+    report["verdict"] = verdict(report)
     return solutions, report, derived
+
+
+def _marker(text: str, expected: list[dict]) -> dict | None:
+    """The scene's [[expected_broken]] entry that names this broken assumption, if any."""
+    return next((m for m in expected if text.startswith(m["assumption"])), None)
+
+
+def agreement(report: dict) -> str:
+    """What the scene measured against a reference, in one line: the kind's analysis' maximum
+    differences (``averaged_vs_full*``, ``max_error_vs_closed_form``) as the report holds them."""
+    parts = []
+    for key, value in report.items():
+        if key.startswith("averaged_vs_full") and isinstance(value, dict):
+            numbers = ", ".join(f"{name} {v:.2g}" for name, v in value.items() if isinstance(v, float))
+            if numbers:
+                parts.append(f"{key.replace('_', ' ')}: {numbers}")
+        elif key == "max_error_vs_closed_form":
+            parts.append(f"max |omega - closed form| {value:.2g}")
+    return "; ".join(parts)
+
+
+def verdict(report: dict) -> str:
+    """One word or phrase for the summary: the status, then whether every assumption held, held
+    but for the ones the scene expects to break (its [[expected_broken]]), or broke unexpectedly,
+    and whether a run doubts its own accuracy."""
+    if report["status"] != "success":
+        return report["status"]
+    notes = []
+    if report["unexpected_broken"]:
+        notes.append(f"WARNING {len(report['unexpected_broken'])} assumption(s) broken")
+    if report["expected_but_held"]:
+        notes.append(f"{len(report['expected_but_held'])} expected break(s) not seen")
+    if report["accuracy_warnings"]:
+        notes.append(f"WARNING accuracy ({len(report['accuracy_warnings'])})")
+    if report["expected_broken"]:
+        notes.append(f"{len(report['expected_broken'])} broken as expected")
+    return "ok" + (", " + ", ".join(notes) if notes else "")
 
 
 # ------------------------------------------------------------------------------------ the ladder
@@ -115,10 +161,13 @@ def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = Tr
     kind; returns its report (also written as report.json; ``plots_skipped`` names the plots
     asked for that could not be drawn, with the reason). Scene errors raise
     :class:`gyrostat.schema.SceneError` (one line)."""
+    started = time.perf_counter()
     scene = path if isinstance(path, Scene) else Scene.from_toml(path)
     solutions, report, derived = solve_scene(scene, progress=progress)
     for broken in report["broken_assumptions"]:
-        warnings.warn(f"{scene.name}: {broken}", validity.ValidityWarning, stacklevel=2)
+        marker = _marker(broken, scene.doc.get("expected_broken", []))
+        warnings.warn(f"{scene.name}: {broken}" + (f" (expected: {marker['why']})" if marker else ""),
+                      validity.ValidityWarning, stacklevel=2)
     folder = Path(out_dir) / scene.name
     folder.mkdir(parents=True, exist_ok=True)
     files: list[Path] = []
@@ -132,6 +181,8 @@ def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = Tr
     report["plots_skipped"] = plots.skipped(scene, drawn)
     files += drawn
     report["files"] = [str(f) for f in files] + [str(folder / "report.json")]
+    report["folder"] = str(folder)
+    report["seconds_total"] = time.perf_counter() - started  # solving, checks, files and plots
     output.write_report(report, folder)
     return report
 
@@ -212,6 +263,10 @@ def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, sa
               "broken_assumptions": sorted({str(a) for a in np.unique(ds["first_broken_assumption"].values) if a}),
               "members_with_accuracy_warnings": int((ds["accuracy_warning"] != "").sum()),
               "accuracy_warnings": sorted({str(a) for a in np.unique(ds["accuracy_warning"].values) if a})[:5]}
+    expected = scene.doc.get("expected_broken", [])  # the scene's own markers, as for its run
+    report["unexpected_broken"] = [text for text in report["broken_assumptions"] if not _marker(text, expected)]
+    report["expected_parts"] = sorted({m["assumption"] for text in report["broken_assumptions"]
+                                       if (m := _marker(text, expected))})
     files = [target, plots.sweep(ds, expression, f"{scene.title}: sweep", folder / "sweep.png",
                                  contour=job.contour, lines=job.lines)]
     report["files"] = [str(f) for f in files] + [str(folder / "sweep.json")]

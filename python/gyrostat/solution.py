@@ -91,7 +91,7 @@ class Solution:
             state_names=tuple(core.state_names), output_names=tuple(core.output_names),
             state_units=tuple(q["unit"] for q in core.quantities if q["role"] == "state"),
             output_units=tuple(q["unit"] for q in core.quantities if q["role"] == "output"),
-            output_conserved=(False,) * n_out, options=last._result.options,
+            output_conserved=(False,) * n_out, output_kept=(False,) * n_out, options=last._result.options,
             stats=SimpleNamespace(**stats, last_step=last.stats["last_step"]),
             t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status, message=last.message,
             success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
@@ -128,6 +128,13 @@ class Solution:
     def conserved(self) -> tuple[str, ...]:
         """The outputs that are first integrals of the unperturbed model (|G|, T, G_z, H, …)."""
         return tuple(n for n, c in zip(self._result.output_names, self._result.output_conserved) if c)
+
+    @property
+    def kept(self) -> tuple[str, ...]:
+        """The first integrals (:attr:`conserved`) this model keeps with its torques, as its C++
+        model says (a forced or damped energy is not kept; the cavity keeps |G|)."""
+        flags = getattr(self._result, "output_kept", self._result.output_conserved)
+        return tuple(n for n, c in zip(self._result.output_names, flags) if c)
 
     @property
     def invariants(self) -> dict[str, np.ndarray]:

@@ -53,7 +53,7 @@ import numpy as np
 
 from gyrostat import _core, output
 from gyrostat import progress as _bars
-from gyrostat.events import variable_name
+from gyrostat.events import labels, variable_name
 from gyrostat.modelbase import shown
 from gyrostat.solution import AccuracyWarning
 from gyrostat.schema import SceneError, locate
@@ -386,7 +386,7 @@ class Plan:
         self.state_names = tuple(base.model.state_names)
         self.output_names = tuple(base.model.output_names)
         self.units = base.model.units  # as the C++ model declares them
-        self.event_labels = tuple(e.label for e in base.options.get("events", ()))
+        self.event_labels = tuple(labels(base.options.get("events", ())))
         self.n_out = int(base.options.get("n_out", _core.Options().n_out))
         self.parameters = _parameters(vary)
         self._targets()  # every path checked now, before any member runs

@@ -39,7 +39,7 @@ import numpy as np
 from gyrostat import _core, attitude, figures
 from gyrostat.events import Event
 from gyrostat.families.rigid_body import Model
-from gyrostat.figures import LEGEND_SIZE, keep, mark_singular, plt, unit_label, wrap_angle
+from gyrostat.figures import LEGEND_SIZE, keep, legend_outside, mark_singular, plt, unit_label, wrap_angle
 from gyrostat.kind import (BODY, METHOD, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration, make_body,
                            outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_torques, flag
@@ -543,7 +543,7 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
             ax.plot(sol.t, zv[:, i], "k:", lw=1, label="ω_ZV(τ(t)) (torque-free)" if i == 0 else None)
         ax.set_ylabel(unit_label(sol, "p", "ω"))
         ax.set_title(f"{scene.title}: {_law_text(spec)}")
-        ax.legend(loc="upper right", fontsize=LEGEND_SIZE, ncol=2)
+        legend_outside(ax)
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("t [s]")
     keep(fig, folder / "omega.png", "omega" in wanted, files)
@@ -556,7 +556,7 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
             ax.set_ylabel(f"{label}: relative change [1]")
     for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(loc="upper left", fontsize=LEGEND_SIZE)
+        legend_outside(ax)
     axes[0].set_title(f"{scene.title}: invariants (exact for the servo torque)")
     axes[1].set_xlabel("t [s]")
     keep(fig, folder / "invariants.png", "invariants" in wanted, files)
@@ -574,13 +574,14 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
     axes[1].set_ylabel("g = dτ/dt [1]")
     axes[1].set_xlabel("t [s]")
     axes[0].set_title(f"{scene.title}: time change τ(t) (paper (10))")
-    for ax, loc in zip(axes, ("upper left", "lower left")):
+    for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(loc=loc, fontsize=LEGEND_SIZE, framealpha=0.8, ncol=2)
+        legend_outside(ax)
     axes[0].text(0.99, 0.02, "dots: g = 0 (τ stops, then reverses)", transform=axes[0].transAxes, ha="right",
                  fontsize=LEGEND_SIZE)
     keep(fig, folder / "tau.png", "tau" in wanted, files)
-    # Euler angles (θ, φ of G in body axes; ψ) with the approximations at τ(t)
+    # the nutation ϑ and azimuth φ_G of G in body axes, the z-x-z precession ψ, with the
+    # approximations at τ(t); one legend per row, right of the last column (over no curve)
     fig, axes = plt.subplots(3, n, figsize=(6 * n, 8), sharex=True, squeeze=False)
     for j, (name, (sol, zv, approx, spec)) in enumerate(results.items()):
         ang = np.column_stack([sol["theta_G"], sol["phi_G"]])
@@ -599,14 +600,15 @@ def draw(scene, solutions: dict, derived: dict, folder) -> list:
             ax_psi.plot(sol.t, wrap_angle(a[:, 0]), st, label=label)
         ax_psi.set_title(f"{_law_text(spec)}")
         mark_singular(ax_th, sol.t, ang[:, 0])
-        ax_psi.set_ylabel("ψ precession [rad]")
-        ax_th.set_ylabel("θ nutation (of G in body) [rad]")
-        ax_ph.set_ylabel("φ proper rotation [rad]")
+        ax_psi.set_ylabel("ψ precession, z-x-z [rad]")
+        ax_th.set_ylabel("ϑ nutation: body z to G [rad]")
+        ax_ph.set_ylabel("φ_G azimuth of G in body [rad]")
         ax_ph.set_xlabel("t [s]")
         for ax in axes[:, j]:
             ax.grid(alpha=0.3)
-            ax.legend(loc="best", fontsize=LEGEND_SIZE, framealpha=0.7)
-    fig.suptitle(f"{scene.title}: Euler angles z-x-z", fontsize=10)
+    for ax in axes[:, -1]:
+        legend_outside(ax)
+    fig.suptitle(f"{scene.title}: G in body axes (nutation ϑ, azimuth φ_G) and the precession ψ", fontsize=10)
     keep(fig, folder / "euler_angles.png", "euler_angles" in wanted, files)
     # errors of the approximations (nearly spherical only)
     if spherical is not None and "approximation_errors" in wanted:

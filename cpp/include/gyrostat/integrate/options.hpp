@@ -25,6 +25,8 @@ enum class Method {
 Method method_from_name(const std::string& name);  ///< throws std::invalid_argument listing the names
 const char* method_name(Method m);
 std::vector<std::string> method_names();
+/// One line per method, in the order of method_names().
+std::vector<std::string> method_descriptions();
 
 /// An event: g(t, y) = quantity(t, y) − value crossing zero, where the quantity is a state
 /// component, a named output of the model (evaluated in C++), or a function of (t, y) (a Python
@@ -120,6 +122,8 @@ struct Result {
     std::vector<std::string> state_names, state_units, state_descriptions;
     std::vector<std::string> output_names, output_units, output_descriptions;
     std::vector<bool> output_conserved;   ///< per output: a first integral of the unperturbed model
+    /// per output: conserved and kept by this model with its torques (a forced energy is not kept)
+    std::vector<bool> output_kept;
     /// The options the run was made with (recorded(): every scalar option; t_eval and events are
     /// the outputs' times and event_names).
     Options options;

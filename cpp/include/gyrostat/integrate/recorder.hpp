@@ -17,9 +17,11 @@
 namespace gyrostat::integrate {
 
 /// Names the state and the outputs of `System` in a Result (also for a run that fails before
-/// its first output, so that an empty Result still says what it would hold).
+/// its first output, so that an empty Result still says what it would hold). With the `system`,
+/// output_kept says which conserved outputs its torques keep (model/system.hpp: keeps);
+/// without it, every conserved output.
 template <class System>
-void describe(Result& result) {
+void describe(Result& result, const System* system = nullptr) {
     namespace sys = model::system;
     result.dim = System::dim;
     result.state_names.clear(), result.state_units.clear(), result.state_descriptions.clear();
@@ -29,9 +31,13 @@ void describe(Result& result) {
         result.state_descriptions.emplace_back(q.description);
     }
     result.output_names.clear(), result.output_units.clear(), result.output_descriptions.clear();
-    result.output_conserved.clear();
+    result.output_conserved.clear(), result.output_kept.clear();
     if constexpr (sys::has_outputs<System>::value) {
         for (const auto& info : System::outputs_info) {
+            bool kept = info.conserved;
+            if constexpr (sys::has_keeps<System>::value)
+                kept = kept && (system == nullptr || system->keeps(result.output_kept.size()));
+            result.output_kept.push_back(kept);
             result.output_names.emplace_back(info.name);
             result.output_units.emplace_back(info.unit);
             result.output_descriptions.emplace_back(info.description);
@@ -58,7 +64,7 @@ public:
     static constexpr int n_outputs = model::system::n_outputs<System>();
 
     Recorder(const System& system, Result& result, std::size_t expected) : system_(system), result_(result) {
-        describe<System>(result_);
+        describe<System>(result_, &system_);
         const double bytes = static_cast<double>(expected) * (1 + System::dim + n_outputs) * sizeof(double);
         if (bytes > kMaxOutputBytes)
             throw std::invalid_argument(std::to_string(expected) + " output times would take " +

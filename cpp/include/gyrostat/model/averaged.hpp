@@ -101,12 +101,13 @@ public:
                                         format_value(y[0]));
     }
 
-    static constexpr std::array<OutputInfo, 6> outputs_info{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
+    static constexpr std::array<OutputInfo, 7> outputs_info{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
                                                              {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true},
                                                              {"x", "rad^2/s^2", "x = a^2 (papers 000/001; paper 002 calls it y)", false},
                                                              {"y", "rad^2/s^2", "y = r^2 (papers 000/001; paper 002 calls it x)", false},
                                                              {"fast_frequency", "rad/s", "|(C - A) r / A|, the frequency of the averaged-out motion", false},
-                                                             {"slow_to_fast", "1", "the slow variables' relative rate over the fast frequency (averaging needs it << 1)", false}}};
+                                                             {"slow_to_fast", "1", "the slow variables' relative rate over the fast frequency (averaging needs it << 1)", false},
+                                                             nutation_angle_info}};
     void outputs(double t, const State& y, double* out) const {
         out[0] = std::sqrt(A_ * A_ * y[0] * y[0] + C_ * C_ * y[1] * y[1]);
         out[1] = 0.5 * (A_ * y[0] * y[0] + C_ * y[1] * y[1]);
@@ -114,7 +115,13 @@ public:
         out[3] = y[1] * y[1];
         out[4] = fast_frequency(y[1]);
         out[5] = out[4] > 0.0 ? slow_rate(t, y) / out[4] : std::numeric_limits<double>::infinity();
+        // The nutation angle from the slow variables: on the generating motion
+        // ω = (a cos φ, a sin φ, r) of a symmetric body (A = B, no rotor), G = (A a cos φ, A a sin φ, C r)
+        // in body axes, so √(G_x² + G_y²) = A a and G_z = C r for every phase φ: ϑ does not depend on
+        // the averaged-out phase, and tan ϑ = A a / (C r), ϑ = atan2(A a, C r) (model/system.hpp).
+        out[6] = nutation_angle(Vec3(A_ * y[0], 0.0, C_ * y[1]));
     }
+    bool keeps(std::size_t /*output*/) const { return torques_.empty(); }
 
 private:
     Body body_;

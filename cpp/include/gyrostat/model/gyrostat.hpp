@@ -153,13 +153,22 @@ public:
     /// keeps it: none, or the cavity).
     bool keeps_momentum_norm() const { return body_.rotor().squaredNorm() == 0.0 && torques_.keeps_momentum_norm(); }
 
-    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}}};
+    static constexpr std::array<OutputInfo, 3> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}, nutation_angle_info}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
+    /// |G|, T, the nutation angle ϑ between body z and G = Jω + k (model/system.hpp:
+    /// nutation_angle), then ψ, θ, φ with the attitude.
     void outputs(double /*t*/, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();
-        out[0] = body_.angular_momentum(omega).norm();
+        const Vec3 G = body_.angular_momentum(omega);
+        out[0] = G.norm();
         out[1] = body_.kinetic_energy(omega);
-        this->attitude_outputs(y, out + 2);
+        out[2] = nutation_angle(G);
+        this->attitude_outputs(y, out + 3);
+    }
+    /// Without torques |G| and T are first integrals; a torque with Jω·M ≡ 0 (the cavity) keeps
+    /// |G| of a rigid body; any torque changes T.
+    bool keeps(std::size_t output) const {
+        return torques_.empty() || (output == 0 && keeps_momentum_norm());
     }
 
 private:

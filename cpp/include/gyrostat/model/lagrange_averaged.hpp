@@ -131,6 +131,8 @@ public:
         return full;
     }
 
+    /// No nutation angle ϑ (body z to G) here: the slow variables (G_z, H, r) do not fix it, as it
+    /// swings with the averaged-out nutation (the full LagrangeTop records it).
     static constexpr std::array<OutputInfo, 7> outputs_info{{{"u1", "1", "the smallest root of the nutation cubic (u = cos theta)", false},
                                                              {"u2", "1", "the middle root: the top of the nutation", false},
                                                              {"u3", "1", "the largest root", false},

@@ -194,7 +194,7 @@ public:
                 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2], y[2]};
     }
 
-    static constexpr std::array<OutputInfo, 11> own_outputs{{{"G_z", "kg m^2/s", "the angular momentum about the vertical", true},
+    static constexpr std::array<OutputInfo, 12> own_outputs{{{"G_z", "kg m^2/s", "the angular momentum about the vertical", true},
                                                              {"H", "J", "the top's energy, rotation plus gravity", true},
                                                              {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", false},
                                                              {"u1", "1", "the smallest root of the nutation cubic (u = cos theta)", false},
@@ -203,10 +203,13 @@ public:
                                                              {"m", "1", "the parameter of the nutation's sn", false},
                                                              {"v", "1", "the nutation's phase variable", false},
                                                              {"T_nut", "s", "the nutation period", false},
-                                                             {"cos_theta", "1", "cos theta, the cosine of the nutation angle", false},
-                                                             {"cos_theta_rate", "1/s", "d cos theta / dt", false}}};
+                                                             {"cos_theta", "1", "cos theta: theta the angle between the symmetry axis and the vertical (the heavy top's nutation)", false},
+                                                             {"cos_theta_rate", "1/s", "d cos theta / dt", false},
+                                                             nutation_angle_info}};
     static constexpr auto outputs_info = with_euler_outputs<true>(own_outputs);
     void outputs(double /*t*/, const State& y, double* out) const;
+    /// G_z and H are first integrals of the top in gravity; any other torque changes them.
+    bool keeps(std::size_t /*output*/) const { return torques_.empty(); }
 
 private:
     Body body_;
@@ -226,7 +229,9 @@ inline void LagrangeTop::outputs(double /*t*/, const State& y, double* out) cons
     const Vec3 gamma = vertical_in_body(y[3], y[4], y[5], y[6]);
     out[9] = gamma[2];
     out[10] = gamma[0] * y[1] - gamma[1] * y[0];
-    euler_outputs(y.template segment<4>(3), out + 11);
+    // the angle between the symmetry axis and G = Jω (model/system.hpp), not θ to the vertical
+    out[11] = nutation_angle(body_.angular_momentum(y.template head<3>()));
+    euler_outputs(y.template segment<4>(3), out + 12);
 }
 
 }  // namespace gyrostat::model

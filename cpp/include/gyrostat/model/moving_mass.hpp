@@ -118,16 +118,22 @@ public:
     /// a point mass on a linear spring near its attachment, so |u|/ρ ≪ 1 is its assumption (a soft
     /// spring, Ω near the spin rate, lets the mass drift metres on a 1 m arm; the validity check
     /// reports it like every other assumption).
-    static constexpr std::array<OutputInfo, 3> outputs_info{
-        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}}};
+    /// The nutation angle ϑ is that of the system's angular momentum K (carrier and mass) to the
+    /// carrier's z axis (model/system.hpp: nutation_angle).
+    static constexpr std::array<OutputInfo, 4> outputs_info{
+        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}, nutation_angle_info}};
     void outputs(double, const State& y, double* out) const {
         const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
         const Vec3 d = Vec3(0, 0, rho_) + u;
         const Vec3 s = w.cross(d) + v;
-        out[0] = (carrier_.cwiseProduct(w) + mu_ * d.cross(s)).norm();
+        const Vec3 K = carrier_.cwiseProduct(w) + mu_ * d.cross(s);
+        out[0] = K.norm();
         out[1] = 0.5 * w.dot(carrier_.cwiseProduct(w)) + 0.5 * mu_ * s.squaredNorm() + 0.5 * mu_ * omega2_ * u.squaredNorm();
         out[2] = u.norm() / rho_;
+        out[3] = nutation_angle(K);
     }
+    /// |K| is a first integral without external torques (the damper is internal).
+    bool keeps(std::size_t /*output*/) const { return torques_.empty(); }
 
     /// (u, v) of the forced quasi-static motion for a given ω (docs/papers/001 §C): the initial
     /// state that starts the mass without a free oscillation. Elastic part

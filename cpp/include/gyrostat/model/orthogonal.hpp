@@ -338,7 +338,7 @@ public:
         return rate;
     }
 
-    static constexpr std::array<OutputInfo, 9> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
+    static constexpr std::array<OutputInfo, 10> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
                                                             {"h", "kg m^2/s^2", "omega . J omega (= 2T)", true},
                                                             {"g", "1", "d tau/dt, the servo's gain", false},
                                                             {"L", "N m", "the torque's magnitude law L(t)", false},
@@ -346,7 +346,8 @@ public:
                                                             {"delta", "kg m^2/s^2", "eta |omega| |G|, the regularisation threshold", false},
                                                             {"regularised", "1", "1 where |omega x G| is below delta and the torque is regularised, else 0", false},
                                                             {"theta_G", "rad", "the polar angle of G in body axes", false},
-                                                            {"phi_G", "rad", "the azimuth of G in body axes", false}}};
+                                                            {"phi_G", "rad", "the azimuth of G in body axes", false},
+                                                            nutation_angle_info}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     void outputs(double t, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();
@@ -362,8 +363,12 @@ public:
         out[6] = regularised(q_norm, d) ? 1.0 : 0.0;
         out[7] = std::atan2(std::hypot(G[0], G[1]), G[2]);
         out[8] = std::atan2(G[0], G[1]);
-        this->attitude_outputs(y, out + 9);
+        // the same angle as theta_G under the name every family records (model/system.hpp)
+        out[9] = nutation_angle(G);
+        this->attitude_outputs(y, out + 10);
     }
+    /// |G| and h are kept by the servo's torque (orthogonal to ω and G); other torques change them.
+    bool keeps(std::size_t /*output*/) const { return torques_.empty(); }
 
 private:
     Body body_;

@@ -56,6 +56,11 @@ struct OutputInfo {
 ///                                                                rtol 1e-12 (default: none)
 ///   static constexpr std::array<OutputInfo, n> outputs_info;     named outputs recorded at every
 ///   void outputs(double t, const State& y, double* out) const;   output time (default: none)
+///   bool keeps(std::size_t output) const;                        whether the output `output`,
+///                                                                flagged conserved, stays a first
+///                                                                integral with this model's
+///                                                                torques (default: yes; a forced
+///                                                                energy is not)
 ///   void check_state(const State& y) const;                      throws std::invalid_argument for
 ///                                                                a state the model cannot reach
 ///                                                                (default: finite is enough)
@@ -131,6 +136,11 @@ template <class S, class = void>
 struct has_outputs : std::false_type {};
 template <class S>
 struct has_outputs<S, std::void_t<decltype(S::outputs_info)>> : std::true_type {};
+
+template <class S, class = void>
+struct has_keeps : std::false_type {};
+template <class S>
+struct has_keeps<S, std::void_t<decltype(std::declval<const S&>().keeps(std::size_t{0}))>> : std::true_type {};
 
 template <class S, class = void>
 struct has_state_check : std::false_type {};
@@ -258,8 +268,22 @@ typename S::State initial_state(const S& s, const Eigen::VectorXd& given) {
 void check_quaternion(const Eigen::Vector4d& q, const char* model);
 
 
-/// The z-x-z Euler angles (ψ, θ, φ) recorded by every model that integrates the attitude.
-inline constexpr std::array<OutputInfo, 3> euler_outputs_info{{{"psi", "rad", "the z-x-z Euler angle psi (precession)", false}, {"theta", "rad", "the z-x-z Euler angle theta (nutation)", false}, {"phi", "rad", "the z-x-z Euler angle phi (proper rotation)", false}}};
+/// The z-x-z Euler angles (ψ, θ, φ) recorded by every model that integrates the attitude. θ is
+/// the angle between body z and the z axis of the inertial frame the attitude starts from (the
+/// identity quaternion): not the nutation angle to G (nutation_angle below), unless G happens to
+/// lie along that inertial z.
+inline constexpr std::array<OutputInfo, 3> euler_outputs_info{{{"psi", "rad", "the z-x-z Euler angle psi: precession about the inertial z axis", false}, {"theta", "rad", "the z-x-z Euler angle theta: between body z and the start frame's inertial z (not the nutation angle to G: nutation_angle)", false}, {"phi", "rad", "the z-x-z Euler angle phi: proper rotation about body z", false}}};
+
+/// The nutation angle proper ϑ: the angle between the body's z axis e = (0, 0, 1) (the symmetry
+/// axis of the papers' bodies) and the angular momentum G (G = Jω + k for the gyrostat, the
+/// system's K for the moving mass), both in body axes:
+///   cos ϑ = e·G/|G| = G_z/|G|,   ϑ = atan2(√(G_x² + G_y²), G_z) ∈ [0, π]
+/// (atan2: full precision near 0 and π, where acos loses √ε; ϑ = 0 at G = 0). It needs ω alone,
+/// not the attitude, and is the angle paper 004 calls the nutation (the polar angle of G in the
+/// body). Torque-free, G is fixed in space, so ϑ is also the angle between body z and the
+/// inertial direction of G.
+inline constexpr OutputInfo nutation_angle_info{"nutation_angle", "rad", "the nutation angle: between body z (the symmetry axis) and the angular momentum G, from omega alone", false};
+inline double nutation_angle(const Vec3& G) { return std::atan2(std::hypot(G[0], G[1]), G[2]); }
 inline void euler_outputs(const Eigen::Vector4d& q, double* out) {
     const Vec3 angles = euler_angles(q, EulerConvention::ZXZ);
     out[0] = angles[0], out[1] = angles[1], out[2] = angles[2];

@@ -254,13 +254,17 @@ public:
         dy.template head<3>() = body_.inverse_moments().cwiseProduct(body_.angular_momentum(omega).cross(omega));
         if constexpr (WithAttitude) dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
     }
-    static constexpr std::array<OutputInfo, 2> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}}};
+    static constexpr std::array<OutputInfo, 3> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}, nutation_angle_info}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
+    /// |G|, T, the nutation angle ϑ between body z and G = Jω + k (model/system.hpp:
+    /// nutation_angle), then ψ, θ, φ with the attitude.
     void outputs(double, const State& y, double* out) const {
         const Vec3 omega = y.template head<3>();
-        out[0] = body_.angular_momentum(omega).norm();
+        const Vec3 G = body_.angular_momentum(omega);
+        out[0] = G.norm();
         out[1] = body_.kinetic_energy(omega);
-        this->attitude_outputs(y, out + 2);
+        out[2] = nutation_angle(G);
+        this->attitude_outputs(y, out + 3);
     }
 
 private:
