@@ -28,7 +28,21 @@ PAPER_RATIO = _core.large
 
 
 class ValidityWarning(UserWarning):
-    """A scene breaks an assumption of a model it uses."""
+    """A scene or a run breaks an assumption of a model it uses: the sentence names the
+    assumption, its measured value and the limit. :func:`gyrostat.solve` warns so for an averaged
+    model whose assumptions fail along the run (the sentence is also kept in ``Solution.notes``).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import gyrostat
+    >>> body = gyrostat.Body([4.0, 4.4, 1.0])  # 10 % asymmetry: too far from symmetric for the averaging
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     sol = gyrostat.solve(gyrostat.AveragedModel(body), [0.1, 1.0], (0.0, 1.0))
+    >>> any(issubclass(w.category, gyrostat.ValidityWarning) for w in caught)
+    True
+    """
 
 
 @dataclass(frozen=True)
