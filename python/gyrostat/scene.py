@@ -45,9 +45,8 @@ from pathlib import Path
 from gyrostat.events import Event
 from gyrostat.families import KINDS, default_kind
 from gyrostat.kind import Kind, Run, build
-from gyrostat.schema import ArrayOf, Field, SceneError, Table, describe, validate
+from gyrostat.schema import Common, SceneError, describe, describe_common, validate
 from gyrostat.solve import check_run
-from gyrostat.torques import TORQUE
 
 __all__ = ["Scene", "Run", "SceneError", "KINDS", "SCENES", "load", "scene_format"]
 
@@ -138,11 +137,12 @@ def load(path: str | Path) -> Scene:
 
 
 def scene_format() -> str:
-    """The reference of every scene kind (Markdown), from the schemas themselves."""
+    """The reference of every scene kind (Markdown), from the schemas themselves: what several
+    kinds share (events, sweeps, torques, the common integration keys) once, then each kind."""
+    common = Common(kind.schema for kind in KINDS.values())
     parts = ["# Scene files\n", f"The top-level key `kind` selects one of the kinds below (`{default_kind()}` when absent).\n"]
     for kind in KINDS.values():
         parts.append(f"\n## kind = \"{kind.name}\"\n\n{kind.doc}\n\nPlots: {', '.join(kind.plots)}.\n")
-        parts.append(describe(kind.schema, title=f"{kind.name}: top level"))
-    parts.append("\n## Torques (`[[torques]]`, by `type`)\n")
-    parts.append(describe(Table({"torques": Field(ArrayOf(TORQUE), doc="torques")}), title="torques"))
+        parts.append(describe(kind.schema, title=f"{kind.name}: top level", common=common))
+    parts.append("\n" + describe_common(common))
     return "\n".join(parts)

@@ -367,10 +367,38 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         (t0, t1), in s, the same for every member.
     threads : int, optional
         C++ threads; ≤ 0 (default): every hardware thread.
-    method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step, splitting_order, options
-        The integrator options, each as in :func:`solve` (units: s for times and steps).
-    events, dense_output, progress, check_validity
-        As in :func:`solve` (``progress`` counts members finished).
+    method : str, optional
+        The integrator for every member (see :func:`solve`).
+    rtol : float, optional
+        Relative tolerance, dimensionless.
+    atol : float, optional
+        Absolute tolerance, in the state's units.
+    t_eval : array_like, optional
+        Output times of every member, in s.
+    n_out : int, optional
+        Evenly spaced output times when ``t_eval`` is not given.
+    every_step : bool, optional
+        Record every accepted step too (not in SIMD batches).
+    max_steps : int, optional
+        Most steps per member.
+    first_step : float, optional
+        First step size, in s.
+    max_step : float, optional
+        Largest step size, in s.
+    step : float, optional
+        Fixed step of ``method="splitting"``, in s.
+    splitting_order : {2, 4, 6}, optional
+        Order of ``method="splitting"``.
+    options : gyrostat.Options, optional
+        All of these at once; keywords override it.
+    events : Event, callable or list of them, optional
+        Watched by every member; each stops on its own terminal event.
+    dense_output : bool, optional
+        Keep each member's continuous extension (``sol(t)``).
+    progress : bool or callable, optional
+        A bar, or a callable of the fraction of members finished.
+    check_validity : bool, optional
+        Check an averaged model's assumptions along each member.
     batch : bool, optional
         Run the members a SIMD batch covers :data:`gyrostat.simd_lanes` at a time (default True).
 
