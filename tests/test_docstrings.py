@@ -46,44 +46,55 @@ def takes_parameters(member, doc: str) -> bool:
     return any(not a.startswith("self") for a in arguments)
 
 
+def class_names(label: str, obj: type, seen: set):
+    """The class and the public attributes of it and of its gyrostat bases, each once."""
+    init = obj.__dict__.get("__init__")
+    if init is not None and not isinstance(init, types.WrapperDescriptorType):
+        needs = takes_parameters(init, inspect.getdoc(init) or "") or obj in gyrostat._core.torque_types
+    else:
+        needs = bool(getattr(obj, "__dataclass_fields__", None))
+    if obj.__doc__ is None and any(b is not object for b in obj.__bases__):
+        needs = None  # a class without its own docstring (inherits its base's): checked with the base
+    yield label, None, label, obj, inspect.getdoc(obj) or "", needs
+    for klass in obj.__mro__:
+        if klass.__module__ in ("builtins", "pybind11_builtins") or klass in seen:
+            continue
+        seen.add(klass)
+        for attr, member in vars(klass).items():
+            if attr.startswith("_") and attr not in DUNDERS:
+                continue
+            if attr in getattr(klass, "__dataclass_fields__", {}):
+                continue  # a dataclass field: in the class's Parameters
+            if not (isinstance(member, ROUTINES) or isinstance(member, (property, types.MemberDescriptorType))
+                    or type(member).__name__ in ("instancemethod", "pybind11_static_property")):
+                continue  # a plain class constant (kind = "full"): documented with its class
+            if isinstance(member, types.FunctionType) and member.__doc__ is None and any(
+                    attr in vars(base) for base in klass.__mro__[1:]):
+                continue  # an override without a docstring: its base's (checked there) is its own
+            doc = doc_of(klass, attr, member)
+            yield (f"{klass.__module__}.{klass.__qualname__}.{attr}", klass, attr, member, doc,
+                   takes_parameters(member, doc) and not isinstance(member, property))
+
+
 def public_names():
-    """(label, owner, name, member, docstring, needs Parameters) of every public name."""
-    seen = set()
+    """(label, owner, name, member, docstring, needs Parameters) of every public name: those of
+    ``gyrostat.__all__``, and the models its submodules export (``gyrostat.lagrange.LagrangeTop``)."""
+    seen: set = set()
+    modules = []
     for name in gyrostat.__all__:
         obj = getattr(gyrostat, name)
         if isinstance(obj, types.ModuleType):
+            modules.append(obj)
             yield f"gyrostat.{name}", None, name, obj, inspect.getdoc(obj) or "", None
-            continue
-        if not callable(obj):
-            continue  # plain values: documented beside their assignment
-        if inspect.isclass(obj):
-            init = obj.__dict__.get("__init__")
-            if init is not None and not isinstance(init, types.WrapperDescriptorType):
-                needs = takes_parameters(init, inspect.getdoc(init) or "") or obj in gyrostat._core.torque_types
-            else:
-                needs = bool(getattr(obj, "__dataclass_fields__", None))
-            yield f"gyrostat.{name}", None, name, obj, inspect.getdoc(obj) or "", needs
-            for klass in obj.__mro__:
-                if klass.__module__ in ("builtins", "pybind11_builtins") or klass in seen:
-                    continue
-                seen.add(klass)
-                for attr, member in vars(klass).items():
-                    if attr.startswith("_") and attr not in DUNDERS:
-                        continue
-                    if attr in getattr(klass, "__dataclass_fields__", {}):
-                        continue  # a dataclass field: in the class's Parameters
-                    if not (isinstance(member, ROUTINES) or isinstance(member, (property, types.MemberDescriptorType))
-                            or type(member).__name__ in ("instancemethod", "pybind11_static_property")):
-                        continue  # a plain class constant (kind = "full"): documented with its class
-                    if isinstance(member, types.FunctionType) and member.__doc__ is None and any(
-                            attr in vars(base) for base in klass.__mro__[1:]):
-                        continue  # an override without a docstring: its base's (checked there) is its own
-                    doc = doc_of(klass, attr, member)
-                    yield (f"{klass.__module__}.{klass.__qualname__}.{attr}", klass, attr, member, doc,
-                           takes_parameters(member, doc) and not isinstance(member, property))
-        else:
+        elif inspect.isclass(obj):
+            yield from class_names(f"gyrostat.{name}", obj, seen)
+        elif callable(obj):  # plain values are documented beside their assignment
             doc = inspect.getdoc(obj) or ""
             yield f"gyrostat.{name}", None, name, obj, doc, takes_parameters(obj, doc)
+    for module in modules:
+        for name, obj in vars(module).items():
+            if inspect.isclass(obj) and issubclass(obj, gyrostat.ModelBase) and obj not in seen:
+                yield from class_names(f"{module.__name__}.{name}", obj, seen)
 
 
 NAMES = list(public_names())
@@ -97,7 +108,8 @@ def test_the_walk_covers_the_public_api():
                      "gyrostat.solution.Solution.success", "gyrostat.solution.Solution.notes",
                      "gyrostat._core.ViscousCavity.p0", "gyrostat._core.ViscousCavity.__call__",
                      "gyrostat._core.Body.moments", "gyrostat.modelbase.ModelBase.units",
-                     "gyrostat._core.Options.rtol"):
+                     "gyrostat._core.Options.rtol", "gyrostat.lagrange.LagrangeTop", "gyrostat.orthogonal.OrthogonalModel",
+                     "gyrostat.families.orthogonal_torque.OrthogonalModel.tau_rate"):
         assert expected in labels, expected
     assert len(NAMES) > 140
 
@@ -155,3 +167,24 @@ def test_every_example_prints_what_it_shows():
         attempted += 1
     assert not failed, f"examples that print something else: {failed}"
     assert attempted > 130
+
+
+def test_solution_call_gives_named_outputs_between_output_times():
+    """``sol(t, name)``: a state component or a named output at any time, the output computed by the
+    C++ model at the interpolated state (here |G| and T of a torque-free body: exactly constant)."""
+    import numpy as np
+
+    model = gyrostat.Model(gyrostat.Body([3.0, 2.0, 1.0]), attitude=True)
+    sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 10.0), n_out=11, dense_output=True, rtol=1e-12, atol=1e-14)
+    times = np.array([[0.25, 3.3], [7.1, 9.99]])
+    energy = sol(times, "kinetic_energy")
+    assert energy.shape == (2, 2)
+    assert np.allclose(energy, sol["kinetic_energy"][0], rtol=1e-11, atol=0)
+    assert np.array_equal(sol(times, "r"), sol(times)[..., 2])
+    theta = sol(4.0, "theta")  # at an output time: what the engine recorded there
+    assert abs(theta - sol["theta"][4]) < 1e-12 and np.ndim(theta) == 0
+    with pytest.raises(KeyError, match="neither a state component"):
+        sol(1.0, "x")
+    detached = gyrostat.Solution(sol._result)  # a solution that does not know its model
+    with pytest.raises(ValueError, match="does not know its model"):
+        detached(1.0, "theta")

@@ -120,6 +120,37 @@ class OrthogonalModel(ModelBase):
     ``regularisation``: ``"threshold"`` (default: the paper's torque wherever |Q| ≥ δ = η|ω||G|,
     tapered to L Q/n, n = (|Q|² + δ²)/(2δ), below) or ``"smooth"`` (L Q/√(|Q|² + δ²) everywhere:
     smooth, but the applied L is off by a relative δ²/2|Q|² at every |Q|).
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        Moments (kg m^2) and rotor momentum k (kg m^2/s).
+    law : gyrostat.orthogonal law or float
+        The magnitude L(t) of the torque, in N m (:func:`constant`, :func:`polynomial`,
+        :func:`harmonic`, :func:`tabulated`; a number is a constant law).
+    torques : sequence of torques, optional
+        Other torques, added.
+    attitude : bool, optional
+        Integrate the attitude quaternion too.
+    eta : float, optional
+        The regularisation's scale η (δ = η|ω||G|; dimensionless).
+    regularisation : {"threshold", "smooth"}, optional
+        How the torque is tapered near Q = 0 (above).
+
+    Examples
+    --------
+    The torque is orthogonal to G and ω: |G| and h = ω·Jω stay constant.
+
+    >>> import gyrostat
+    >>> from gyrostat import orthogonal
+    >>> model = orthogonal.OrthogonalModel(gyrostat.Body([3.0, 2.0, 1.0]), 0.1)
+    >>> model.state_names
+    ('p', 'q', 'r', 'tau')
+    >>> sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 10.0))
+    >>> bool(abs(sol["angular_momentum_norm"][-1] / sol["angular_momentum_norm"][0] - 1) < 1e-8)
+    True
+
+    The examples of its attributes use this ``model``.
     """
 
     kind = "orthogonal_torque"
@@ -141,19 +172,57 @@ class OrthogonalModel(ModelBase):
 
     @property
     def moments(self) -> np.ndarray:
+        """The body's principal moments (A1, A2, A3), in kg m^2.
+
+        Examples
+        --------
+        >>> model.moments
+        array([3., 2., 1.])
+        """
         return np.asarray(self.body.moments, float)
 
     @property
     def rotor(self) -> np.ndarray:
+        """The rotor momentum k in body axes, in kg m^2/s.
+
+        Examples
+        --------
+        >>> model.rotor
+        array([0., 0., 0.])
+        """
         return np.asarray(self.body.rotor, float)
 
     def tau_rate(self, t, omega) -> np.ndarray:
-        """g = dτ/dt at times t for angular velocities omega (n, 3)."""
+        """g = dτ/dt = 1 − L/|Q| at times t for angular velocities omega (dimensionless).
+
+        Parameters
+        ----------
+        t : float or array_like, shape (n,)
+            Times, in s.
+        omega : array_like, shape (n, 3)
+            Angular velocities in body axes, in rad/s.
+
+        Examples
+        --------
+        >>> model.tau_rate([0.0], [[0.1, 0.2, 1.0]]).round(6)
+        array([0.647327])
+        """
         t = np.atleast_1d(np.asarray(t, float))
         return np.asarray(self._core.tau_rate(t, np.atleast_2d(np.asarray(omega, float))))
 
     def torque_free(self, attitude: bool | None = None) -> Model:
-        """The Zhukovsky–Volterra gyrostat of the same body (the full model without torque)."""
+        """The Zhukovsky–Volterra gyrostat of the same body (the full model without torque).
+
+        Parameters
+        ----------
+        attitude : bool, optional
+            With the attitude quaternion (default: as this model).
+
+        Examples
+        --------
+        >>> model.torque_free()
+        Model(Body(A1=3, A2=2, A3=1, k=[0, 0, 0]), torques=[], attitude=False)
+        """
         return Model(self.body, attitude=self.attitude if attitude is None else attitude)
 
     def __repr__(self) -> str:
