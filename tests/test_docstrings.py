@@ -133,7 +133,8 @@ def test_torque_docstrings_are_generated_from_the_declarations():
         for p in cls.parameters:
             entry = re.search(rf"^{p['name']} : .*\n\s+(.*)$", doc, flags=re.M)
             assert entry, (cls.__name__, p["name"])
-            assert p["description"] in entry.group(1) and f"in {p['unit']}" in entry.group(1), entry.group(1)
+            sentence = p["description"][:1].upper() + p["description"][1:]
+            assert entry.group(1).startswith(f"{sentence}, in {p['unit']} ("), entry.group(1)
         assert f'scene type ``"{cls.kind}"``' in doc
 
 

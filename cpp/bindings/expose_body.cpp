@@ -149,6 +149,13 @@ py::object example_value(const torque::Parameter& p) {
     return py::none();
 }
 
+/// A declaration's one-line text as a sentence of a docstring: capital first letter.
+std::string sentence(const char* text) {
+    std::string s = text;
+    if (!s.empty()) s[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(s[0])));
+    return s;
+}
+
 /// Python source of a value (a float, or nested lists of floats).
 std::string source(const py::handle& value) { return py::str(py::repr(value)); }
 
@@ -206,13 +213,11 @@ template <class Torque>
 void expose_torque(py::module_& m) {
     const std::string name = Torque::python_name;
     const auto [example, instance] = torque_example<Torque>();
-    std::string description = Torque::description;
-    description[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(description[0])));
-    std::string doc = description + " (scene type ``\"" + Torque::name +
+    std::string doc = sentence(Torque::description) + " (scene type ``\"" + Torque::name +
                       "\"``): a torque in body axes acting on the body it is given to.\n\nParameters\n----------\n";
     py::list parameters;
     for (const auto& p : Torque::parameters) {
-        doc += std::string(p.name) + " : " + numpydoc_type(p.shape) + "\n    " + p.description + ", in " + p.unit +
+        doc += std::string(p.name) + " : " + numpydoc_type(p.shape) + "\n    " + sentence(p.description) + ", in " + p.unit +
                " (" + torque::constraint_text(p.constraint) + (p.choice ? "; give exactly one of its choice" : "") +
                ").\n";
         py::dict entry;
@@ -287,7 +292,7 @@ void expose_torque(py::module_& m) {
         const auto kept = instance.values().all();
         const std::string shown = kept.count(key) ? source(python_value(kept.at(key))) : "";
         cls.def_property_readonly(p.name, [key](const Torque& x) { return python_value(x.values().all().at(key)); },
-                                  (std::string(p.description) + ", in " + p.unit + ".\n\nExamples\n--------\n" + example +
+                                  (sentence(p.description) + ", in " + p.unit + ".\n\nExamples\n--------\n" + example +
                                    ">>> torque." + key + "\n" + shown + "\n")
                                       .c_str());
     }

@@ -229,7 +229,7 @@ class LinearDamping:
     matrix : array_like, shape (3, 3)
         D (M = -D omega), in N m s (finite; give exactly one of its choice).
     diagonal : array_like, shape (3,)
-        the diagonal of D, in N m s (finite; give exactly one of its choice).
+        The diagonal of D, in N m s (finite; give exactly one of its choice).
     
     Attributes
     ----------
@@ -501,13 +501,13 @@ class ViscousCavity:
     Parameters
     ----------
     density : float
-        rho, in kg/m^3 (finite and positive).
+        Rho, in kg/m^3 (finite and positive).
     viscosity : float
-        kinematic viscosity nu, in m^2/s (finite and positive).
+        Kinematic viscosity nu, in m^2/s (finite and positive).
     p0 : float
         P0 of the cavity tensor P = P0 I, in m^5 (finite and positive; give exactly one of its choice).
     radius : float
-        radius of a spherical cavity, in m (finite and positive; give exactly one of its choice).
+        Radius of a spherical cavity, in m (finite and positive; give exactly one of its choice).
     
     Attributes
     ----------
@@ -633,7 +633,7 @@ class ViscousCavity:
     @property
     def density(self) -> typing.Any:
         """
-        rho, in kg/m^3.
+        Rho, in kg/m^3.
         
         Examples
         --------
@@ -679,7 +679,7 @@ class ViscousCavity:
     @property
     def viscosity(self) -> typing.Any:
         """
-        kinematic viscosity nu, in m^2/s.
+        Kinematic viscosity nu, in m^2/s.
         
         Examples
         --------
@@ -695,13 +695,13 @@ class MovingMassDamper:
     Parameters
     ----------
     mass : float
-        mass m, in kg (finite and positive).
+        Mass m, in kg (finite and positive).
     arm : float
-        distance rho of the mass on the z axis, in m (finite and non-negative).
+        Distance rho of the mass on the z axis, in m (finite and non-negative).
     frequency : float
         Omega = sqrt(c/m), in rad/s (finite and positive).
     damping : float
-        lambda = delta/m, in 1/s (finite and non-negative).
+        Lambda = delta/m, in 1/s (finite and non-negative).
     
     Attributes
     ----------
@@ -824,7 +824,7 @@ class MovingMassDamper:
     @property
     def arm(self) -> typing.Any:
         """
-        distance rho of the mass on the z axis, in m.
+        Distance rho of the mass on the z axis, in m.
         
         Examples
         --------
@@ -836,7 +836,7 @@ class MovingMassDamper:
     @property
     def damping(self) -> typing.Any:
         """
-        lambda = delta/m, in 1/s.
+        Lambda = delta/m, in 1/s.
         
         Examples
         --------
@@ -860,7 +860,7 @@ class MovingMassDamper:
     @property
     def mass(self) -> typing.Any:
         """
-        mass m, in kg.
+        Mass m, in kg.
         
         Examples
         --------
