@@ -78,7 +78,10 @@ def class_names(label: str, obj: type, seen: set):
 
 def public_names():
     """(label, owner, name, member, docstring, needs Parameters) of every public name: those of
-    ``gyrostat.__all__``, and the models its submodules export (``gyrostat.lagrange.LagrangeTop``)."""
+    ``gyrostat.__all__``, the models its submodules export (``gyrostat.lagrange.LagrangeTop``) and
+    everything ``gyrostat.averaged``, ``gyrostat.validity`` and ``gyrostat.scene`` export (the
+    paper-specific helpers of ``lagrange``, ``orthogonal``, ``attitude`` and ``sweeps`` are not
+    walked yet)."""
     seen: set = set()
     modules = []
     for name in gyrostat.__all__:
@@ -95,6 +98,14 @@ def public_names():
         for name, obj in vars(module).items():
             if inspect.isclass(obj) and issubclass(obj, gyrostat.ModelBase) and obj not in seen:
                 yield from class_names(f"{module.__name__}.{name}", obj, seen)
+    for module in (gyrostat.averaged, gyrostat.validity, gyrostat.scene):
+        for name in module.__all__:
+            obj = getattr(module, name)
+            if inspect.isclass(obj) and obj not in seen:
+                yield from class_names(f"{module.__name__}.{name}", obj, seen)
+            elif inspect.isfunction(obj) and obj.__module__.startswith("gyrostat"):
+                doc = inspect.getdoc(obj) or ""
+                yield f"{module.__name__}.{name}", None, name, obj, doc, takes_parameters(obj, doc)
 
 
 NAMES = list(public_names())
@@ -109,7 +120,8 @@ def test_the_walk_covers_the_public_api():
                      "gyrostat._core.ViscousCavity.p0", "gyrostat._core.ViscousCavity.__call__",
                      "gyrostat._core.Body.moments", "gyrostat.modelbase.ModelBase.units",
                      "gyrostat._core.Options.rtol", "gyrostat.lagrange.LagrangeTop", "gyrostat.orthogonal.OrthogonalModel",
-                     "gyrostat.families.orthogonal_torque.OrthogonalModel.tau_rate"):
+                     "gyrostat.families.orthogonal_torque.OrthogonalModel.tau_rate", "gyrostat.scene.load",
+                     "gyrostat.validity.check", "gyrostat.averaged.lotka_volterra"):
         assert expected in labels, expected
     assert len(NAMES) > 140
 

@@ -79,7 +79,18 @@ _LIMIT = 60  # values shown in messages are cut to this many characters
 
 
 class SceneError(ValueError):
-    """A document does not match its schema; the message is a single line."""
+    """A document does not match its schema; the message is a single line naming the key, its
+    table and, for a misspelled key, the nearest valid one.
+
+    Examples
+    --------
+    >>> from gyrostat.scene import Scene, SceneError
+    >>> try:
+    ...     Scene.from_dict({"body": {"moment": [1.0, 2.0, 3.0]}})
+    ... except SceneError as error:
+    ...     print(error)
+    unknown key 'moment' in [body]; did you mean 'moments'?
+    """
 
 
 class _Missing:
