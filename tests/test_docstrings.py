@@ -79,9 +79,9 @@ def class_names(label: str, obj: type, seen: set):
 def public_names():
     """(label, owner, name, member, docstring, needs Parameters) of every public name: those of
     ``gyrostat.__all__``, the models its submodules export (``gyrostat.lagrange.LagrangeTop``) and
-    everything ``gyrostat.averaged``, ``gyrostat.lagrange``, ``gyrostat.validity`` and
-    ``gyrostat.scene`` export (the helpers of ``orthogonal``, ``attitude`` and ``sweeps`` are not
-    walked yet)."""
+    everything ``gyrostat.averaged``, ``gyrostat.lagrange``, ``gyrostat.orthogonal``,
+    ``gyrostat.validity`` and ``gyrostat.scene`` export (the helpers of ``attitude`` and ``sweeps``
+    beyond ``sweep`` and its distributions are not walked yet)."""
     seen: set = set()
     modules = []
     for name in gyrostat.__all__:
@@ -98,7 +98,7 @@ def public_names():
         for name, obj in vars(module).items():
             if inspect.isclass(obj) and issubclass(obj, gyrostat.ModelBase) and obj not in seen:
                 yield from class_names(f"{module.__name__}.{name}", obj, seen)
-    for module in (gyrostat.averaged, gyrostat.lagrange, gyrostat.validity, gyrostat.scene):
+    for module in (gyrostat.averaged, gyrostat.lagrange, gyrostat.orthogonal, gyrostat.validity, gyrostat.scene):
         for name in module.__all__:
             obj = getattr(module, name)
             if inspect.isclass(obj) and obj not in seen:
