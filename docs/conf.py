@@ -45,7 +45,8 @@ def registries(folder: Path) -> None:
     import gyrostat.families
 
     folder.mkdir(parents=True, exist_ok=True)
-    torques = "".join(f".. autoclass:: gyrostat.{cls.__name__}\n   :members:\n\n" for cls in gyrostat._core.torque_types)
+    torques = "".join(f".. autoclass:: gyrostat.{cls.__name__}\n   :members:\n   :special-members: __call__\n\n"
+                      for cls in gyrostat._core.torque_types)
     (folder / "torques.inc").write_text(torques)
     families = "".join(f".. automodule:: gyrostat.families.{m.name}\n   :members:\n   :no-index:\n\n"
                        for m in pkgutil.iter_modules(gyrostat.families.__path__))

@@ -6,7 +6,10 @@
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/set.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <map>
+#include <utility>
 #include <string>
 #include <variant>
 #include <vector>
@@ -123,19 +126,101 @@ torque::Values values_from(const py::args& args, const py::kwargs& kwargs) {
     return values;
 }
 
+/// A value of the parameter's shape for the generated examples: the smallest list that satisfies
+/// its constraint (0.5 on the diagonal or in every scalar).
+py::object example_value(const torque::Parameter& p) {
+    const py::list vector = py::cast(std::vector<double>{0.0, 0.0, 0.5});
+    py::list matrix;
+    for (int i = 0; i < 3; ++i) {
+        std::vector<double> row(3, 0.0);
+        row[static_cast<std::size_t>(i)] = 0.5;
+        matrix.append(py::cast(row));
+    }
+    switch (p.shape) {
+        case torque::Shape::Scalar: return py::float_(0.5);
+        case torque::Shape::Vector3:
+            return p.constraint == torque::Constraint::Finite ? py::object(vector) : py::object(py::cast(std::vector<double>(3, 0.5)));
+        case torque::Shape::Matrix3: return matrix;
+        case torque::Shape::Matrices: {
+            py::list list;
+            list.append(matrix);
+            return list;
+        }
+    }
+    return py::none();
+}
+
+/// A declaration's one-line text as a sentence of a docstring: capital first letter.
+std::string sentence(const char* text) {
+    std::string s = text;
+    if (!s.empty()) s[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(s[0])));
+    return s;
+}
+
+/// Python source of a value (a float, or nested lists of floats).
+std::string source(const py::handle& value) { return py::str(py::repr(value)); }
+
+/// The numpydoc type of a parameter: "float", "array_like, shape (3,)", ….
+const char* numpydoc_type(torque::Shape shape) {
+    switch (shape) {
+        case torque::Shape::Vector3: return "array_like, shape (3,)";
+        case torque::Shape::Matrix3: return "array_like, shape (3, 3)";
+        case torque::Shape::Matrices: return "sequence of array_like, shape (3, 3)";
+        case torque::Shape::Scalar: break;
+    }
+    return "float";
+}
+
+/// The generated example of torque T: its construction from one value per required parameter
+/// (the first of each choice) with the repr it gives, as doctest lines, and the torque itself.
+template <class Torque>
+std::pair<std::string, Torque> torque_example() {
+    const std::string name = Torque::python_name;
+    std::string call;
+    torque::Values values;
+    std::vector<int> chosen;
+    for (const auto& p : Torque::parameters) {
+        if (p.choice && std::find(chosen.begin(), chosen.end(), p.choice) != chosen.end()) continue;
+        if (p.choice) chosen.push_back(p.choice);
+        const py::object value = example_value(p);
+        call += (call.empty() ? "" : ", ") + std::string(p.name) + "=" + source(value);
+        values.set(p.name, value_from(value, p, name));
+    }
+    Torque torque = Torque::from(values);
+    return {">>> import gyrostat\n>>> torque = gyrostat." + name + "(" + call + ")\n", torque};
+}
+
+/// The repr of T's instance x (the stored parameters by name).
+template <class Torque>
+std::string torque_repr(const Torque& x) {
+    const torque::Values kept = x.values();
+    std::string s = std::string(Torque::python_name) + "(";
+    bool first = true;
+    for (const auto& p : Torque::parameters) {
+        if (!p.stored) continue;
+        s += (first ? "" : ", ") + std::string(p.name) + "=" + value_text(kept.all().at(p.name));
+        first = false;
+    }
+    return s + ")";
+}
+
 /// The Python class of one torque, generated from its declaration (torque/parameter.hpp): the
 /// constructor T(*args, **kwargs) over its parameters, a read-only property per kept parameter,
 /// evaluation, its averaged contribution, its validity numbers, its repr, and the declaration
-/// itself (kind, description, parameters) for the scene schema and the docs.
+/// itself (kind, description, parameters) for the scene schema and the docs. Every docstring is
+/// numpydoc, written here once from the declaration (parameters with their units, an example
+/// whose printed values are computed by the same code as the call they show).
 template <class Torque>
 void expose_torque(py::module_& m) {
     const std::string name = Torque::python_name;
-    std::string doc = std::string(Torque::description) + " (scene type \"" + Torque::name + "\").\n\nParameters:\n";
+    const auto [example, instance] = torque_example<Torque>();
+    std::string doc = sentence(Torque::description) + " (scene type ``\"" + Torque::name +
+                      "\"``): a torque in body axes acting on the body it is given to.\n\nParameters\n----------\n";
     py::list parameters;
     for (const auto& p : Torque::parameters) {
-        doc += std::string("    ") + p.name + " [" + p.unit + "]: " + p.description + " (" +
-               torque::constraint_text(p.constraint) + (p.choice ? "; one of a choice" : "") +
-               (p.default_value ? std::string("; default ") + p.default_value : std::string()) + ")\n";
+        doc += std::string(p.name) + " : " + numpydoc_type(p.shape) + "\n    " + sentence(p.description) + ", in " + p.unit +
+               " (" + torque::constraint_text(p.constraint) + (p.choice ? "; give exactly one of its choice" : "") +
+               (p.default_value ? std::string("; optional, default ") + p.default_value : std::string()) + ").\n";
         py::dict entry;
         entry["name"] = p.name, entry["label"] = p.label, entry["shape"] = shape_name(p.shape), entry["unit"] = p.unit;
         entry["description"] = p.description, entry["constraint"] = constraint_name(p.constraint);
@@ -143,6 +228,31 @@ void expose_torque(py::module_& m) {
         entry["default"] = p.default_value ? py::object(py::str(p.default_value)) : py::object(py::none());
         parameters.append(entry);
     }
+    doc += "\nAttributes\n----------\nkind : str\n    Its type in a scene's ``[[torques]]`` table (``\"" + std::string(Torque::name) +
+           "\"``).\ndescription : str\n    What it is, in one line.\nparameters : tuple of dict\n    Its declaration: one dict "
+           "per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the "
+           "scene schema and the docs.\nneeds_attitude : bool\n    Whether it depends on the attitude (then only "
+           "models with the quaternion take it).\nhas_averaged : bool\n    Whether it has a contribution to the "
+           "averaged (a, r) system.\n";
+    doc += "\nExamples\n--------\n" + example + ">>> torque\n" + torque_repr(instance) + "\n>>> torque.kind, [p[\"unit\"] for p in torque.parameters]\n" +
+           source(py::make_tuple(Torque::name, [] {
+               py::list units;
+               for (const auto& p : Torque::parameters) units.append(p.unit);
+               return units;
+           }())) + "\n";
+
+    // the example's evaluation, its averaged contribution and its validity numbers, as printed
+    const Vec3 omega(0.1, 0.0, 1.0), moments(2.0, 2.0, 1.0);
+    std::string call, averaged;
+    if constexpr (needs_attitude<Torque>::value)
+        call = source(py::cast(instance(0.0, omega, moments, Eigen::Vector4d(1.0, 0.0, 0.0, 0.0))));
+    else
+        call = source(py::cast(instance(0.0, omega, moments)));
+    if constexpr (has_averaged<Torque>::value) averaged = source(py::cast(instance.averaged(0.0, 0.1, 1.0, 2.0, 1.0)));
+    Eigen::MatrixX3d rows(1, 3);
+    rows.row(0) = omega.transpose();
+    const std::size_t checks = assumptions_of(instance, torque::Motion::of(moments, rows)).size();
+
     py::class_<Torque> cls(m, Torque::python_name, doc.c_str());
     cls.def(py::init([](const py::args& args, const py::kwargs& kwargs) { return Torque::from(values_from<Torque>(args, kwargs)); }))
         .def("__call__",
@@ -159,8 +269,17 @@ void expose_torque(py::module_& m) {
                  }
              },
              py::arg("t"), py::arg("omega"), py::arg("moments"), py::arg("quaternion") = py::none(),
-             "The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to "
-             "inertial, for a torque that needs it).");
+             ("The torque in body axes at (t, omega) on a body with these moments" +
+              std::string(needs_attitude<Torque>::value ? " and this attitude" : "") +
+              ".\n\nParameters\n----------\n"
+              "t : float\n    Time, in s.\nomega : array_like, shape (3,)\n    Angular velocity in body axes, in rad/s.\n"
+              "moments : array_like, shape (3,)\n    Principal moments of inertia (A1, A2, A3), in kg m^2.\n"
+              "quaternion : array_like, shape (4,), optional\n    The attitude (w, x, y, z), body to inertial: " +
+              std::string(needs_attitude<Torque>::value ? "required (this torque depends on it)" : "not used by this torque") +
+              ".\n\nReturns\n-------\nnumpy.ndarray, shape (3,)\n    The torque, in N m.\n\nExamples\n--------\n" +
+              example + ">>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0]" +
+              (needs_attitude<Torque>::value ? ", quaternion=[1.0, 0.0, 0.0, 0.0]" : "") + ")\n" + call + "\n")
+                 .c_str());
     if constexpr (has_averaged<Torque>::value)
         cls.def("averaged",
                 [name](const Torque& x, const py::object& t, const py::object& a, const py::object& r, const py::object& A,
@@ -169,31 +288,38 @@ void expose_torque(py::module_& m) {
                                       scalar(A, name + ": A"), scalar(C, name + ": C"));
                 },
                 py::arg("t"), py::arg("a"), py::arg("r"), py::arg("A"), py::arg("C"),
-                "Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.");
+                ("Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.\n\n"
+                 "Parameters\n----------\nt : float\n    Time, in s.\na : float\n    Equatorial angular speed "
+                 "a = sqrt(p^2 + q^2), in rad/s.\nr : float\n    Axial angular velocity, in rad/s.\nA : float\n"
+                 "    Equatorial moment of inertia, in kg m^2.\nC : float\n    Axial moment of inertia, in kg m^2.\n\n"
+                 "Returns\n-------\nnumpy.ndarray, shape (2,)\n    (da/dt, dr/dt), in rad/s^2.\n\nExamples\n--------\n" +
+                 example + ">>> torque.averaged(0.0, 0.1, 1.0, 2.0, 1.0)\n" + averaged + "\n")
+                    .c_str());
     cls.def("assumptions", [](const Torque& x, const torque::Motion& motion) { return assumptions_of(x, motion); },
-             py::arg("motion"), "Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).")
-        .def("__repr__",
-             [name](const Torque& x) {
-                 const torque::Values kept = x.values();
-                 std::string s = name + "(";
-                 bool first = true;
-                 for (const auto& p : Torque::parameters) {
-                     if (!p.stored) continue;
-                     s += (first ? "" : ", ") + std::string(p.name) + "=" + value_text(kept.all().at(p.name));
-                     first = false;
-                 }
-                 return s + ")";
-             })
-        .def_property_readonly_static("kind", [](py::object) { return std::string(Torque::name); })
-        .def_property_readonly_static("needs_attitude", [](py::object) { return needs_attitude<Torque>::value; })
-        .def_property_readonly_static("has_averaged", [](py::object) { return has_averaged<Torque>::value; })
-        .def_property_readonly_static("description", [](py::object) { return std::string(Torque::description); })
-        .def_property_readonly_static("parameters", [parameters](py::object) { return parameters; });
+             py::arg("motion"),
+             ("Its validity numbers over a motion (empty when it assumes nothing).\n\nParameters\n----------\n"
+              "motion : gyrostat._core.Motion\n    The largest |omega|, |J omega| and axial frequency over the states "
+              "checked.\n\nReturns\n-------\nlist of gyrostat._core.TorqueAssumption\n    Each assumption measured: "
+              "statement, value, limit, holds.\n\nExamples\n--------\n" +
+              example + ">>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])\n"
+              ">>> len(torque.assumptions(motion))\n" + std::to_string(checks) + "\n")
+                 .c_str())
+        .def("__repr__", [](const Torque& x) { return torque_repr(x); });
+    // what the torque declares about itself, as class attributes (named in the docstring's Attributes)
+    cls.attr("kind") = std::string(Torque::name);
+    cls.attr("description") = std::string(Torque::description);
+    cls.attr("parameters") = py::tuple(parameters);
+    cls.attr("needs_attitude") = needs_attitude<Torque>::value;
+    cls.attr("has_averaged") = has_averaged<Torque>::value;
     for (const auto& p : Torque::parameters) {
         if (!p.stored) continue;
         const std::string key = p.name;
+        const auto kept = instance.values().all();
+        const std::string shown = kept.count(key) ? source(python_value(kept.at(key))) : "";
         cls.def_property_readonly(p.name, [key](const Torque& x) { return python_value(x.values().all().at(key)); },
-                                  (std::string(p.description) + " [" + p.unit + "]").c_str());
+                                  (sentence(p.description) + ", in " + p.unit + ".\n\nExamples\n--------\n" + example +
+                                   ">>> torque." + key + "\n" + shown + "\n")
+                                      .c_str());
     }
 }
 
@@ -222,13 +348,47 @@ py::class_<T> bound(py::module_& m) {
 }  // namespace
 
 void expose_body(py::module_& m) {
-    py::class_<Body>(m, "Body")
+    py::class_<Body>(m, "Body", R"doc(A rigid body or gyrostat: its principal moments of inertia and the constant angular momentum of its rotors.
+
+The body axes are its principal axes; every torque and every state is written in them.
+
+Parameters
+----------
+moments : array_like, shape (3,)
+    Principal moments of inertia (A1, A2, A3), in kg m^2: finite, positive, and each at most
+    the sum of the other two (the triangle inequality of a real body).
+rotor : array_like, shape (3,), optional
+    Constant gyrostatic momentum k of rotors spinning at a constant rate relative to the
+    carrier, in body axes, in kg m^2/s (N m s). Default: none (a rigid body).
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body([2.0, 2.0, 1.0])
+Body(A1=2, A2=2, A3=1, k=[0, 0, 0])
+>>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1])
+Body(A1=3, A2=2, A3=1, k=[0, 0, 0.1])
+)doc")
         .def(py::init([](const py::object& moments, const py::object& rotor) {
                  return Body(vec3(moments, "Body: moments"), rotor.is_none() ? Vec3::Zero() : vec3(rotor, "Body: rotor"));
              }),
              py::arg("moments"), py::arg("rotor") = py::none())
-        .def_property_readonly("moments", &Body::moments)
-        .def_property_readonly("rotor", &Body::rotor)
+        .def_property_readonly("moments", &Body::moments, R"doc(The principal moments of inertia (A1, A2, A3), in kg m^2.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body([2.0, 2.0, 1.0]).moments
+array([2., 2., 1.])
+)doc")
+        .def_property_readonly("rotor", &Body::rotor, R"doc(The rotors' constant momentum k in body axes, in kg m^2/s (zero for a rigid body).
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1]).rotor
+array([0. , 0. , 0.1])
+)doc")
         .def("__repr__", &Body::describe);
 
     py::class_<torque::Motion>(m, "Motion",
@@ -258,7 +418,28 @@ void expose_body(py::module_& m) {
     // What only some torques have: derived quantities users and the papers' analyses ask for.
     bound<torque::ResistiveMedium>(m).def(
         "at", [](const torque::ResistiveMedium& x, const py::object& t) { return x.at(scalar(t, "ResistiveMedium.at: t")); },
-        py::arg("t"), "D(t).");
+        py::arg("t"), R"doc(The resistance matrix D(t) = D0 + D1 t + D2 t^2 + ... at time t.
+
+Parameters
+----------
+t : float
+    Time, in s.
+
+Returns
+-------
+numpy.ndarray, shape (3, 3)
+    D(t), in N m s (the torque is M = -D(t) omega).
+
+Examples
+--------
+>>> import gyrostat
+>>> medium = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0, 0], [0, 0.5, 0], [0, 0, 0.5]],
+...                                                 [[0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]])
+>>> medium.at(2.0)
+array([[0.7, 0. , 0. ],
+       [0. , 0.7, 0. ],
+       [0. , 0. , 0.7]])
+)doc");
     bound<torque::ViscousCavity>(m)
         .def_static(
             "sphere",
@@ -267,10 +448,40 @@ void expose_body(py::module_& m) {
                                                      scalar(viscosity, "ViscousCavity.sphere: viscosity"),
                                                      scalar(radius, "ViscousCavity.sphere: radius"));
             },
-            py::arg("density"), py::arg("viscosity"), py::arg("radius"), "A spherical cavity of this radius.")
-        .def_property_readonly("kappa", &torque::ViscousCavity::kappa, "kappa = rho P0 / nu")
+            py::arg("density"), py::arg("viscosity"), py::arg("radius"), R"doc(A spherical cavity of this radius (P0 from the sphere's formula).
+
+Parameters
+----------
+density : float
+    Fluid density rho, in kg/m^3.
+viscosity : float
+    Kinematic viscosity nu, in m^2/s.
+radius : float
+    Cavity radius b, in m.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.ViscousCavity.sphere(density=1000.0, viscosity=1e-3, radius=0.1)
+ViscousCavity(density=1000, viscosity=0.001, p0=4.787188805470163e-09)
+)doc")
+        .def_property_readonly("kappa", &torque::ViscousCavity::kappa, R"doc(kappa = rho P0 / nu, in kg s: the strength of the cavity torque.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.ViscousCavity.sphere(density=1000.0, viscosity=1e-3, radius=0.1).kappa
+0.004787188805470163
+)doc")
         .def_property_readonly("equivalent_radius", &torque::ViscousCavity::equivalent_radius,
-                               "the radius of the sphere with this P0");
+                               R"doc(The radius of the sphere with this P0, in m.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.ViscousCavity.sphere(density=1000.0, viscosity=1e-3, radius=0.1).equivalent_radius
+0.10000000000000002
+)doc");
     bound<torque::GravityGradient>(m).def(
         "precession_rate",
         [](const torque::GravityGradient& x, const py::object& moments, const py::object& omega, const py::object& quaternion) {
@@ -279,17 +490,71 @@ void expose_body(py::module_& m) {
                                      unit_quaternion(vec4(quaternion, "GravityGradient.precession_rate: quaternion")));
         },
         py::arg("moments"), py::arg("omega"), py::arg("quaternion"),
-        "The rate (rad/s) at which G precesses about the orbit normal, averaged over the orbit and the free motion "
-        "of a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|).");
+        R"doc(The rate at which G precesses about the orbit normal, averaged over the orbit and the free motion.
+
+For a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|), with the
+nutation angle between body z and G and i the angle between G and the orbit normal.
+
+Parameters
+----------
+moments : array_like, shape (3,)
+    Principal moments (A, A, C), in kg m^2.
+omega : array_like, shape (3,)
+    Angular velocity in body axes, in rad/s.
+quaternion : array_like, shape (4,)
+    The attitude (w, x, y, z), body to inertial.
+
+Returns
+-------
+float
+    The precession rate, in rad/s (about the orbit normal).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.GravityGradient(0.01).precession_rate([1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0])
+-7.5e-05
+)doc");
     bound<torque::DipoleFieldTorque>(m).def(
         "field", [](const torque::DipoleFieldTorque& x, const py::object& t) { return x.field(scalar(t, "DipoleFieldTorque.field: t")); },
-        py::arg("t"), "The planet's field B(t) at the body, in inertial axes [T].");
+        py::arg("t"), R"doc(The planet's field at the body, in inertial axes.
+
+Parameters
+----------
+t : float
+    Time, in s.
+
+Returns
+-------
+numpy.ndarray, shape (3,)
+    B(t) = B0 [3 (d . c) c - d], in T.
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.DipoleFieldTorque(dipole=[0.0, 0.0, 1.0], field_strength=2e-5, orbit_rate=0.001).field(0.0)
+array([0.e+00, 0.e+00, 2.e-05])
+)doc");
     bound<torque::MovingMassDamper>(m).def(
         "S",
         [](const torque::MovingMassDamper& x, const py::object& A, const py::object& C) {
             return x.S(scalar(A, "MovingMassDamper.S: A"), scalar(C, "MovingMassDamper.S: C"));
         },
-        py::arg("A"), py::arg("C"), "S of paper 001 eq. (3) for a symmetric body (A, A, C).");
+        py::arg("A"), py::arg("C"), R"doc(S of paper 001 eq. (3) for a symmetric body (A, A, C).
+
+Parameters
+----------
+A : float
+    Equatorial moment of inertia, in kg m^2.
+C : float
+    Axial moment of inertia, in kg m^2.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5).S(2.0, 1.0)
+0.0625
+)doc");
 }
 
 }  // namespace gyrostat::bindings

@@ -164,8 +164,8 @@ void rethrow_python_torques(const AnyModel& model) {
 
 void expose_custom_torque(py::module_& m) {
     using torque::Custom;
-    py::class_<Custom>(m, Custom::python_name,
-                       R"doc(A torque the user writes, in body axes.
+    py::class_<Custom> cls(m, Custom::python_name,
+                       R"doc(A torque the user writes, in body axes (scene type ``"custom"``).
 
 M = f(t, omega) or, with ``attitude=True``, f(t, omega, quaternion): omega in rad/s (body axes),
 the quaternion (w, x, y, z) body to inertial, M in N m (body axes).
@@ -195,8 +195,8 @@ Examples
 >>> drag = g.CustomTorque(lambda t, omega: -0.1 * omega, name="drag")
 >>> drag(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
 array([-0.1, -0. , -0. ])
-)doc")
-        .def(py::init(&make_custom), py::arg("function"), py::arg("jacobian") = py::none(), py::kw_only(),
+)doc");
+    cls.def(py::init(&make_custom), py::arg("function"), py::arg("jacobian") = py::none(), py::kw_only(),
              py::arg("attitude") = false, py::arg("name") = py::none())
         .def("__call__",
              [](const Custom& x, const py::object& t, const py::object& omega, const py::object& moments,
@@ -210,19 +210,73 @@ array([-0.1, -0. , -0. ])
                           x.attitude ? &q : nullptr);
              },
              py::arg("t"), py::arg("omega"), py::arg("moments"), py::arg("quaternion") = py::none(),
-             "The torque in body axes at (t, omega) (and the attitude, when it takes it).")
-        .def_readonly("name", &Custom::label)
-        .def_readonly("attitude", &Custom::attitude)
+             R"doc(The user's function at (t, omega[, quaternion]): the torque in body axes.
+
+Parameters
+----------
+t : float
+    Time, in s.
+omega : array_like, shape (3,)
+    Angular velocity in body axes, in rad/s.
+moments : array_like, shape (3,)
+    Principal moments of inertia, in kg m^2 (not passed to the function).
+quaternion : array_like, shape (4,), optional
+    The attitude (w, x, y, z), body to inertial: required when the torque takes it.
+
+Returns
+-------
+numpy.ndarray, shape (3,)
+    The torque, in N m.
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega: -0.5 * omega)(0.0, [0.0, 0.0, 2.0], [1.0, 1.0, 1.0])
+array([-0., -0., -1.])
+)doc")
+        .def_readonly("name", &Custom::label, R"doc(The name used in messages and the repr (str).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega: -omega, name="drag").name
+'drag'
+)doc")
+        .def_readonly("attitude", &Custom::attitude, R"doc(Whether the function takes the quaternion (bool).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega, q: -omega, attitude=True).attitude
+True
+)doc")
         .def("assumptions", [](const Custom&, const py::object&) { return py::list(); }, py::arg("motion"),
-             "A user's torque states no assumption: an empty list.")
+             R"doc(A user's torque states no assumption.
+
+Parameters
+----------
+motion : gyrostat._core.Motion
+    The motion checked (not used).
+
+Returns
+-------
+list
+    Empty.
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega: -omega).assumptions(g._core.Motion([1.0, 2.0, 3.0], [[0.0, 0.0, 1.0]]))
+[]
+)doc")
         .def("__repr__", [](const Custom& x) {
             return "CustomTorque(" + x.label + (x.attitude ? ", attitude=True" : "") + ")";
-        })
-        .def_property_readonly_static("kind", [](py::object) { return std::string(Custom::name); })
-        .def_property_readonly_static("description", [](py::object) { return std::string(Custom::description); })
-        .def_property_readonly_static("needs_attitude", [](py::object) { return false; })
-        .def_property_readonly_static("has_averaged", [](py::object) { return false; })
-        .def_property_readonly_static("parameters", [](py::object) { return py::list(); });
+        });
+    cls.attr("kind") = std::string(Custom::name);
+    cls.attr("description") = std::string(Custom::description);
+    cls.attr("parameters") = py::tuple();
+    cls.attr("needs_attitude") = false;
+    cls.attr("has_averaged") = false;
 }
 
 }  // namespace gyrostat::bindings

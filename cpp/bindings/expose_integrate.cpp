@@ -130,29 +130,43 @@ void expose_integrate(py::module_& m) {
         .def_readonly("name", &Event::name);
 
     using integrate::Options;
-    py::class_<Options>(m, "Options", "Every integrator option with its default (the one place where defaults live).")
+    py::class_<Options>(m, "Options", R"doc(Every integrator option with its default (the one place where defaults live).
+
+:func:`gyrostat.solve` makes one from its keywords; pass one as ``options=`` to reuse it. The
+attributes are the options (each one documented below).
+
+Examples
+--------
+>>> import gyrostat
+>>> options = gyrostat.Options()
+>>> options.rtol = 1e-10
+>>> options.rtol, options.method
+(1e-10, 'dop853')
+)doc")
         .def(py::init<>())
         .def_property(
             "method", [](const Options& o) { return std::string(integrate::method_name(o.method)); },
-            [](Options& o, const std::string& name) { o.method = integrate::method_from_name(name); })
-        .def_readwrite("rtol", &Options::rtol)
-        .def_readwrite("atol", &Options::atol)
+            [](Options& o, const std::string& name) { o.method = integrate::method_from_name(name); },
+            "The integrator (one of :data:`gyrostat.METHODS`, or ``\"auto\"``).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().method\n'dop853'\n")
+        .def_readwrite("rtol", &Options::rtol, "Relative tolerance of the adaptive methods (1: dimensionless).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().rtol\n1e-08\n")
+        .def_readwrite("atol", &Options::atol, "Absolute tolerance of the adaptive methods, in the units of each state component.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().atol\n1e-10\n")
         .def_property(
             "t_eval",
             [](const Options& o) { return py::array_t<double>(static_cast<py::ssize_t>(o.t_eval.size()), o.t_eval.data()); },
             [](Options& o, py::array_t<double, py::array::c_style | py::array::forcecast> t) {
                 if (t.ndim() != 1) throw py::value_error("t_eval must be one-dimensional, got " + std::to_string(t.ndim()) + " dimensions");
                 o.t_eval.assign(t.data(), t.data() + t.size());
-            })
-        .def_readwrite("n_out", &Options::n_out)
-        .def_readwrite("every_step", &Options::every_step)
-        .def_readwrite("max_steps", &Options::max_steps)
-        .def_readwrite("first_step", &Options::first_step)
-        .def_readwrite("max_step", &Options::max_step)
-        .def_readwrite("events", &Options::events)
-        .def_readwrite("dense_output", &Options::dense_output)
-        .def_readwrite("step", &Options::step)
-        .def_readwrite("splitting_order", &Options::splitting_order)
+            },
+            "Output times, in s (empty: n_out equally spaced times).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().t_eval\narray([], dtype=float64)\n")
+        .def_readwrite("n_out", &Options::n_out, "Number of equally spaced output times over the span when t_eval is empty.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().n_out\n1001\n")
+        .def_readwrite("every_step", &Options::every_step, "Record every accepted step instead of the output times.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().every_step\nFalse\n")
+        .def_readwrite("max_steps", &Options::max_steps, "Most steps a run may take before it stops with status max_steps_reached.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().max_steps\n1000000\n")
+        .def_readwrite("first_step", &Options::first_step, "Size of the first step, in s (0: the method picks it).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().first_step\n0.0\n")
+        .def_readwrite("max_step", &Options::max_step, "Largest step, in s (inf: no limit).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().max_step\ninf\n")
+        .def_readwrite("events", &Options::events, "The engine's events of a run (made by :func:`gyrostat.solve` from :class:`gyrostat.events.Event`).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().events\n[]\n")
+        .def_readwrite("dense_output", &Options::dense_output, "Keep each step's continuous extension, for ``solution(t)``.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().dense_output\nFalse\n")
+        .def_readwrite("step", &Options::step, "Fixed step of method ``splitting``, in s (0: none given).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().step\n0.0\n")
+        .def_readwrite("splitting_order", &Options::splitting_order, "Order of method ``splitting``: 2, 4 or 6.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().splitting_order\n4\n")
         .def(
             "to_dict",
             [](const Options& o) {
@@ -163,13 +177,18 @@ void expose_integrate(py::module_& m) {
                 d["step"] = o.step, d["splitting_order"] = o.splitting_order;
                 return d;
             },
-            "Every scalar option by name (not t_eval and events): what report.json records of a run.")
+            "Every scalar option by name (not t_eval and events): what report.json records of a run."
+            "\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().to_dict()['rtol']\n1e-08\n")
         .def_static("check", &integrate::check_option, py::arg("name"), py::arg("value"),
                     "The engine's rule for one scalar option (rtol, atol, n_out, max_steps, first_step, max_step, step, "
-                    "splitting_order): ValueError naming the value when it breaks it. The scene schema applies it too.")
+                    "splitting_order): ValueError naming the value when it breaks it. The scene schema applies it too.\n\n"
+                    "Parameters\n----------\nname : str\n    The option.\nvalue : float\n    Its value, in its unit."
+                    "\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options.check('rtol', 1e-9)\n")
         .def(
             "validate", [](const Options& o, double t0, double t1) { integrate::validate(o, t0, t1); }, py::arg("t0"),
-            py::arg("t1"), "The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.")
+            py::arg("t1"), "The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value."
+            "\n\nParameters\n----------\nt0, t1 : float\n    The span of the run, in s.\n\nExamples\n--------\n"
+            ">>> import gyrostat\n>>> gyrostat.Options().validate(0.0, 10.0)\n")
         .def("__repr__", [](const Options& o) {
             return "Options(method='" + std::string(integrate::method_name(o.method)) + "', rtol=" + format_value(o.rtol) +
                    ", atol=" + format_value(o.atol) + ", n_out=" + std::to_string(o.n_out) + ", t_eval=<" +

@@ -10,16 +10,54 @@ import numpy.typing
 import typing
 __all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
 class Body:
+    """
+    A rigid body or gyrostat: its principal moments of inertia and the constant angular momentum of its rotors.
+    
+    The body axes are its principal axes; every torque and every state is written in them.
+    
+    Parameters
+    ----------
+    moments : array_like, shape (3,)
+        Principal moments of inertia (A1, A2, A3), in kg m^2: finite, positive, and each at most
+        the sum of the other two (the triangle inequality of a real body).
+    rotor : array_like, shape (3,), optional
+        Constant gyrostatic momentum k of rotors spinning at a constant rate relative to the
+        carrier, in body axes, in kg m^2/s (N m s). Default: none (a rigid body).
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> gyrostat.Body([2.0, 2.0, 1.0])
+    Body(A1=2, A2=2, A3=1, k=[0, 0, 0])
+    >>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1])
+    Body(A1=3, A2=2, A3=1, k=[0, 0, 0.1])
+    """
     def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
     @property
     def moments(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
+        """
+        The principal moments of inertia (A1, A2, A3), in kg m^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body([2.0, 2.0, 1.0]).moments
+        array([2., 2., 1.])
+        """
     @property
     def rotor(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
+        """
+        The rotors' constant momentum k in body axes, in kg m^2/s (zero for a rigid body).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1]).rotor
+        array([0. , 0. , 0.1])
+        """
 class Motion:
     """
     The motion a validity check looks at: the largest |omega|, |J omega| and |(C - A) r / A| over the angular velocities given (rows).
@@ -62,19 +100,66 @@ class TorqueAssumption:
         ...
 class ConstantTorque:
     """
-    a constant torque in body axes (scene type "constant").
+    A constant torque in body axes (scene type ``"constant"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        moment [N m]: M in body axes (finite)
+    Parameters
+    ----------
+    moment : array_like, shape (3,)
+        M in body axes, in N m (finite).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"constant"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.ConstantTorque(moment=[0.0, 0.0, 0.5])
+    >>> torque
+    ConstantTorque(moment=[0, 0, 0.5])
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('constant', ['N m'])
     """
     description: typing.ClassVar[str] = 'a constant torque in body axes'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'constant'
     needs_attitude: typing.ClassVar[bool] = False
-    parameters: typing.ClassVar[list] = [{'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M in body axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M in body axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: not used by this torque.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ConstantTorque(moment=[0.0, 0.0, 0.5])
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0])
+        array([0. , 0. , 0.5])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -82,33 +167,131 @@ class ConstantTorque:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ConstantTorque(moment=[0.0, 0.0, 0.5])
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        a : float
+            Equatorial angular speed a = sqrt(p^2 + q^2), in rad/s.
+        r : float
+            Axial angular velocity, in rad/s.
+        A : float
+            Equatorial moment of inertia, in kg m^2.
+        C : float
+            Axial moment of inertia, in kg m^2.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+            (da/dt, dr/dt), in rad/s^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ConstantTorque(moment=[0.0, 0.0, 0.5])
+        >>> torque.averaged(0.0, 0.1, 1.0, 2.0, 1.0)
+        array([0. , 0.5])
         """
     @property
     def moment(self) -> typing.Any:
         """
-        M in body axes [N m]
+        M in body axes, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ConstantTorque(moment=[0.0, 0.0, 0.5])
+        >>> torque.moment
+        array([0. , 0. , 0.5])
         """
 class LinearDamping:
     """
-    M = -D omega (scene type "linear_damping").
+    M = -D omega (scene type ``"linear_damping"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        matrix [N m s]: D (M = -D omega) (finite; one of a choice)
-        diagonal [N m s]: the diagonal of D (finite; one of a choice)
+    Parameters
+    ----------
+    matrix : array_like, shape (3, 3)
+        D (M = -D omega), in N m s (finite; give exactly one of its choice).
+    diagonal : array_like, shape (3,)
+        The diagonal of D, in N m s (finite; give exactly one of its choice).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"linear_damping"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.LinearDamping(matrix=[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]])
+    >>> torque
+    LinearDamping(matrix=[[0.5, 0, 0], [0, 0.5, 0], [0, 0, 0.5]])
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('linear_damping', ['N m s', 'N m s'])
     """
     description: typing.ClassVar[str] = 'M = -D omega'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'linear_damping'
     needs_attitude: typing.ClassVar[bool] = False
-    parameters: typing.ClassVar[list] = [{'name': 'matrix', 'label': 'matrix D (column-major)', 'shape': 'matrix3', 'unit': 'N m s', 'description': 'D (M = -D omega)', 'constraint': 'finite', 'choice': 1, 'stored': True, 'default': None}, {'name': 'diagonal', 'label': 'diagonal of D', 'shape': 'vector3', 'unit': 'N m s', 'description': 'the diagonal of D', 'constraint': 'finite', 'choice': 1, 'stored': False, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'matrix', 'label': 'matrix D (column-major)', 'shape': 'matrix3', 'unit': 'N m s', 'description': 'D (M = -D omega)', 'constraint': 'finite', 'choice': 1, 'stored': True, 'default': None}, {'name': 'diagonal', 'label': 'diagonal of D', 'shape': 'vector3', 'unit': 'N m s', 'description': 'the diagonal of D', 'constraint': 'finite', 'choice': 1, 'stored': False, 'default': None})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: not used by this torque.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.LinearDamping(matrix=[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]])
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0])
+        array([-0.05, -0.  , -0.5 ])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -116,32 +299,131 @@ class LinearDamping:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.LinearDamping(matrix=[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]])
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        a : float
+            Equatorial angular speed a = sqrt(p^2 + q^2), in rad/s.
+        r : float
+            Axial angular velocity, in rad/s.
+        A : float
+            Equatorial moment of inertia, in kg m^2.
+        C : float
+            Axial moment of inertia, in kg m^2.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+            (da/dt, dr/dt), in rad/s^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.LinearDamping(matrix=[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]])
+        >>> torque.averaged(0.0, 0.1, 1.0, 2.0, 1.0)
+        array([-0.025, -0.5  ])
         """
     @property
     def matrix(self) -> typing.Any:
         """
-        D (M = -D omega) [N m s]
+        D (M = -D omega), in N m s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.LinearDamping(matrix=[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]])
+        >>> torque.matrix
+        array([[0.5, 0. , 0. ],
+               [0. , 0.5, 0. ],
+               [0. , 0. , 0.5]])
         """
 class ResistiveMedium:
     """
-    a resistive medium whose resistance varies with time (scene type "resistive_medium").
+    A resistive medium whose resistance varies with time (scene type ``"resistive_medium"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        coefficients [N m s^(k+1)]: D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega) (finite)
+    Parameters
+    ----------
+    coefficients : sequence of array_like, shape (3, 3)
+        D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega), in N m s^(k+1) (finite).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"resistive_medium"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]]])
+    >>> torque
+    ResistiveMedium(coefficients=[[[0.5, 0, 0], [0, 0.5, 0], [0, 0, 0.5]]])
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('resistive_medium', ['N m s^(k+1)'])
     """
     description: typing.ClassVar[str] = 'a resistive medium whose resistance varies with time'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'resistive_medium'
     needs_attitude: typing.ClassVar[bool] = False
-    parameters: typing.ClassVar[list] = [{'name': 'coefficients', 'label': 'coefficient', 'shape': 'matrices', 'unit': 'N m s^(k+1)', 'description': 'D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'coefficients', 'label': 'coefficient', 'shape': 'matrices', 'unit': 'N m s^(k+1)', 'description': 'D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: not used by this torque.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]]])
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0])
+        array([-0.05, -0.  , -0.5 ])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -149,44 +431,181 @@ class ResistiveMedium:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]]])
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     def at(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
         """
-        D(t).
+        The resistance matrix D(t) = D0 + D1 t + D2 t^2 + ... at time t.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3, 3)
+            D(t), in N m s (the torque is M = -D(t) omega).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> medium = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0, 0], [0, 0.5, 0], [0, 0, 0.5]],
+        ...                                                 [[0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]])
+        >>> medium.at(2.0)
+        array([[0.7, 0. , 0. ],
+               [0. , 0.7, 0. ],
+               [0. , 0. , 0.7]])
         """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        a : float
+            Equatorial angular speed a = sqrt(p^2 + q^2), in rad/s.
+        r : float
+            Axial angular velocity, in rad/s.
+        A : float
+            Equatorial moment of inertia, in kg m^2.
+        C : float
+            Axial moment of inertia, in kg m^2.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+            (da/dt, dr/dt), in rad/s^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]]])
+        >>> torque.averaged(0.0, 0.1, 1.0, 2.0, 1.0)
+        array([-0.025, -0.5  ])
         """
     @property
     def coefficients(self) -> typing.Any:
         """
-        D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega) [N m s^(k+1)]
+        D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega), in N m s^(k+1).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ResistiveMedium(coefficients=[[[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]]])
+        >>> torque.coefficients
+        [array([[0.5, 0. , 0. ],
+               [0. , 0.5, 0. ],
+               [0. , 0. , 0.5]])]
         """
 class ViscousCavity:
     """
-    a cavity filled with a highly viscous fluid (scene type "viscous_cavity").
+    A cavity filled with a highly viscous fluid (scene type ``"viscous_cavity"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        density [kg/m^3]: rho (finite and positive)
-        viscosity [m^2/s]: kinematic viscosity nu (finite and positive)
-        p0 [m^5]: P0 of the cavity tensor P = P0 I (finite and positive; one of a choice)
-        radius [m]: radius of a spherical cavity (finite and positive; one of a choice)
+    Parameters
+    ----------
+    density : float
+        Rho, in kg/m^3 (finite and positive).
+    viscosity : float
+        Kinematic viscosity nu, in m^2/s (finite and positive).
+    p0 : float
+        P0 of the cavity tensor P = P0 I, in m^5 (finite and positive; give exactly one of its choice).
+    radius : float
+        Radius of a spherical cavity, in m (finite and positive; give exactly one of its choice).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"viscous_cavity"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+    >>> torque
+    ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('viscous_cavity', ['kg/m^3', 'm^2/s', 'm^5', 'm'])
     """
     description: typing.ClassVar[str] = 'a cavity filled with a highly viscous fluid'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'viscous_cavity'
     needs_attitude: typing.ClassVar[bool] = False
-    parameters: typing.ClassVar[list] = [{'name': 'density', 'label': 'density ρ', 'shape': 'scalar', 'unit': 'kg/m^3', 'description': 'rho', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'viscosity', 'label': 'kinematic viscosity ν', 'shape': 'scalar', 'unit': 'm^2/s', 'description': 'kinematic viscosity nu', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'p0', 'label': 'cavity coefficient P0', 'shape': 'scalar', 'unit': 'm^5', 'description': 'P0 of the cavity tensor P = P0 I', 'constraint': 'positive', 'choice': 1, 'stored': True, 'default': None}, {'name': 'radius', 'label': 'cavity radius b', 'shape': 'scalar', 'unit': 'm', 'description': 'radius of a spherical cavity', 'constraint': 'positive', 'choice': 1, 'stored': False, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'density', 'label': 'density ρ', 'shape': 'scalar', 'unit': 'kg/m^3', 'description': 'rho', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'viscosity', 'label': 'kinematic viscosity ν', 'shape': 'scalar', 'unit': 'm^2/s', 'description': 'kinematic viscosity nu', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'p0', 'label': 'cavity coefficient P0', 'shape': 'scalar', 'unit': 'm^5', 'description': 'P0 of the cavity tensor P = P0 I', 'constraint': 'positive', 'choice': 1, 'stored': True, 'default': None}, {'name': 'radius', 'label': 'cavity radius b', 'shape': 'scalar', 'unit': 'm', 'description': 'radius of a spherical cavity', 'constraint': 'positive', 'choice': 1, 'stored': False, 'default': None})
     @staticmethod
     def sphere(density: typing.Any, viscosity: typing.Any, radius: typing.Any) -> ViscousCavity:
         """
-        A spherical cavity of this radius.
+        A spherical cavity of this radius (P0 from the sphere's formula).
+        
+        Parameters
+        ----------
+        density : float
+            Fluid density rho, in kg/m^3.
+        viscosity : float
+            Kinematic viscosity nu, in m^2/s.
+        radius : float
+            Cavity radius b, in m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.ViscousCavity.sphere(density=1000.0, viscosity=1e-3, radius=0.1)
+        ViscousCavity(density=1000, viscosity=0.001, p0=4.787188805470163e-09)
         """
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: not used by this torque.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0])
+        array([ 0.0125,  0.    , -0.0025])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -194,59 +613,198 @@ class ViscousCavity:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        2
         """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        a : float
+            Equatorial angular speed a = sqrt(p^2 + q^2), in rad/s.
+        r : float
+            Axial angular velocity, in rad/s.
+        A : float
+            Equatorial moment of inertia, in kg m^2.
+        C : float
+            Axial moment of inertia, in kg m^2.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+            (da/dt, dr/dt), in rad/s^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+        >>> torque.averaged(0.0, 0.1, 1.0, 2.0, 1.0)
+        array([ 0.00625, -0.0025 ])
         """
     @property
     def density(self) -> typing.Any:
         """
-        rho [kg/m^3]
+        Rho, in kg/m^3.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+        >>> torque.density
+        0.5
         """
     @property
     def equivalent_radius(self) -> float:
         """
-        the radius of the sphere with this P0
+        The radius of the sphere with this P0, in m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.ViscousCavity.sphere(density=1000.0, viscosity=1e-3, radius=0.1).equivalent_radius
+        0.10000000000000002
         """
     @property
     def kappa(self) -> float:
         """
-        kappa = rho P0 / nu
+        kappa = rho P0 / nu, in kg s: the strength of the cavity torque.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.ViscousCavity.sphere(density=1000.0, viscosity=1e-3, radius=0.1).kappa
+        0.004787188805470163
         """
     @property
     def p0(self) -> typing.Any:
         """
-        P0 of the cavity tensor P = P0 I [m^5]
+        P0 of the cavity tensor P = P0 I, in m^5.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+        >>> torque.p0
+        0.5
         """
     @property
     def viscosity(self) -> typing.Any:
         """
-        kinematic viscosity nu [m^2/s]
+        Kinematic viscosity nu, in m^2/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.ViscousCavity(density=0.5, viscosity=0.5, p0=0.5)
+        >>> torque.viscosity
+        0.5
         """
 class MovingMassDamper:
     """
-    Chernousko's quasi-static moving-mass damper (scene type "moving_mass_damper").
+    Chernousko's quasi-static moving-mass damper (scene type ``"moving_mass_damper"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        mass [kg]: mass m (finite and positive)
-        arm [m]: distance rho of the mass on the z axis (finite and non-negative)
-        frequency [rad/s]: Omega = sqrt(c/m) (finite and positive)
-        damping [1/s]: lambda = delta/m (finite and non-negative)
+    Parameters
+    ----------
+    mass : float
+        Mass m, in kg (finite and positive).
+    arm : float
+        Distance rho of the mass on the z axis, in m (finite and non-negative).
+    frequency : float
+        Omega = sqrt(c/m), in rad/s (finite and positive).
+    damping : float
+        Lambda = delta/m, in 1/s (finite and non-negative).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"moving_mass_damper"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+    >>> torque
+    MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('moving_mass_damper', ['kg', 'm', 'rad/s', '1/s'])
     """
     description: typing.ClassVar[str] = "Chernousko's quasi-static moving-mass damper"
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'moving_mass_damper'
     needs_attitude: typing.ClassVar[bool] = False
-    parameters: typing.ClassVar[list] = [{'name': 'mass', 'label': 'mass m', 'shape': 'scalar', 'unit': 'kg', 'description': 'mass m', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'arm', 'label': 'arm rho', 'shape': 'scalar', 'unit': 'm', 'description': 'distance rho of the mass on the z axis', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None}, {'name': 'frequency', 'label': 'frequency Omega', 'shape': 'scalar', 'unit': 'rad/s', 'description': 'Omega = sqrt(c/m)', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'damping', 'label': 'damping lambda', 'shape': 'scalar', 'unit': '1/s', 'description': 'lambda = delta/m', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'mass', 'label': 'mass m', 'shape': 'scalar', 'unit': 'kg', 'description': 'mass m', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'arm', 'label': 'arm rho', 'shape': 'scalar', 'unit': 'm', 'description': 'distance rho of the mass on the z axis', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None}, {'name': 'frequency', 'label': 'frequency Omega', 'shape': 'scalar', 'unit': 'rad/s', 'description': 'Omega = sqrt(c/m)', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'damping', 'label': 'damping lambda', 'shape': 'scalar', 'unit': '1/s', 'description': 'lambda = delta/m', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None})
     def S(self, A: typing.Any, C: typing.Any) -> float:
         """
         S of paper 001 eq. (3) for a symmetric body (A, A, C).
+        
+        Parameters
+        ----------
+        A : float
+            Equatorial moment of inertia, in kg m^2.
+        C : float
+            Axial moment of inertia, in kg m^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5).S(2.0, 1.0)
+        0.0625
         """
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: not used by this torque.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0])
+        array([ 0.00625, -0.0065 , -0.00125])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -254,49 +812,169 @@ class MovingMassDamper:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        4
         """
     def averaged(self, t: typing.Any, a: typing.Any, r: typing.Any, A: typing.Any, C: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[2, 1]"]:
         """
         Its contribution (da/dt, dr/dt) to the system averaged over the symmetric Euler-Poinsot motion.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        a : float
+            Equatorial angular speed a = sqrt(p^2 + q^2), in rad/s.
+        r : float
+            Axial angular velocity, in rad/s.
+        A : float
+            Equatorial moment of inertia, in kg m^2.
+        C : float
+            Axial moment of inertia, in kg m^2.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+            (da/dt, dr/dt), in rad/s^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> torque.averaged(0.0, 0.1, 1.0, 2.0, 1.0)
+        array([ 0.003125, -0.00125 ])
         """
     @property
     def arm(self) -> typing.Any:
         """
-        distance rho of the mass on the z axis [m]
+        Distance rho of the mass on the z axis, in m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> torque.arm
+        0.5
         """
     @property
     def damping(self) -> typing.Any:
         """
-        lambda = delta/m [1/s]
+        Lambda = delta/m, in 1/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> torque.damping
+        0.5
         """
     @property
     def frequency(self) -> typing.Any:
         """
-        Omega = sqrt(c/m) [rad/s]
+        Omega = sqrt(c/m), in rad/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> torque.frequency
+        0.5
         """
     @property
     def mass(self) -> typing.Any:
         """
-        mass m [kg]
+        Mass m, in kg.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MovingMassDamper(mass=0.5, arm=0.5, frequency=0.5, damping=0.5)
+        >>> torque.mass
+        0.5
         """
 class GravityGradient:
     """
-    the gravity-gradient torque on a circular orbit (needs the attitude) (scene type "gravity_gradient").
+    The gravity-gradient torque on a circular orbit (needs the attitude) (scene type ``"gravity_gradient"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        orbit_rate [rad/s]: the orbit's mean motion n = sqrt(mu / r^3) (finite and positive)
-        orbit_normal [1]: the orbit plane's normal in inertial axes (finite; default [0, 0, 1])
-        phase [rad]: the body's angle on the orbit from the ascending node at t = 0 (finite; default 0)
+    Parameters
+    ----------
+    orbit_rate : float
+        The orbit's mean motion n = sqrt(mu / r^3), in rad/s (finite and positive).
+    orbit_normal : array_like, shape (3,)
+        The orbit plane's normal in inertial axes, in 1 (finite; optional, default [0, 0, 1]).
+    phase : float
+        The body's angle on the orbit from the ascending node at t = 0, in rad (finite; optional, default 0).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"gravity_gradient"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.GravityGradient(orbit_rate=0.5, orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+    >>> torque
+    GravityGradient(orbit_rate=0.5, orbit_normal=[0, 0, 1], phase=0.5)
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('gravity_gradient', ['rad/s', '1', 'rad'])
     """
     description: typing.ClassVar[str] = 'the gravity-gradient torque on a circular orbit (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'gravity_gradient'
     needs_attitude: typing.ClassVar[bool] = True
-    parameters: typing.ClassVar[list] = [{'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments and this attitude.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: required (this torque depends on it).
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.GravityGradient(orbit_rate=0.5, orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0], quaternion=[1.0, 0.0, 0.0, 0.0])
+        array([0., 0., 0.])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -304,43 +982,153 @@ class GravityGradient:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.GravityGradient(orbit_rate=0.5, orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     def precession_rate(self, moments: typing.Any, omega: typing.Any, quaternion: typing.Any) -> float:
         """
-        The rate (rad/s) at which G precesses about the orbit normal, averaged over the orbit and the free motion of a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|).
+        The rate at which G precesses about the orbit normal, averaged over the orbit and the free motion.
+        
+        For a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|), with the
+        nutation angle between body z and G and i the angle between G and the orbit normal.
+        
+        Parameters
+        ----------
+        moments : array_like, shape (3,)
+            Principal moments (A, A, C), in kg m^2.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        quaternion : array_like, shape (4,)
+            The attitude (w, x, y, z), body to inertial.
+        
+        Returns
+        -------
+        float
+            The precession rate, in rad/s (about the orbit normal).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.GravityGradient(0.01).precession_rate([1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0])
+        -7.5e-05
         """
     @property
     def orbit_normal(self) -> typing.Any:
         """
-        the orbit plane's normal in inertial axes [1]
+        The orbit plane's normal in inertial axes, in 1.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.GravityGradient(orbit_rate=0.5, orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.orbit_normal
+        array([0., 0., 1.])
         """
     @property
     def orbit_rate(self) -> typing.Any:
         """
-        the orbit's mean motion n = sqrt(mu / r^3) [rad/s]
+        The orbit's mean motion n = sqrt(mu / r^3), in rad/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.GravityGradient(orbit_rate=0.5, orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.orbit_rate
+        0.5
         """
     @property
     def phase(self) -> typing.Any:
         """
-        the body's angle on the orbit from the ascending node at t = 0 [rad]
+        The body's angle on the orbit from the ascending node at t = 0, in rad.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.GravityGradient(orbit_rate=0.5, orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.phase
+        0.5
         """
 class MagneticTorque:
     """
-    a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude) (scene type "magnetic").
+    A magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude) (scene type ``"magnetic"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        dipole [A m^2]: the body's magnetic dipole moment m in body axes (finite)
-        field [T]: the magnetic field B in inertial axes (finite)
+    Parameters
+    ----------
+    dipole : array_like, shape (3,)
+        The body's magnetic dipole moment m in body axes, in A m^2 (finite).
+    field : array_like, shape (3,)
+        The magnetic field B in inertial axes, in T (finite).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"magnetic"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.MagneticTorque(dipole=[0.0, 0.0, 0.5], field=[0.0, 0.0, 0.5])
+    >>> torque
+    MagneticTorque(dipole=[0, 0, 0.5], field=[0, 0, 0.5])
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('magnetic', ['A m^2', 'T'])
     """
     description: typing.ClassVar[str] = 'a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'magnetic'
     needs_attitude: typing.ClassVar[bool] = True
-    parameters: typing.ClassVar[list] = [{'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field', 'label': 'field B', 'shape': 'vector3', 'unit': 'T', 'description': 'the magnetic field B in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field', 'label': 'field B', 'shape': 'vector3', 'unit': 'T', 'description': 'the magnetic field B in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments and this attitude.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: required (this torque depends on it).
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MagneticTorque(dipole=[0.0, 0.0, 0.5], field=[0.0, 0.0, 0.5])
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0], quaternion=[1.0, 0.0, 0.0, 0.0])
+        array([0., 0., 0.])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -348,38 +1136,122 @@ class MagneticTorque:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MagneticTorque(dipole=[0.0, 0.0, 0.5], field=[0.0, 0.0, 0.5])
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     @property
     def dipole(self) -> typing.Any:
         """
-        the body's magnetic dipole moment m in body axes [A m^2]
+        The body's magnetic dipole moment m in body axes, in A m^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MagneticTorque(dipole=[0.0, 0.0, 0.5], field=[0.0, 0.0, 0.5])
+        >>> torque.dipole
+        array([0. , 0. , 0.5])
         """
     @property
     def field(self) -> typing.Any:
         """
-        the magnetic field B in inertial axes [T]
+        The magnetic field B in inertial axes, in T.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.MagneticTorque(dipole=[0.0, 0.0, 0.5], field=[0.0, 0.0, 0.5])
+        >>> torque.field
+        array([0. , 0. , 0.5])
         """
 class DipoleFieldTorque:
     """
-    a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude) (scene type "dipole_field").
+    A magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude) (scene type ``"dipole_field"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        dipole [A m^2]: the body's magnetic dipole moment m in body axes (finite)
-        field_strength [T]: B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius (finite and positive)
-        orbit_rate [rad/s]: the orbit's mean motion n = sqrt(mu / r^3) (finite and positive)
-        dipole_axis [1]: the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole) (finite; default [0, 0, -1])
-        orbit_normal [1]: the orbit plane's normal in inertial axes (finite; default [0, 0, 1])
-        phase [rad]: the body's angle on the orbit from the ascending node at t = 0 (finite; default 0)
+    Parameters
+    ----------
+    dipole : array_like, shape (3,)
+        The body's magnetic dipole moment m in body axes, in A m^2 (finite).
+    field_strength : float
+        B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius, in T (finite and positive).
+    orbit_rate : float
+        The orbit's mean motion n = sqrt(mu / r^3), in rad/s (finite and positive).
+    dipole_axis : array_like, shape (3,)
+        The direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole), in 1 (finite; optional, default [0, 0, -1]).
+    orbit_normal : array_like, shape (3,)
+        The orbit plane's normal in inertial axes, in 1 (finite; optional, default [0, 0, 1]).
+    phase : float
+        The body's angle on the orbit from the ascending node at t = 0, in rad (finite; optional, default 0).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"dipole_field"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+    >>> torque
+    DipoleFieldTorque(dipole=[0, 0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0, 0, 1], orbit_normal=[0, 0, 1], phase=0.5)
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('dipole_field', ['A m^2', 'T', 'rad/s', '1', '1', 'rad'])
     """
     description: typing.ClassVar[str] = "a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude)"
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'dipole_field'
     needs_attitude: typing.ClassVar[bool] = True
-    parameters: typing.ClassVar[list] = [{'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field_strength', 'label': 'field strength B0', 'shape': 'scalar', 'unit': 'T', 'description': "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'dipole_axis', 'label': 'dipole axis d', 'shape': 'vector3', 'unit': '1', 'description': "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, -1]'}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field_strength', 'label': 'field strength B0', 'shape': 'scalar', 'unit': 'T', 'description': "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'dipole_axis', 'label': 'dipole axis d', 'shape': 'vector3', 'unit': '1', 'description': "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, -1]'}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments and this attitude.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: required (this torque depends on it).
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0], quaternion=[1.0, 0.0, 0.0, 0.0])
+        array([-0.,  0.,  0.])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -387,57 +1259,180 @@ class DipoleFieldTorque:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     def field(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The planet's field B(t) at the body, in inertial axes [T].
+        The planet's field at the body, in inertial axes.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            B(t) = B0 [3 (d . c) c - d], in T.
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.DipoleFieldTorque(dipole=[0.0, 0.0, 1.0], field_strength=2e-5, orbit_rate=0.001).field(0.0)
+        array([0.e+00, 0.e+00, 2.e-05])
         """
     @property
     def dipole(self) -> typing.Any:
         """
-        the body's magnetic dipole moment m in body axes [A m^2]
+        The body's magnetic dipole moment m in body axes, in A m^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.dipole
+        array([0. , 0. , 0.5])
         """
     @property
     def dipole_axis(self) -> typing.Any:
         """
-        the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole) [1]
+        The direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole), in 1.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.dipole_axis
+        array([0., 0., 1.])
         """
     @property
     def field_strength(self) -> typing.Any:
         """
-        B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius [T]
+        B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius, in T.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.field_strength
+        0.5
         """
     @property
     def orbit_normal(self) -> typing.Any:
         """
-        the orbit plane's normal in inertial axes [1]
+        The orbit plane's normal in inertial axes, in 1.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.orbit_normal
+        array([0., 0., 1.])
         """
     @property
     def orbit_rate(self) -> typing.Any:
         """
-        the orbit's mean motion n = sqrt(mu / r^3) [rad/s]
+        The orbit's mean motion n = sqrt(mu / r^3), in rad/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.orbit_rate
+        0.5
         """
     @property
     def phase(self) -> typing.Any:
         """
-        the body's angle on the orbit from the ascending node at t = 0 [rad]
+        The body's angle on the orbit from the ascending node at t = 0, in rad.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.DipoleFieldTorque(dipole=[0.0, 0.0, 0.5], field_strength=0.5, orbit_rate=0.5, dipole_axis=[0.0, 0.0, 0.5], orbit_normal=[0.0, 0.0, 0.5], phase=0.5)
+        >>> torque.phase
+        0.5
         """
 class InertialTorque:
     """
-    a constant torque fixed in inertial space (needs the attitude) (scene type "inertial").
+    A constant torque fixed in inertial space (needs the attitude) (scene type ``"inertial"``): a torque in body axes acting on the body it is given to.
     
-    Parameters:
-        moment [N m]: M_I in inertial axes (finite)
+    Parameters
+    ----------
+    moment : array_like, shape (3,)
+        M_I in inertial axes, in N m (finite).
+    
+    Attributes
+    ----------
+    kind : str
+        Its type in a scene's ``[[torques]]`` table (``"inertial"``).
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    needs_attitude : bool
+        Whether it depends on the attitude (then only models with the quaternion take it).
+    has_averaged : bool
+        Whether it has a contribution to the averaged (a, r) system.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> torque = gyrostat.InertialTorque(moment=[0.0, 0.0, 0.5])
+    >>> torque
+    InertialTorque(moment=[0, 0, 0.5])
+    >>> torque.kind, [p["unit"] for p in torque.parameters]
+    ('inertial', ['N m'])
     """
     description: typing.ClassVar[str] = 'a constant torque fixed in inertial space (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'inertial'
     needs_attitude: typing.ClassVar[bool] = True
-    parameters: typing.ClassVar[list] = [{'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M_I in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}]
+    parameters: typing.ClassVar[tuple] = ({'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M_I in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) on a body with these moments (and this attitude, body to inertial, for a torque that needs it).
+        The torque in body axes at (t, omega) on a body with these moments and this attitude.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia (A1, A2, A3), in kg m^2.
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: required (this torque depends on it).
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.InertialTorque(moment=[0.0, 0.0, 0.5])
+        >>> torque(0.0, [0.1, 0.0, 1.0], [2.0, 2.0, 1.0], quaternion=[1.0, 0.0, 0.0, 0.0])
+        array([0. , 0. , 0.5])
         """
     def __init__(self, *args, **kwargs) -> None:
         ...
@@ -445,16 +1440,41 @@ class InertialTorque:
         ...
     def assumptions(self, motion: Motion) -> list[TorqueAssumption]:
         """
-        Its validity numbers over a motion: a list of Assumption (empty when it assumes nothing).
+        Its validity numbers over a motion (empty when it assumes nothing).
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The largest |omega|, |J omega| and axial frequency over the states checked.
+        
+        Returns
+        -------
+        list of gyrostat._core.TorqueAssumption
+            Each assumption measured: statement, value, limit, holds.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.InertialTorque(moment=[0.0, 0.0, 0.5])
+        >>> motion = gyrostat._core.Motion([2.0, 2.0, 1.0], [[0.1, 0.0, 1.0]])
+        >>> len(torque.assumptions(motion))
+        0
         """
     @property
     def moment(self) -> typing.Any:
         """
-        M_I in inertial axes [N m]
+        M_I in inertial axes, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> torque = gyrostat.InertialTorque(moment=[0.0, 0.0, 0.5])
+        >>> torque.moment
+        array([0. , 0. , 0.5])
         """
 class CustomTorque:
     """
-    A torque the user writes, in body axes.
+    A torque the user writes, in body axes (scene type ``"custom"``).
     
     M = f(t, omega) or, with ``attitude=True``, f(t, omega, quaternion): omega in rad/s (body axes),
     the quaternion (w, x, y, z) body to inertial, M in N m (body axes).
@@ -489,10 +1509,32 @@ class CustomTorque:
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'custom'
     needs_attitude: typing.ClassVar[bool] = False
-    parameters: typing.ClassVar[list] = list()
+    parameters: typing.ClassVar[tuple] = tuple()
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The torque in body axes at (t, omega) (and the attitude, when it takes it).
+        The user's function at (t, omega[, quaternion]): the torque in body axes.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+        moments : array_like, shape (3,)
+            Principal moments of inertia, in kg m^2 (not passed to the function).
+        quaternion : array_like, shape (4,), optional
+            The attitude (w, x, y, z), body to inertial: required when the torque takes it.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3,)
+            The torque, in N m.
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega: -0.5 * omega)(0.0, [0.0, 0.0, 2.0], [1.0, 1.0, 1.0])
+        array([-0., -0., -1.])
         """
     def __init__(self, function: typing.Any, jacobian: typing.Any = None, *, attitude: bool = False, name: typing.Any = None) -> None:
         ...
@@ -500,14 +1542,46 @@ class CustomTorque:
         ...
     def assumptions(self, motion: typing.Any) -> list:
         """
-        A user's torque states no assumption: an empty list.
+        A user's torque states no assumption.
+        
+        Parameters
+        ----------
+        motion : gyrostat._core.Motion
+            The motion checked (not used).
+        
+        Returns
+        -------
+        list
+            Empty.
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega: -omega).assumptions(g._core.Motion([1.0, 2.0, 3.0], [[0.0, 0.0, 1.0]]))
+        []
         """
     @property
     def attitude(self) -> bool:
-        ...
+        """
+        Whether the function takes the quaternion (bool).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega, q: -omega, attitude=True).attitude
+        True
+        """
     @property
     def name(self) -> str:
-        ...
+        """
+        The name used in messages and the repr (str).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega: -omega, name="drag").name
+        'drag'
+        """
 class MagnitudeLaw:
     """
     The magnitude L(t) of paper 004's servo torque, evaluated in C++.
@@ -600,14 +1674,34 @@ class Event:
 class Options:
     """
     Every integrator option with its default (the one place where defaults live).
+    
+    :func:`gyrostat.solve` makes one from its keywords; pass one as ``options=`` to reuse it. The
+    attributes are the options (each one documented below).
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> options = gyrostat.Options()
+    >>> options.rtol = 1e-10
+    >>> options.rtol, options.method
+    (1e-10, 'dop853')
     """
-    dense_output: bool
-    every_step: bool
-    method: str
     @staticmethod
     def check(name: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
         The engine's rule for one scalar option (rtol, atol, n_out, max_steps, first_step, max_step, step, splitting_order): ValueError naming the value when it breaks it. The scene schema applies it too.
+        
+        Parameters
+        ----------
+        name : str
+            The option.
+        value : float
+            Its value, in its unit.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options.check('rtol', 1e-9)
         """
     def __init__(self) -> None:
         ...
@@ -616,68 +1710,206 @@ class Options:
     def to_dict(self) -> dict:
         """
         Every scalar option by name (not t_eval and events): what report.json records of a run.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().to_dict()['rtol']
+        1e-08
         """
     def validate(self, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
         The engine's checks of these options for a run over (t0, t1), without running: ValueError naming the value.
+        
+        Parameters
+        ----------
+        t0, t1 : float
+            The span of the run, in s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().validate(0.0, 10.0)
         """
     @property
     def atol(self) -> float:
-        ...
+        """
+        Absolute tolerance of the adaptive methods, in the units of each state component.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().atol
+        1e-10
+        """
     @atol.setter
     def atol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def events(self) -> list[Event]:
+    def dense_output(self) -> bool:
+        """
+        Keep each step's continuous extension, for ``solution(t)``.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().dense_output
+        False
+        """
+    @dense_output.setter
+    def dense_output(self, arg0: bool) -> None:
         ...
+    @property
+    def events(self) -> list[Event]:
+        """
+        The engine's events of a run (made by :func:`gyrostat.solve` from :class:`gyrostat.events.Event`).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().events
+        []
+        """
     @events.setter
     def events(self, arg0: collections.abc.Sequence[Event]) -> None:
         ...
     @property
-    def first_step(self) -> float:
+    def every_step(self) -> bool:
+        """
+        Record every accepted step instead of the output times.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().every_step
+        False
+        """
+    @every_step.setter
+    def every_step(self, arg0: bool) -> None:
         ...
+    @property
+    def first_step(self) -> float:
+        """
+        Size of the first step, in s (0: the method picks it).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().first_step
+        0.0
+        """
     @first_step.setter
     def first_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def max_step(self) -> float:
-        ...
+        """
+        Largest step, in s (inf: no limit).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().max_step
+        inf
+        """
     @max_step.setter
     def max_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def max_steps(self) -> int:
-        ...
+        """
+        Most steps a run may take before it stops with status max_steps_reached.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().max_steps
+        1000000
+        """
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def n_out(self) -> int:
+    def method(self) -> str:
+        """
+        The integrator (one of :data:`gyrostat.METHODS`, or ``"auto"``).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().method
+        'dop853'
+        """
+    @method.setter
+    def method(self, arg1: str) -> None:
         ...
+    @property
+    def n_out(self) -> int:
+        """
+        Number of equally spaced output times over the span when t_eval is empty.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().n_out
+        1001
+        """
     @n_out.setter
     def n_out(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def rtol(self) -> float:
-        ...
+        """
+        Relative tolerance of the adaptive methods (1: dimensionless).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().rtol
+        1e-08
+        """
     @rtol.setter
     def rtol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def splitting_order(self) -> int:
-        ...
+        """
+        Order of method ``splitting``: 2, 4 or 6.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().splitting_order
+        4
+        """
     @splitting_order.setter
     def splitting_order(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def step(self) -> float:
-        ...
+        """
+        Fixed step of method ``splitting``, in s (0: none given).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().step
+        0.0
+        """
     @step.setter
     def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def t_eval(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        Output times, in s (empty: n_out equally spaced times).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().t_eval
+        array([], dtype=float64)
+        """
     @t_eval.setter
     def t_eval(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
@@ -820,22 +2052,96 @@ class Result:
         The state at t_last.
         """
 class TorqueFreeSolution:
+    """
+    The closed-form angular velocity of a torque-free rigid body (Jacobi elliptic functions).
+    
+    Parameters
+    ----------
+    body : gyrostat.Body
+        The body (without rotor).
+    omega0 : array_like, shape (3,)
+        Angular velocity at t0 in body axes, in rad/s.
+    t0 : float, optional
+        Time of omega0, in s (default 0).
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> free = gyrostat.TorqueFreeSolution(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0])
+    >>> free.period
+    10.858161104747332
+    """
     def __init__(self, body: Body, omega0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def omega(self, t: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        The angular velocity at each time.
+        
+        Parameters
+        ----------
+        t : sequence of float
+            Times, in s.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (n, 3)
+            omega in body axes, in rad/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> free = gyrostat.TorqueFreeSolution(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0])
+        >>> free.omega([0.0])
+        array([[0.1, 0.2, 1. ]])
+        """
     @property
     def frequency(self) -> float:
-        ...
+        """
+        The frequency of the elliptic functions' argument, in rad/s (signed).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> free = gyrostat.TorqueFreeSolution(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0])
+        >>> free.frequency
+        -0.5887840577551898
+        """
     @property
     def is_constant(self) -> bool:
-        ...
+        """
+        Whether omega is constant (a permanent rotation about a principal axis).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> free = gyrostat.TorqueFreeSolution(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0])
+        >>> free.is_constant
+        False
+        """
     @property
     def modulus_squared(self) -> float:
-        ...
+        """
+        The elliptic modulus squared m = k^2 (0 for a permanent rotation; 1: dimensionless).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> free = gyrostat.TorqueFreeSolution(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0])
+        >>> free.modulus_squared
+        0.06730769230769232
+        """
     @property
     def period(self) -> float:
-        ...
+        """
+        The period of omega(t), in s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> free = gyrostat.TorqueFreeSolution(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0])
+        >>> free.period
+        10.858161104747332
+        """
 class LagrangeNutation:
     @property
     def alpha(self) -> float:

@@ -28,11 +28,47 @@ PAPER_RATIO = _core.large
 
 
 class ValidityWarning(UserWarning):
-    """A scene breaks an assumption of a model it uses."""
+    """A scene or a run breaks an assumption of a model it uses: the sentence names the
+    assumption, its measured value and the limit. :func:`gyrostat.solve` warns so for an averaged
+    model whose assumptions fail along the run (the sentence is also kept in ``Solution.notes``).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import gyrostat
+    >>> body = gyrostat.Body([4.0, 4.4, 1.0])  # 10 % asymmetry: too far from symmetric for the averaging
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     sol = gyrostat.solve(gyrostat.AveragedModel(body), [0.1, 1.0], (0.0, 1.0))
+    >>> any(issubclass(w.category, gyrostat.ValidityWarning) for w in caught)
+    True
+    """
 
 
 @dataclass(frozen=True)
 class Assumption:
+    """One assumption of a model or torque, measured: ``value`` against ``limit`` (``holds`` says
+    whether it does), in the words of the model's or torque's declaration.
+
+    Parameters
+    ----------
+    part : str
+        What assumes it ("viscous cavity", "averaged model").
+    statement : str
+        The condition ("Reynolds number |ω| b²/ν ≪ 1").
+    value, limit : float
+        The measured number and its limit (dimensionless ratios).
+    holds : bool
+        Whether the value is within the limit.
+    note : str, optional
+        What the number rests on.
+
+    Examples
+    --------
+    >>> from gyrostat.validity import Assumption
+    >>> print(Assumption("viscous cavity", "Reynolds number ≪ 1", 0.0625, 0.1, True))
+    viscous cavity: Reynolds number ≪ 1: 0.0625 (limit 0.1) holds
+    """
     part: str
     statement: str
     value: float
@@ -54,11 +90,31 @@ def _omegas(model, states: np.ndarray) -> np.ndarray:
 
 
 def check(model, states, times=None, warn: bool = True, outputs: dict | None = None) -> list[Assumption]:
-    """Checks a model's assumptions over the given states (one state or an (n, dim) array, e.g.
-    a solution's ``y``; ``times`` for time-dependent coefficients): its torques' first, then the
-    model's own (``model.assumptions``). ``outputs``: what a solve recorded at those states (the
-    averaged model's ``slow_to_fast``), used as it is. Returns every check; warns for the broken
-    ones when ``warn``."""
+    """Checks a model's assumptions over the given states: its torques' first, then the
+    model's own (``model.assumptions``). Returns every check; warns
+    (:class:`ValidityWarning`) for the broken ones when ``warn``.
+
+    Parameters
+    ----------
+    model : gyrostat.ModelBase
+        The model.
+    states : array_like, shape (dim,) or (n, dim)
+        One state or many (e.g. a solution's ``y``), in the model's units.
+    times : array_like, shape (n,), optional
+        Their times, in s (for time-dependent coefficients; default 0).
+    warn : bool, optional
+        Warn for each broken assumption (default True).
+    outputs : dict, optional
+        What a solve recorded at those states (the averaged model's ``slow_to_fast``), used as it is.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> model = gyrostat.Model(gyrostat.Body([12.0, 12.0, 4.0]),
+    ...                        [gyrostat.ViscousCavity(density=970.0, viscosity=2.0, radius=0.25)])
+    >>> [round(c.value, 4) for c in gyrostat.validity.check(model, [0.05, 0.0, 2.0])]
+    [0.0625, 0.0007]
+    """
     states = np.atleast_2d(np.asarray(states, float))
     times = np.zeros(len(states)) if times is None else np.asarray(times, float)
     omegas = _omegas(model, states)

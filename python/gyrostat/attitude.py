@@ -68,6 +68,13 @@ def euler_angles(q, convention: str = "zxz") -> np.ndarray:
     ------
     ValueError
         For a bad shape, an unknown convention, or a zero or non-finite quaternion.
+
+    Examples
+    --------
+    >>> from gyrostat import attitude
+    >>> q = attitude.quaternion_from_euler([0.3, 0.5, 0.1])
+    >>> attitude.euler_angles(q).round(6)
+    array([0.3, 0.5, 0.1])
     """
     return _core.euler_angles(q, convention)
 
@@ -92,6 +99,12 @@ def quaternion_from_euler(angles, convention: str = "zxz") -> np.ndarray:
     ------
     ValueError
         For a bad shape, an unknown convention, or a non-finite angle.
+
+    Examples
+    --------
+    >>> from gyrostat import attitude
+    >>> attitude.quaternion_from_euler([0.3, 0.5, 0.1]).round(6)
+    array([0.949599, 0.246168, 0.024699, 0.192493])
     """
     return _core.quaternion_from_euler(angles, convention)
 
@@ -113,6 +126,15 @@ def rotation_matrix(q) -> np.ndarray:
     ------
     ValueError
         For a bad shape or a zero or non-finite quaternion.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import attitude
+    >>> attitude.rotation_matrix([np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)]).round(6)  # 90° about z
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
     """
     return _core.rotation_matrix(q)
 
@@ -134,6 +156,13 @@ def quaternion_from_matrix(R) -> np.ndarray:
     ------
     ValueError
         For a bad shape or a matrix that is not finite or not a rotation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import attitude
+    >>> attitude.quaternion_from_matrix(np.eye(3))
+    array([1., 0., 0., 0.])
     """
     return _core.quaternion_from_matrix(R)
 
@@ -171,6 +200,13 @@ def to_rotation(q):
     ------
     ValueError
         For a bad shape or a zero or non-finite quaternion.
+
+    Examples
+    --------
+    >>> from gyrostat import attitude
+    >>> rotation = attitude.to_rotation(attitude.quaternion_from_euler([0.3, 0.5, 0.1]))
+    >>> rotation.as_euler("ZXZ").round(6)  # SciPy's intrinsic z-x-z
+    array([0.3, 0.5, 0.1])
     """
     from scipy.spatial.transform import Rotation
 
@@ -190,6 +226,13 @@ def from_rotation(rotation) -> np.ndarray:
     -------
     ndarray, shape (4,) or (n, 4)
         Unit quaternions (w, x, y, z), scalar first, with w ≥ 0.
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> from gyrostat import attitude
+    >>> attitude.from_rotation(Rotation.from_euler("ZXZ", [0.3, 0.5, 0.1])).round(6)
+    array([0.949599, 0.246168, 0.024699, 0.192493])
     """
     from scipy.spatial.transform import Rotation
 
@@ -212,6 +255,14 @@ def multiply(a, b) -> np.ndarray:
     -------
     ndarray, shape (4,) or (n, 4)
         (a_w b_w − a_v·b_v, a_w b_v + b_w a_v + a_v × b_v).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import attitude
+    >>> quarter = [np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)]  # 90° about z
+    >>> attitude.multiply(quarter, quarter).round(6)  # 180° about z
+    array([0., 0., 0., 1.])
     """
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
@@ -239,6 +290,13 @@ def rotate(q, v) -> np.ndarray:
     -------
     ndarray, shape (3,) or (n, 3)
         The vectors in inertial axes.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import attitude
+    >>> attitude.rotate([np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)], [1.0, 0.0, 0.0]).round(6)
+    array([0., 1., 0.])
     """
     v = np.asarray(v, dtype=float)
     if v.ndim not in (1, 2) or v.shape[-1] != 3:

@@ -32,7 +32,28 @@ __all__ = ["Kind", "Run", "KINDS", "register", "default_kind", "title_fields", "
 
 @dataclass
 class Run:
-    """One solve of a scene: a model, its initial state, the span and the integrator options."""
+    """One solve of a scene: a model, its initial state, the span and the integrator options.
+
+    Parameters
+    ----------
+    name : str
+        The run's name ("full", "averaged", …).
+    model : gyrostat.ModelBase
+        The model solved.
+    y0 : numpy.ndarray
+        The initial state, in the model's units.
+    t_span : (float, float)
+        (t0, t1), in s.
+    options : dict
+        The keywords of :func:`gyrostat.solve` (method, rtol, atol, n_out, events, …).
+
+    Examples
+    --------
+    >>> from gyrostat.scene import SCENES, load
+    >>> run = load(SCENES / "forced_damped.toml").runs[0]
+    >>> run.name, run.t_span, run.options["rtol"]
+    ('full', (0.0, 200.0), 1e-10)
+    """
 
     name: str
     model: ModelBase

@@ -45,9 +45,8 @@ from pathlib import Path
 from gyrostat.events import Event
 from gyrostat.families import KINDS, default_kind
 from gyrostat.kind import Kind, Run, build
-from gyrostat.schema import ArrayOf, Field, SceneError, Table, describe, validate
+from gyrostat.schema import Common, SceneError, describe, describe_common, validate
 from gyrostat.solve import check_run
-from gyrostat.torques import TORQUE
 
 __all__ = ["Scene", "Run", "SceneError", "KINDS", "SCENES", "load", "scene_format"]
 
@@ -69,7 +68,39 @@ def add_events(doc: dict, runs: list[Run]) -> None:
 # ------------------------------------------------------------------------------------ scenes
 @dataclass
 class Scene:
-    """A validated scene: its kind, its document (defaults filled in) and its runs."""
+    """A validated scene: its kind, its document (defaults filled in) and its runs.
+
+    Made by :func:`load` (a TOML file) or :meth:`from_dict`; :func:`gyrostat.runner.solve_scene`
+    solves it, ``gyrostat run`` solves it and writes its outputs.
+
+    Parameters
+    ----------
+    name : str
+        Its name (the file's stem).
+    kind : gyrostat.kind.Kind
+        The scene kind (the top-level key ``kind``).
+    doc : dict
+        The validated document, defaults filled in.
+    runs : list of gyrostat.kind.Run
+        What is solved: model, initial state, span (s) and options of each run.
+    model_choice, model_reason : str
+        The model chosen (``model = "auto"``: by the ladder, when solved) and why.
+    ladder : list, optional
+        With ``model = "auto"``: the kind's rungs (:mod:`gyrostat.ladder`).
+
+    Examples
+    --------
+    >>> from gyrostat.scene import Scene
+    >>> scene = Scene.from_dict({"title": "Damper", "body": {"moments": [12.0, 12.0, 4.0]},
+    ...                          "torques": [{"type": "viscous_cavity", "density": 970.0, "viscosity": 2.0,
+    ...                                       "radius": 0.25}],
+    ...                          "initial": {"omega": [0.05, 0.0, 2.0]},
+    ...                          "integration": {"model": "full", "t_span": [0.0, 3600.0]}}, name="satellite")
+    >>> [run.name for run in scene.runs], scene.runs[0].t_span
+    (['full'], (0.0, 3600.0))
+
+    The examples of its attributes use this ``scene``.
+    """
 
     name: str
     kind: Kind
@@ -78,22 +109,61 @@ class Scene:
     model_choice: str = ""
     model_reason: str = ""
     ladder: list | None = None
-    """With model = "auto": the kind's rungs (gyrostat.ladder), chosen among when the scene is solved."""
 
     @property
     def title(self) -> str:
+        """Its ``title``, or its name when it has none.
+
+        Examples
+        --------
+        >>> scene.title
+        'Damper'
+        """
         return self.doc["title"] or self.name
 
     @property
     def description(self) -> str:
+        """Its ``description`` (empty when it has none).
+
+        Examples
+        --------
+        >>> scene.description
+        ''
+        """
         return self.doc["description"]
 
     @property
     def plots(self) -> list[str]:
+        """The plots its ``[outputs]`` asks for (the kind's defaults when it names none).
+
+        Examples
+        --------
+        >>> scene.plots
+        ['omega', 'invariants']
+        """
         return list(self.doc["outputs"]["plots"])
 
     @classmethod
     def from_dict(cls, data: dict, name: str = "scene") -> "Scene":
+        """A scene from its document (a dict as TOML gives it); every problem is a one-line
+        :class:`SceneError` naming the key.
+
+        Parameters
+        ----------
+        data : dict
+            The document.
+        name : str, optional
+            Its name (default "scene").
+
+        Examples
+        --------
+        >>> scene.kind.name
+        'rigid_body'
+        >>> Scene.from_dict({"body": {}})
+        Traceback (most recent call last):
+        ...
+        gyrostat.schema.SceneError: [body] is missing required key 'moments' (principal moments A1, A2, A3 [kg m^2])
+        """
         if not isinstance(data, dict):
             raise SceneError(f"a scene is a table of keys, got {type(data).__name__}")
         kind_name = data.get("kind", default_kind())
@@ -114,6 +184,19 @@ class Scene:
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Scene":
+        """A scene from its TOML file (:func:`load`).
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The file.
+
+        Examples
+        --------
+        >>> from gyrostat.scene import SCENES, Scene
+        >>> Scene.from_toml(SCENES / "forced_damped.toml").name
+        'forced_damped'
+        """
         path = Path(path)
         try:
             with path.open("rb") as handle:
@@ -133,16 +216,37 @@ SCENES = Path(__file__).resolve().parent / "scenes"
 
 
 def load(path: str | Path) -> Scene:
-    """Reads and validates a scene file; every problem is a one-line :class:`SceneError`."""
+    """Reads and validates a scene file; every problem is a one-line :class:`SceneError`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The TOML file.
+
+    Examples
+    --------
+    >>> from gyrostat.scene import SCENES, load
+    >>> load(SCENES / "forced_damped.toml").title
+    'Damped body under a constant body-fixed torque'
+    """
     return Scene.from_toml(path)
 
 
 def scene_format() -> str:
-    """The reference of every scene kind (Markdown), from the schemas themselves."""
+    """The reference of every scene kind (Markdown), from the schemas themselves: what several
+    kinds share (events, sweeps, torques, the common integration keys) once, then each kind.
+    ``gyrostat scene-format`` prints it; docs/scenes.md is it.
+
+    Examples
+    --------
+    >>> from gyrostat.scene import scene_format
+    >>> scene_format().splitlines()[0]
+    '# Scene files'
+    """
+    common = Common(kind.schema for kind in KINDS.values())
     parts = ["# Scene files\n", f"The top-level key `kind` selects one of the kinds below (`{default_kind()}` when absent).\n"]
     for kind in KINDS.values():
         parts.append(f"\n## kind = \"{kind.name}\"\n\n{kind.doc}\n\nPlots: {', '.join(kind.plots)}.\n")
-        parts.append(describe(kind.schema, title=f"{kind.name}: top level"))
-    parts.append("\n## Torques (`[[torques]]`, by `type`)\n")
-    parts.append(describe(Table({"torques": Field(ArrayOf(TORQUE), doc="torques")}), title="torques"))
+        parts.append(describe(kind.schema, title=f"{kind.name}: top level", common=common))
+    parts.append("\n" + describe_common(common))
     return "\n".join(parts)

@@ -202,49 +202,70 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
 
     Parameters
     ----------
-    model:
+    model : gyrostat.ModelBase
         :class:`gyrostat.Model`, :class:`gyrostat.AveragedModel`, :class:`gyrostat.MovingMassModel`,
         :class:`gyrostat.TorqueFreeModel`, :class:`gyrostat.lagrange.LagrangeTop`,
         :class:`gyrostat.lagrange.LagrangeAveraged` or :class:`gyrostat.orthogonal.OrthogonalModel`.
-    y0:
-        The initial state (``model.state_names``), or a shorter one where the model completes it
+    y0 : array_like or Solution
+        The initial state (``model.state_names``, units in ``model.units``), or a shorter one where the model completes it
         (ω alone for a model with attitude: identity quaternion; τ(0) = 0 for the orthogonal
         torque; a full top state for the averaged top: its (G_z, H, r)). Or a :class:`Solution`
         to continue its run: ``solve(model, sol, (sol.t_last, t1))`` starts from its last
         accepted state with the step it would have tried next (a run stopped by ``max_steps``
         or Ctrl-C, continued, follows the uninterrupted one: DOP853 and Taylor step for step,
         CVODE/ARKODE to the tolerance, since their multistep history restarts).
-    method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step:
-        Integrator options; None keeps the default of :class:`gyrostat.Options` (the one place
-        where defaults live: ``dop853``, rtol 1e-8, atol 1e-10, ``n_out`` = 1001 evenly spaced
-        output times). Outputs come from each method's dense output between steps, so memory
-        grows with the outputs asked for, not with the steps; ``every_step=True`` records every
-        accepted step as well. ``options`` gives them all at once.
-    step, splitting_order:
-        For ``method="splitting"``: the fixed step h (a ValueError names a value ≤ 0 or NaN; left
-        out, it is chosen from ``rtol`` by the splitting's own error estimate) and the order of
-        the composition (2: Strang, 4 (default), 6: Yoshida's triple jumps). The free flow is
-        exact (elliptic functions); constant and linear torques have an exact flow too, the
-        others are integrated over each sub-step by one 8th-order step. The run estimates its
-        own global error (steps of h against h/2 at up to 32 steps, at most one in three:
-        ``solution.error_estimate``,
-        ``solution.notes``) and warns (:class:`gyrostat.AccuracyWarning`) when it exceeds
-        ``rtol``, or when a step above the span was clamped to it.
-    events:
+    t_span : (float, float)
+        (t0, t1), in s; t1 < t0 integrates backwards.
+    method : str, optional
+        The integrator, one of :data:`gyrostat.METHODS` or ``"auto"`` (DOP853, switching to
+        CVODE BDF where the problem turns stiff). Default ``"dop853"``.
+    rtol : float, optional
+        Relative tolerance (dimensionless). Default 1e-8.
+    atol : float, optional
+        Absolute tolerance, in the units of each state component (rad/s for ω). Default 1e-10.
+    t_eval : array_like, optional
+        Output times in the span, in s. Outputs come from each method's dense output between
+        steps, so memory grows with the outputs asked for, not with the steps.
+    n_out : int, optional
+        Number of evenly spaced output times when ``t_eval`` is not given. Default 1001.
+    every_step : bool, optional
+        Record every accepted step as well as the output times. Default False.
+    max_steps : int, optional
+        Most steps before the run stops with status ``max_steps_reached``. Default 10^6.
+    first_step : float, optional
+        The first step size, in s (default: the method picks it).
+    max_step : float, optional
+        The largest step size, in s (default: unbounded).
+    step : float, optional
+        ``method="splitting"``: the fixed step h, in s (a ValueError names a value ≤ 0 or
+        NaN). Left out, it is chosen from ``rtol`` by the splitting's own error estimate. The
+        free flow is exact (elliptic functions); constant and linear torques have an exact
+        flow too, the others are integrated over each sub-step by one 8th-order step. The run
+        estimates its own global error (steps of h against h/2 at up to 32 steps, at most one
+        in three: ``solution.error_estimate``, ``solution.notes``) and warns
+        (:class:`gyrostat.AccuracyWarning`) when it exceeds ``rtol``, or when a step above
+        the span was clamped to it.
+    splitting_order : {2, 4, 6}, optional
+        ``method="splitting"``: the order of the composition (2: Strang, 4 (default), 6:
+        Yoshida's triple jumps).
+    options : gyrostat.Options, optional
+        All the options above at once (None keeps the defaults of :class:`gyrostat.Options`,
+        the one place where defaults live); keywords given as well override it.
+    events : Event, callable or list of them, optional
         :class:`gyrostat.events.Event` (a state component or named output crossing a value,
         evaluated in C++) or callables ``f(t, y)`` as in SciPy (the slow path), or a list of
         them; located on each step's continuous extension. Results: ``t_events``, ``y_events``,
         ``terminal_event``. Terminal events end the run (status success). A callable returns a
         number (anything else is a ValueError naming the event); an exception it raises, like
         one of a ``progress`` callable, propagates as it was raised.
-    dense_output:
+    dense_output : bool, optional
         Keep every step's continuous extension so that the solution can be called anywhere in
-        the span, ``solution(t)`` (memory then grows with the steps taken, not with the outputs).
-    progress:
+        the span, ``solution(t)`` and ``solution(t, name)`` (memory then grows with the steps taken, not with the outputs).
+    progress : bool or callable, optional
         None (default): a progress bar on stderr when it is a terminal; ``True``: a bar;
         ``False``: none; or a callable of the fraction done, called from the run at most every
         0.1 s (so a short run never shows a bar). Progress never changes the trajectory.
-    check_validity:
+    check_validity : bool, optional
         For an averaged model, check its assumptions along the solution; broken ones are warned
         about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.
 
@@ -256,6 +277,23 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         with ``status`` and ``message``; Ctrl-C stops the run within a fraction of a second and
         returns what was computed with status ``"interrupted"``. Bad input (negative rtol, NaN
         state, t_eval outside the span, a state of the wrong size) raises ValueError naming the value.
+
+    Examples
+    --------
+    A prolate body spinning about its minor axis (A3 = 4 < A1 = A2) with a viscous-fluid cavity
+    (the tutorial's satellite), one event where the spin rate r falls through 1.9 rad/s:
+
+    >>> import gyrostat
+    >>> from gyrostat.events import Event
+    >>> body = gyrostat.Body([12.0, 12.0, 4.0])
+    >>> cavity = gyrostat.ViscousCavity(density=970.0, viscosity=2.0, radius=0.25)
+    >>> model = gyrostat.Model(body, [cavity])
+    >>> sol = gyrostat.solve(model, [0.05, 0.0, 2.0], (0.0, 36000.0), rtol=1e-10, n_out=201,
+    ...                      events=[Event("r", 1.9, direction=-1)])
+    >>> sol.status, sol.y.shape, round(float(sol.t_events[0][0]))
+    ('success', (201, 3), 14263)
+    >>> bool(abs(sol["angular_momentum_norm"][-1] / sol["angular_momentum_norm"][0] - 1) < 1e-7)
+    True
     """
     try:
         core = model._core
@@ -318,6 +356,69 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     :func:`solve`: every member watches the same events and stops on its own terminal event (the
     events are resolved against the first model's names: give members of one family); the first
     exception an event callable raises is raised again once the members have finished.
+
+    Parameters
+    ----------
+    models : gyrostat.ModelBase or sequence of them
+        One model for every member, or one per member.
+    y0s : array_like, shape (N, dim), or iterable of N states
+        The initial states (units in ``model.units``).
+    t_span : (float, float)
+        (t0, t1), in s, the same for every member.
+    threads : int, optional
+        C++ threads; ≤ 0 (default): every hardware thread.
+    method : str, optional
+        The integrator for every member (see :func:`solve`).
+    rtol : float, optional
+        Relative tolerance, dimensionless.
+    atol : float, optional
+        Absolute tolerance, in the state's units.
+    t_eval : array_like, optional
+        Output times of every member, in s.
+    n_out : int, optional
+        Evenly spaced output times when ``t_eval`` is not given.
+    every_step : bool, optional
+        Record every accepted step too (not in SIMD batches).
+    max_steps : int, optional
+        Most steps per member.
+    first_step : float, optional
+        First step size, in s.
+    max_step : float, optional
+        Largest step size, in s.
+    step : float, optional
+        Fixed step of ``method="splitting"``, in s.
+    splitting_order : {2, 4, 6}, optional
+        Order of ``method="splitting"``.
+    options : gyrostat.Options, optional
+        All of these at once; keywords override it.
+    events : Event, callable or list of them, optional
+        Watched by every member; each stops on its own terminal event.
+    dense_output : bool, optional
+        Keep each member's continuous extension (``sol(t)``).
+    progress : bool or callable, optional
+        A bar, or a callable of the fraction of members finished.
+    check_validity : bool, optional
+        Check an averaged model's assumptions along each member.
+    batch : bool, optional
+        Run the members a SIMD batch covers :data:`gyrostat.simd_lanes` at a time (default True).
+
+    Returns
+    -------
+    list of Solution
+        One per member, in index order.
+
+    Examples
+    --------
+    Three spin rates of one symmetric body with linear damping, integrated at once (r decays
+    as exp(-D t / C), to exp(-1) at t = 10 s):
+
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> model = gyrostat.Model(gyrostat.Body([2.0, 2.0, 1.0]), [gyrostat.LinearDamping(diagonal=[0.1, 0.1, 0.1])])
+    >>> y0s = np.array([[0.1, 0.0, 1.0], [0.1, 0.0, 2.0], [0.1, 0.0, 3.0]])
+    >>> sols = gyrostat.solve_ensemble(model, y0s, (0.0, 10.0), n_out=11)
+    >>> [round(float(sol["r"][-1] / sol["r"][0]), 4) for sol in sols]
+    [0.3679, 0.3679, 0.3679]
     """
     if isinstance(models, ModelBase):
         models = [models]

@@ -76,9 +76,44 @@ def _number(value, what: str) -> float:
     return float(value)
 
 
+def _documented_draw(cls):
+    """Gives ``cls.draw`` its docstring, the same for every distribution (with its own example)."""
+    example = {"Uniform": "Uniform(0.5, 1.5)", "Normal": "Normal(1.0, 0.1)", "LogUniform": "LogUniform(1e-3, 1e-1)"}
+    cls.draw.__doc__ = f"""One value drawn from the distribution.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The generator (a sweep gives member i ``SeedSequence(seed, spawn_key=(i,))``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import gyrostat
+        >>> value = gyrostat.{example[cls.__name__]}.draw(np.random.default_rng(7))
+        >>> value == gyrostat.{example[cls.__name__]}.draw(np.random.default_rng(7))
+        True
+        """
+    return cls
+
+
+@_documented_draw
 @dataclass(frozen=True)
 class Uniform:
-    """Uniform on [low, high)."""
+    """Uniform on [low, high): a distribution of a dispersed scene entry.
+
+    Parameters
+    ----------
+    low, high : float
+        The bounds, in the unit of the entry it disperses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> round(gyrostat.Uniform(0.5, 1.5).draw(np.random.default_rng(1)), 6)
+    1.011822
+    """
 
     low: float
     high: float
@@ -91,9 +126,23 @@ class Uniform:
         return float(rng.uniform(self.low, self.high))
 
 
+@_documented_draw
 @dataclass(frozen=True)
 class Normal:
-    """Normal with the given mean and standard deviation."""
+    """Normal with the given mean and standard deviation.
+
+    Parameters
+    ----------
+    mean, std : float
+        In the unit of the entry it disperses; std > 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> round(gyrostat.Normal(1.0, 0.1).draw(np.random.default_rng(1)), 6)
+    1.034558
+    """
 
     mean: float
     std: float
@@ -107,9 +156,23 @@ class Normal:
         return float(rng.normal(self.mean, self.std))
 
 
+@_documented_draw
 @dataclass(frozen=True)
 class LogUniform:
-    """log(value) uniform on [log low, log high): every decade equally likely."""
+    """log(value) uniform on [log low, log high): every decade equally likely.
+
+    Parameters
+    ----------
+    low, high : float
+        The bounds, 0 < low < high, in the unit of the entry it disperses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> round(gyrostat.LogUniform(1e-3, 1e-1).draw(np.random.default_rng(1)), 6)
+    0.010559
+    """
 
     low: float
     high: float
@@ -205,8 +268,30 @@ _NAME = re.compile(r"[A-Za-z_][^\s/]*")
 
 @dataclass(frozen=True)
 class Parameter:
-    """A varied parameter: its name (a coordinate of the Dataset), the scene paths it sets
-    (each to ``scale * value``), and either grid ``values`` or a ``distribution``."""
+    """A varied parameter of a sweep: its name (a coordinate of the Dataset), the scene paths it
+    sets (each to ``scale * value``), and either grid ``values`` or a ``distribution``.
+
+    Parameters
+    ----------
+    name : str
+        The coordinate's name (no spaces or '/').
+    paths : str or sequence of str
+        Scene paths it sets (``"torques[0].p0"``, ``"body.moments[0:2]"``).
+    values : sequence of float, optional
+        Grid values, in the unit of the entries it sets (divided by ``scale``).
+    distribution : Uniform, Normal or LogUniform, optional
+        A dispersion instead of a grid.
+    scale : float, optional
+        Each path is set to ``scale * value`` (default 1).
+    label : str, optional
+        Text for plots and tables (default: the name).
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> gyrostat.Parameter("A", ["body.moments[0]", "body.moments[1]"], values=[3.0, 4.0]).describe()["paths"]
+    ['body.moments[0]', 'body.moments[1]']
+    """
 
     name: str
     paths: tuple[str, ...]
@@ -238,6 +323,14 @@ class Parameter:
                              f"not {self.distribution!r}")
 
     def describe(self) -> dict:
+        """What the parameter is, as recorded in a sweep's ``attrs["plan"]``.
+
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Parameter("fill", "torques[0].p0", values=[1.0, 2.0], scale=1e-4).describe()
+        {'name': 'fill', 'label': 'fill', 'paths': ['torques[0].p0'], 'scale': 0.0001, 'values': [1.0, 2.0]}
+        """
         spec = {"values": list(self.values)} if self.values is not None else {
             "distribution": type(self.distribution).__name__, **self.distribution.__dict__}
         return {"name": self.name, "label": self.label or self.name, "paths": list(self.paths), "scale": self.scale,
@@ -245,7 +338,22 @@ class Parameter:
 
 
 def parameter_from_table(spec: Mapping, where: str = "[sweep.vary]") -> Parameter:
-    """A :class:`Parameter` from a scene's validated ``[[sweep.vary]]`` table."""
+    """A :class:`Parameter` from a scene's validated ``[[sweep.vary]]`` table.
+
+    Parameters
+    ----------
+    spec : mapping
+        The table (path or paths; values, or start, stop, num and spacing; or a distribution).
+    where : str, optional
+        How an error names the table.
+
+    Examples
+    --------
+    >>> from gyrostat import sweeps
+    >>> sweeps.parameter_from_table({"path": "body.moments[0:2]", "start": 1.0, "stop": 3.0, "num": 3,
+    ...                              "spacing": "linear", "scale": 1.0, "label": ""}).values
+    (1.0, 2.0, 3.0)
+    """
     paths = [spec["path"]] if "path" in spec else list(spec["paths"])
     grid_keys = [k for k in ("values", "start", "stop", "num") if k in spec]
     spread_keys = [k for k in ("distribution", "low", "high", "mean", "std") if k in spec]
@@ -288,7 +396,21 @@ _DISTRIBUTION_TEXT = re.compile(r"\s*(uniform|normal|loguniform)\s*\(([^,]+),([^
 
 def parameter_from_text(text: str) -> Parameter:
     """A parameter from the command line: ``PATH=START:STOP:NUM[:log]``, ``PATH=V1,V2,...``,
-    ``PATH~uniform(LOW,HIGH)``, ``PATH~normal(MEAN,STD)``, ``PATH~loguniform(LOW,HIGH)``."""
+    ``PATH~uniform(LOW,HIGH)``, ``PATH~normal(MEAN,STD)``, ``PATH~loguniform(LOW,HIGH)``.
+
+    Parameters
+    ----------
+    text : str
+        The ``--vary`` argument.
+
+    Examples
+    --------
+    >>> from gyrostat import sweeps
+    >>> sweeps.parameter_from_text("torques[0].diagonal[2]=0.1:0.3:3").values
+    (0.1, 0.2, 0.3)
+    >>> sweeps.parameter_from_text("initial.omega[2]~normal(1.0,0.05)").distribution
+    Normal(mean=1.0, std=0.05)
+    """
     path, sign, spec = (text.partition("=") if "=" in text and ("~" not in text or text.index("=") < text.index("~"))
                         else text.partition("~"))
     path = path.strip()
@@ -354,7 +476,34 @@ def _scene(scene):
 class Plan:
     """What a sweep solves: the scene (validated, with ``model = "auto"`` resolved), the run it
     sweeps, the parameters and how member i gets its values. Pure data, so that a chunk solves
-    the same members in this process or on a Dask worker."""
+    the same members in this process or on a Dask worker.
+
+    Parameters
+    ----------
+    scene : str, pathlib.Path, dict or gyrostat.scene.Scene
+        The scene.
+    vary : dict or list of Parameter
+        As in :func:`sweep`.
+    samples : int, optional
+        Members of a dispersion.
+    seed : int, optional
+        Seed of a dispersion (default: a fresh one, kept in ``seed``).
+    run : str, optional
+        The scene's run to sweep.
+
+    Examples
+    --------
+    >>> from gyrostat import sweeps
+    >>> scene = {"body": {"moments": [2.0, 2.0, 1.0]},
+    ...          "torques": [{"type": "linear_damping", "diagonal": [0.1, 0.1, 0.1]}],
+    ...          "initial": {"omega": [0.1, 0.0, 1.0]},
+    ...          "integration": {"model": "full", "t_span": [0.0, 10.0], "n_out": 11}}
+    >>> plan = sweeps.Plan(scene, {"torques[0].diagonal[2]": [0.1, 0.2]})
+    >>> plan.size, plan.mode, plan.run
+    (2, 'grid', 'full')
+
+    The examples of its attributes use this ``plan``.
+    """
 
     def __init__(self, scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None):
         scene = _scene(scene)
@@ -433,6 +582,13 @@ class Plan:
 
     @property
     def located(self):
+        """Each parameter's paths, parsed and located in the scene's schema (made once).
+
+        Examples
+        --------
+        >>> plan.located[0][1]
+        ('torques', 0, 'diagonal', 2)
+        """
         try:
             return self._located
         except AttributeError:
@@ -442,7 +598,18 @@ class Plan:
     # -- members
     def values(self, i: int) -> tuple[float, ...]:
         """Member i's parameter values (grid: row-major over the parameters; dispersion: drawn
-        from the member's own stream)."""
+        from the member's own stream), in the units of the entries they set.
+
+        Parameters
+        ----------
+        i : int
+            The member, 0 ≤ i < ``size``.
+
+        Examples
+        --------
+        >>> plan.values(1)
+        (0.2,)
+        """
         if not 0 <= i < self.size:
             raise IndexError(f"member {i} of a sweep of {self.size}")
         if self.mode == "grid":
@@ -452,7 +619,18 @@ class Plan:
         return tuple(p.distribution.draw(rng) for p in self.parameters)
 
     def document(self, values: Sequence[float]) -> dict:
-        """The scene document with ``values`` set, each changed key checked as in a scene file."""
+        """The scene document with ``values`` set, each changed key checked as in a scene file.
+
+        Parameters
+        ----------
+        values : sequence of float
+            One value per parameter.
+
+        Examples
+        --------
+        >>> plan.document([0.2])["torques"][0]["diagonal"]
+        [0.1, 0.1, 0.2]
+        """
         doc = self.base
         changed = {}
         for parameter, parts, located in self.located:
@@ -464,7 +642,23 @@ class Plan:
 
     def member(self, values: Sequence[float]):
         """The run (model, initial state, span, options) of the member with these values; raises
-        SceneError or ValueError naming the value when the physics refuses it."""
+        SceneError or ValueError naming the value when the physics refuses it.
+
+        Parameters
+        ----------
+        values : sequence of float
+            One value per parameter, as :meth:`values` gives them.
+
+        Returns
+        -------
+        gyrostat.kind.Run
+            The run the sweep solves for this member.
+
+        Examples
+        --------
+        >>> plan.member([0.2]).model
+        Model(Body(A1=2, A2=2, A3=1, k=[0, 0, 0]), torques=[LinearDamping(matrix=[[0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.2]])], attitude=False)
+        """
         from gyrostat.families import KINDS
         from gyrostat.scene import add_events
 
@@ -474,16 +668,41 @@ class Plan:
         return next(r for r in runs if r.name == self.run)
 
     def scene(self, i: int):
-        """Member i as a whole validated :class:`gyrostat.scene.Scene` (to rerun it alone)."""
+        """Member i as a whole validated :class:`gyrostat.scene.Scene` (to rerun it alone).
+
+        Parameters
+        ----------
+        i : int
+            The member.
+
+        Examples
+        --------
+        >>> plan.scene(1).name
+        'scene_member1'
+        """
         from gyrostat.scene import Scene
 
         return Scene.from_dict(self.document(self.values(i)), name=f"{self.scene_name}_member{i}")
 
     @property
     def names(self) -> tuple[str, ...]:
+        """The swept run's state components and outputs.
+
+        Examples
+        --------
+        >>> plan.names
+        ('p', 'q', 'r', 'angular_momentum_norm', 'kinetic_energy', 'nutation_angle')
+        """
         return self.state_names + self.output_names
 
     def describe(self) -> dict:
+        """The plan as recorded in the Dataset's ``attrs["plan"]``.
+
+        Examples
+        --------
+        >>> plan.describe()["shape"], plan.describe()["parameters"][0]["values"]
+        ([2], [0.1, 0.2])
+        """
         return {"scene": self.scene_name, "kind": self.kind_name, "run": self.run, "mode": self.mode,
                 "shape": list(self.shape), "seed": self.seed, "parameters": [p.describe() for p in self.parameters]}
 
@@ -564,7 +783,34 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
     ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``; with
     ``check_validity``, the assumptions of an averaged model are checked along each member (the
     count of broken ones and the first, per member). The same on every machine: a Dask task
-    runs exactly this."""
+    runs exactly this.
+
+    Parameters
+    ----------
+    plan : Plan
+        The sweep.
+    start, stop : int
+        The members, ``range(start, stop)``.
+    threads : int, optional
+        C++ threads (≤ 0: every core).
+    trajectories : bool, optional
+        Keep each member's trajectory.
+    extrema : sequence of str, optional
+        Quantities whose minimum and maximum are kept.
+    check_validity : bool, optional
+        Check an averaged model's assumptions along each member.
+    progress : callable, optional
+        Called with the number of members finished.
+
+    Examples
+    --------
+    >>> from gyrostat import sweeps
+    >>> from gyrostat.scene import SCENES
+    >>> plan = sweeps.Plan(SCENES / "forced_damped.toml", {"torques[0].moment[2]": [0.05, 0.1]})
+    >>> chunk = sweeps.solve_chunk(plan, 0, 2, trajectories=False)
+    >>> list(chunk["status"]), chunk["final_r"].round(4)  # r in rad/s at t1
+    (['success', 'success'], array([1.4521, 2.9912]))
+    """
     from gyrostat.modelbase import ModelBase
     from gyrostat.solve import solve_ensemble
 
@@ -747,7 +993,24 @@ def _finish(ds, plan_description: dict):
 
 def open_sweep(path: str | Path):
     """A sweep written with ``path=`` (or by ``gyrostat sweep``), as :func:`sweep` returns it:
-    a grid on its parameter axes (loaded into memory), a dispersion along ``member``."""
+    a grid on its parameter axes (loaded into memory), a dispersion along ``member``.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The NetCDF file.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import gyrostat
+    >>> from gyrostat.scene import SCENES
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "sweep.nc"
+    >>> _ = gyrostat.sweep(SCENES / "forced_damped.toml", {"initial.omega[0]": [1.0, 0.5]}, trajectories=False,
+    ...                    progress=False, path=path)
+    >>> list(gyrostat.sweeps.open_sweep(path).coords)  # the grid's axis, as sweep() returned it
+    ['initial.omega[0]']
+    """
     import xarray as xr
 
     ds = xr.open_dataset(path)
@@ -811,6 +1074,20 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
         bit for bit, except members that :func:`gyrostat.solve_ensemble` integrates in SIMD
         batches (``taylor`` or ``dop853`` on the gyrostat with constant and linear torques, the
         averaged model under ``dop853``), which equal them to the tolerance.
+
+    Examples
+    --------
+    The spin-down of a symmetric body under linear damping over a grid of two damping rates:
+    the axial rate r decays as exp(-D t / C), to exp(-1) at t = 10 s for D = 0.1 N m s.
+
+    >>> import gyrostat
+    >>> scene = {"body": {"moments": [2.0, 2.0, 1.0]},
+    ...          "torques": [{"type": "linear_damping", "diagonal": [0.1, 0.1, 0.1]}],
+    ...          "initial": {"omega": [0.1, 0.0, 1.0]},
+    ...          "integration": {"model": "full", "t_span": [0.0, 10.0], "n_out": 11}}
+    >>> ds = gyrostat.sweep(scene, {"torques[0].diagonal[2]": [0.1, 0.2]}, trajectories=False, progress=False)
+    >>> [round(float(r), 4) for r in ds["final_r"].values]
+    [0.3679, 0.1353]
     """
     plan = scene if isinstance(scene, Plan) else Plan(scene, vary, samples=samples, seed=seed, run=run)
     if trajectories and getattr(plan, "varies_n_out", False):
@@ -931,7 +1208,31 @@ def check_plot(plan: Plan, expression: str | None, *, trajectories: bool, extrem
                contour: float | None = None, lines: Sequence[Mapping] | None = None) -> str:
     """What a sweep's plot will show, checked before any member runs against the variables the
     sweep will have: the summary (None: the first final value; returned), the reference lines
-    (as many x as y values) and the contour (drawn on a grid over two parameters)."""
+    (as many x as y values) and the contour (drawn on a grid over two parameters).
+
+    Parameters
+    ----------
+    plan : Plan
+        The sweep.
+    expression : str or None
+        The summary (see :func:`summary`).
+    trajectories : bool
+        Whether the sweep keeps trajectories.
+    extrema : sequence of str, optional
+        Quantities with minimum and maximum.
+    contour : float, optional
+        A value of the summary to draw as a contour.
+    lines : sequence of dict, optional
+        Reference lines (label, x, y).
+
+    Examples
+    --------
+    >>> from gyrostat import sweeps
+    >>> from gyrostat.scene import SCENES
+    >>> plan = sweeps.Plan(SCENES / "forced_damped.toml", {"body.moments[2]": [2.5, 3.0]})
+    >>> sweeps.check_plot(plan, "max_kinetic_energy - min_kinetic_energy", trajectories=False)
+    'max_kinetic_energy - min_kinetic_energy'
+    """
     import xarray as xr
 
     extrema = plan.output_names if extrema is None else tuple(extrema)
@@ -956,7 +1257,25 @@ _ALLOWED = re.compile(r"[\sA-Za-z0-9_.+\-*/()]*")
 def summary(ds, expression: str):
     """A summary of a sweep by name or by an arithmetic expression of its variables
     (``"final_x / final_y"``, ``"max_kinetic_energy - min_kinetic_energy"``): + - * / ** and
-    parentheses over the Dataset's variables, nothing else; its ``units`` follow from theirs."""
+    parentheses over the Dataset's variables, nothing else; its ``units`` follow from theirs.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep's Dataset.
+    expression : str
+        A variable's name or an expression of them.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat.scene import SCENES
+    >>> ds = gyrostat.sweep(SCENES / "forced_damped.toml", {"body.moments[2]": [2.5, 3.0]}, trajectories=False,
+    ...                     progress=False)
+    >>> twice = gyrostat.sweeps.summary(ds, "final_kinetic_energy * 2")
+    >>> twice.values.round(4), twice.attrs["units"]
+    (array([5.2713, 6.2761]), 'J')
+    """
     import ast
 
     if not isinstance(expression, str) or not _ALLOWED.fullmatch(expression):

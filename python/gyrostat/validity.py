@@ -22,7 +22,23 @@ __all__ = ["SMALL", "PAPER_RATIO", "ValidityWarning", "Assumption", "check", "ch
 def check_scene(scene, warn: bool = True) -> list[Assumption]:
     """Checks a scene (a :class:`gyrostat.scene.Scene` or the path of its TOML file) at its
     initial state, for every model the scene uses, without solving it. (`gyrostat run` checks
-    along the whole solution.)"""
+    along the whole solution.)
+
+    Parameters
+    ----------
+    scene : gyrostat.scene.Scene or str or pathlib.Path
+        The scene or its file.
+    warn : bool, optional
+        Warn for each broken assumption (default True).
+
+    Examples
+    --------
+    >>> from gyrostat import validity
+    >>> from gyrostat.scene import SCENES
+    >>> broken = [c for c in validity.check_scene(SCENES / "p002_paper_scene.toml", warn=False) if not c.holds]
+    >>> broken[0].statement
+    'Reynolds number |ω| b²/ν ≪ 1'
+    """
     if not isinstance(scene, Scene):
         scene = Scene.from_toml(scene)
     results: list[Assumption] = []

@@ -53,7 +53,21 @@ SEPARATRIX_LIMIT = 1e-3
 def paper_torque(epsilon: float, a: Sequence[float] = (1.0, 1.0), b: Sequence[float] = (1.0, 1.0)):
     """Paper 003's (3.1): M = ε(−a(τ) p, −a(τ) q, −b(τ) r), τ = εt, a(τ) = Σ a_k τ^k, b likewise.
 
-    As a polynomial in t: D_k = ε^{k+1} diag(a_k, a_k, b_k) of :class:`gyrostat.ResistiveMedium`."""
+    As a polynomial in t: D_k = ε^{k+1} diag(a_k, a_k, b_k) of :class:`gyrostat.ResistiveMedium`.
+
+    Parameters
+    ----------
+    epsilon : float
+        ε ≥ 0, the small parameter (τ = εt; dimensionless).
+    a, b : sequence of float, optional
+        The coefficients a_k, b_k of a(τ) and b(τ), in N m s (default 1 + τ each).
+
+    Examples
+    --------
+    >>> from gyrostat import lagrange
+    >>> lagrange.paper_torque(0.01, a=[1.0, 0.5], b=[2.0])
+    ResistiveMedium(coefficients=[[[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.02]], [[5e-05, 0, 0], [0, 5e-05, 0], [0, 0, 0]]])
+    """
     epsilon = float(epsilon)
     if not math.isfinite(epsilon) or epsilon < 0:
         raise ValueError(f"epsilon = {epsilon} must be finite and non-negative")
@@ -76,25 +90,73 @@ class _TopModel(ModelBase):
 
 class LagrangeTop(_TopModel):
     """The full heavy symmetric top (A, A, C), μ = m g l > 0, plus torques (C++:
-    model/lagrange_top.hpp). State (p, q, r, Q_w, Q_x, Q_y, Q_z) (``q_w``…``q_z``); outputs G_z,
-    H (its first integrals), kinetic_energy, u1 ≤ u2 ≤ u3, m = k², v = ⟨cos θ⟩, T_nut at its
-    (G_z, H, r), cos_theta and the z-x-z Euler angles psi, theta, phi."""
+    model/lagrange_top.hpp).
+
+    State (p, q, r) in rad/s and the attitude quaternion (``q_w``…``q_z``); outputs G_z and H
+    (its first integrals, kg m^2/s and J), kinetic_energy, u1 ≤ u2 ≤ u3, m = k², v = ⟨cos θ⟩,
+    T_nut (s) at its (G_z, H, r), cos_theta and the z-x-z Euler angles psi, theta, phi (rad).
+
+    Parameters
+    ----------
+    A : float
+        Equatorial moment of inertia about the fixed point, in kg m^2.
+    C : float
+        Axial moment of inertia, in kg m^2.
+    mu : float
+        μ = m g l, the restoring torque's scale, in N m.
+    torques : sequence of torques, optional
+        Perturbation torques (e.g. :func:`gyrostat.lagrange.paper_torque`).
+
+    Examples
+    --------
+    Paper 003's top at θ0 = 60° without perturbation: G_z and H stay constant.
+
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> from gyrostat import lagrange
+    >>> top = lagrange.LagrangeTop(A=1.5, C=1.0, mu=0.5)
+    >>> y0 = lagrange.initial_state([0.0, 0.0, np.sqrt(3.0)], theta=np.radians(60.0))
+    >>> sol = gyrostat.solve(top, y0, (0.0, 20.0))
+    >>> round(float(sol["H"][0]), 6), bool(abs(sol["H"][-1] - sol["H"][0]) < 1e-7)
+    (1.75, True)
+    """
 
     kind = "lagrange_top"
     _make = staticmethod(_core.lagrange_top_model)
 
 
 class LagrangeAveraged(_TopModel):
-    """The top averaged over the nutation (C++: model/lagrange_averaged.hpp). State
-    (G_z, H, r) (a full top state given as y0 is mapped to its (G_z, H, r)); outputs u1, u2, u3,
-    m, v, T_nut and the adiabaticity N = rate·T_nut. Torques of the paper's class (2.3) only:
-    resistive media and linear damping with D = diag(d, d, d3), axial constant torques."""
+    """The top averaged over the nutation (C++: model/lagrange_averaged.hpp).
+
+    State (G_z, H, r) (a full top state given as y0 is mapped to its (G_z, H, r)); outputs u1,
+    u2, u3, m, v, T_nut (s) and the adiabaticity N = rate·T_nut. Torques of the paper's class
+    (2.3) only: resistive media and linear damping with D = diag(d, d, d3), axial constant torques.
+    Made from the same parameters as :class:`LagrangeTop` (A, C in kg m^2, mu in N m, torques).
+
+    Examples
+    --------
+    >>> from gyrostat import lagrange
+    >>> averaged = lagrange.LagrangeAveraged(A=1.5, C=1.0, mu=0.5, torques=[lagrange.paper_torque(0.01)])
+    >>> averaged.state_names
+    ('G_z', 'H', 'r')
+    """
 
     kind = "lagrange_averaged"
     _make = staticmethod(_core.lagrange_averaged_model)
 
     def rate(self, t) -> np.ndarray:
-        """max(|d(t)|/A, |d3(t)|/C): the relaxation rate of the slow variables."""
+        """max(|d(t)|/A, |d3(t)|/C): the relaxation rate of the slow variables, in 1/s.
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times, in s.
+
+        Examples
+        --------
+        >>> averaged.rate([0.0, 1.0])  # d(t) = ε + ε² t with ε = 0.01
+        array([0.01  , 0.0101])
+        """
         return np.array([self._core.rate(float(s)) for s in np.atleast_1d(t)])
 
     def check(self, solution) -> list:
@@ -102,7 +164,24 @@ class LagrangeAveraged(_TopModel):
 
 
 def initial_state(omega, theta: float, phi: float = 0.0, psi: float = 0.0) -> np.ndarray:
-    """(p, q, r, Q) from ω and the z-x-z Euler angles (radians): Q = q_z(ψ) ⊗ q_x(θ) ⊗ q_z(φ)."""
+    """(p, q, r, Q) from ω and the z-x-z Euler angles: Q = q_z(ψ) ⊗ q_x(θ) ⊗ q_z(φ).
+
+    Parameters
+    ----------
+    omega : array_like, shape (3,)
+        Angular velocity in body axes, in rad/s.
+    theta : float
+        Nutation angle θ (from the upward vertical), in rad.
+    phi, psi : float, optional
+        Proper rotation φ and precession ψ, in rad (default 0).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import lagrange
+    >>> lagrange.initial_state([0.0, 0.0, 1.0], theta=np.pi / 2).round(6)
+    array([0.      , 0.      , 1.      , 0.707107, 0.707107, 0.      , 0.      ])
+    """
     omega = np.asarray(omega, float).ravel()
     if omega.size != 3 or not np.all(np.isfinite(omega)):
         raise ValueError(f"omega must be 3 finite numbers, got {omega!r}")
@@ -110,13 +189,45 @@ def initial_state(omega, theta: float, phi: float = 0.0, psi: float = 0.0) -> np
 
 
 def vertical(y) -> np.ndarray:
-    """(n, 3) upward vertical γ in body axes from full states: the third row of R(Q)."""
+    """(n, 3) upward vertical γ in body axes from full states: the third row of R(Q).
+
+    Parameters
+    ----------
+    y : array_like, shape (n, 7)
+        Full top states (p, q, r, q_w, q_x, q_y, q_z).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import lagrange
+    >>> y = lagrange.initial_state([0.0, 0.0, 1.0], theta=np.radians(60.0))
+    >>> lagrange.vertical(y[None, :]).round(6)
+    array([[0.      , 0.866025, 0.5     ]])
+    """
     y = np.atleast_2d(np.asarray(y, float))
     return attitude.rotation_matrix(y[:, 3:7])[:, 2, :]
 
 
 def nutation_table(model, slow) -> dict[str, np.ndarray]:
-    """u1, u2, u3, m = k², alpha, v = ⟨cos θ⟩, T_nut = 2K/α for each row (G_z, H, r)."""
+    """u1, u2, u3, m = k², alpha (1/s), v = ⟨cos θ⟩, T_nut = 2K/α (s) for each row (G_z, H, r).
+
+    Parameters
+    ----------
+    model : LagrangeTop or LagrangeAveraged
+        The top (A, C, μ).
+    slow : array_like, shape (n, 3)
+        Slow states (G_z in kg m^2/s, H in J, r in rad/s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import lagrange
+    >>> top = lagrange.LagrangeTop(A=1.5, C=1.0, mu=0.5)
+    >>> G_z, H = 0.5 * np.sqrt(3.0), 1.75  # of y0: G_z = C r cos θ0, H = T + μ cos θ0
+    >>> table = lagrange.nutation_table(top, [[G_z, H, np.sqrt(3.0)]])
+    >>> float(table["u2"][0].round(6)), float(table["T_nut"][0].round(6))
+    (0.5, 5.839611)
+    """
     slow = np.atleast_2d(np.asarray(slow, float))
     table = np.asarray(_core.lagrange_nutation_table(model.A, model.C, model.mu, slow[:, 0].tolist(),
                                                      slow[:, 1].tolist(), slow[:, 2].tolist()))
@@ -125,7 +236,29 @@ def nutation_table(model, slow) -> dict[str, np.ndarray]:
 
 def unperturbed(model, y0, t, t0: float = 0.0) -> tuple[np.ndarray, "_core.LagrangeUnperturbed"]:
     """u(t) = cos θ(t) of the unperturbed top through the initial full state y0 (paper (1.3),
-    u = u1 + (u2 − u1) sn²(αt + β | k²)); returns (u, the closed-form object)."""
+    u = u1 + (u2 − u1) sn²(αt + β | k²)); returns (u, the closed-form object).
+
+    Parameters
+    ----------
+    model : LagrangeTop
+        The top (A, C, μ).
+    y0 : array_like, shape (7,)
+        The full state at t0.
+    t : array_like
+        Times, in s.
+    t0 : float, optional
+        The time of y0, in s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import lagrange
+    >>> top = lagrange.LagrangeTop(A=1.5, C=1.0, mu=0.5)
+    >>> y0 = lagrange.initial_state([0.0, 0.0, np.sqrt(3.0)], theta=np.radians(60.0))
+    >>> u, closed_form = lagrange.unperturbed(top, y0, [0.0, 1.0])
+    >>> u.round(6)
+    array([0.5     , 0.382275])
+    """
     y0 = np.asarray(y0, float).ravel()
     exact = _core.LagrangeUnperturbed(model.A, model.C, model.mu, y0[:3], vertical(y0)[0], float(t0))
     return np.asarray(exact.u(np.asarray(t, float).ravel().tolist())), exact
@@ -135,8 +268,32 @@ def check(model: LagrangeAveraged, slow, times, warn: bool = True, outputs: dict
     """The averaged model's assumptions along a trajectory of (G_z, H, r) at `times`:
     adiabaticity N = rate·T_nut ≪ 1, distance from the separatrix 1 − k² ≥ 1e-3, and the regular
     precession limit k² → 0 (reported; the averaging holds there). Warns for broken ones.
-    ``outputs``: the outputs a solve recorded at those times (m, T_nut, adiabaticity), used as
-    they are; without them the nutation is evaluated at the given states."""
+
+    Parameters
+    ----------
+    model : LagrangeAveraged
+        The averaged top.
+    slow : array_like, shape (n, 3)
+        (G_z, H, r) along the trajectory.
+    times : array_like, shape (n,)
+        Their times, in s.
+    warn : bool, optional
+        Warn for broken ones (default True).
+    outputs : dict, optional
+        The outputs a solve recorded at those times (m, T_nut, adiabaticity), used as they are;
+        without them the nutation is evaluated at the given states.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> from gyrostat import lagrange
+    >>> averaged = lagrange.LagrangeAveraged(A=1.5, C=1.0, mu=0.5, torques=[lagrange.paper_torque(0.001)])
+    >>> y0 = lagrange.initial_state([0.0, 0.0, np.sqrt(3.0)], theta=np.radians(60.0))
+    >>> sol = gyrostat.solve(averaged, y0, (0.0, 100.0), n_out=3)
+    >>> [bool(c.holds) for c in lagrange.check(averaged, sol.y, sol.t, warn=False)]
+    [True, True, True]
+    """
     slow = np.atleast_2d(np.asarray(slow, float))
     times = np.asarray(times, float)
     if outputs is not None:
@@ -177,23 +334,95 @@ def check(model: LagrangeAveraged, slow, times, warn: bool = True, outputs: dict
 
 def turning_points(direction: int = 0, terminal: bool | int = False) -> Event:
     """The turning points of the nutation of the full top: d(cos θ)/dt = γ1 q − γ2 p = 0 (the
-    output ``cos_theta_rate``); direction −1: θ at a minimum (cos θ at a maximum), +1: θ at a maximum."""
+    output ``cos_theta_rate``); direction −1: θ at a minimum (cos θ at a maximum), +1: θ at a maximum.
+
+    Parameters
+    ----------
+    direction : {-1, 0, 1}, optional
+        Which turning points (default both).
+    terminal : bool or int, optional
+        Stop the run at the first (True) or n-th one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> from gyrostat import lagrange
+    >>> top = lagrange.LagrangeTop(A=1.5, C=1.0, mu=0.5)
+    >>> y0 = lagrange.initial_state([0.0, 0.0, np.sqrt(3.0)], theta=np.radians(60.0))
+    >>> sol = gyrostat.solve(top, y0, (0.0, 20.0), events=[lagrange.turning_points(direction=1)])
+    >>> np.diff(sol.t_events[0]).round(4)  # one nutation period apart
+    array([5.8396, 5.8396])
+    """
     return Event("cos_theta_rate", 0.0, direction, terminal, "nutation turning point")
 
 
 def near_separatrix(limit: float = SEPARATRIX_LIMIT, terminal: bool | int = False) -> Event:
     """k² rising through 1 − limit: the motion approaches the separatrix, where the nutation
-    period diverges and the averaging degrades (full or averaged top: the output ``m``)."""
+    period diverges and the averaging degrades (full or averaged top: the output ``m``).
+
+    Parameters
+    ----------
+    limit : float, optional
+        1 − k² at the event (dimensionless; default 1e-3).
+    terminal : bool or int, optional
+        Stop the run there.
+
+    Examples
+    --------
+    >>> from gyrostat import lagrange
+    >>> lagrange.near_separatrix().value
+    0.999
+    """
     return Event("m", 1.0 - float(limit), 1, terminal, f"1 - k^2 falls to {limit:g}")
 
 
 def averaging_fails(limit: float = SMALL, terminal: bool | int = False) -> Event:
-    """The averaged top's adiabaticity N = rate·T_nut rising through ``limit``."""
+    """The averaged top's adiabaticity N = rate·T_nut rising through ``limit``.
+
+    Parameters
+    ----------
+    limit : float, optional
+        N at the event (dimensionless; default "≪ 1" = 0.1).
+    terminal : bool or int, optional
+        Stop the run there.
+
+    Returns
+    -------
+    gyrostat.events.Event
+        On the averaged top's output ``adiabaticity``, upward.
+
+    Examples
+    --------
+    >>> from gyrostat import lagrange
+    >>> lagrange.averaging_fails(terminal=True).quantity
+    'adiabaticity'
+    """
     return Event("adiabaticity", float(limit), 1, terminal, f"N = rate T_nut reaches {limit:g}")
 
 
 def r_exact(r0: float, C: float, epsilon: float, b: Sequence[float], t) -> np.ndarray:
-    """Paper (3.3) generalised: r = r0 exp(−(1/C) ∫_0^τ b(s) ds), τ = εt, b(τ) = Σ b_k τ^k."""
+    """Paper (3.3) generalised: r = r0 exp(−(1/C) ∫_0^τ b(s) ds), τ = εt, b(τ) = Σ b_k τ^k.
+
+    Parameters
+    ----------
+    r0 : float
+        r at t = 0, in rad/s.
+    C : float
+        Axial moment of inertia, in kg m^2.
+    epsilon : float
+        ε (dimensionless).
+    b : sequence of float
+        The coefficients b_k of b(τ), in N m s.
+    t : array_like
+        Times, in s.
+
+    Examples
+    --------
+    >>> from gyrostat import lagrange
+    >>> lagrange.r_exact(1.0, 1.0, 0.01, [1.0], [0.0, 100.0]).round(6)  # r0 exp(-1) at τ = 1
+    array([1.      , 0.367879])
+    """
     tau = epsilon * np.asarray(t, float)
     integral = sum(bk * tau ** (k + 1) / (k + 1) for k, bk in enumerate(b))
     return r0 * np.exp(-integral / C)

@@ -37,11 +37,38 @@ class MovingMassModel(ModelBase):
     """The explicit model behind the damper reduction: a carrier plus a point mass on a spring
     (Ω² = c/μ) with a viscous damper (λ = δ/μ), attached on the z axis at distance ρ.
 
-    State (9): ω, the mass's displacement u and its velocity v relative to the carrier (body
-    axes). ``body`` holds the whole system's moments with the mass at rest; the carrier's own are
-    (A1 − μρ², A2 − μρ², A3). Extra torques act on the carrier. Stiff for a strong damper: solve
-    it with ``method="cvode_bdf"``. :meth:`quasi_static_state` gives (u, v) for a start without
-    free oscillation of the mass. Outputs: |K| (conserved) and the energy E (dissipated).
+    State (9): ω (rad/s), the mass's displacement u (m) and its velocity v (m/s) relative to the
+    carrier (body axes). ``body`` holds the whole system's moments with the mass at rest; the
+    carrier's own are (A1 − μρ², A2 − μρ², A3). Extra torques act on the carrier. Stiff for a
+    strong damper: solve it with ``method="cvode_bdf"``. :meth:`quasi_static_state` gives (u, v)
+    for a start without free oscillation of the mass. Outputs: |K| (conserved) and the energy E
+    (dissipated). :meth:`check` measures the mass's displacement |u|/ρ ≪ 1 and the damper
+    torque's assumptions, for the reduction it stands behind.
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        The system's moments with the mass at rest, in kg m^2.
+    mass : float
+        The mass μ, in kg.
+    arm : float
+        Its distance ρ from the centre of mass on the z axis, in m.
+    frequency : float
+        The spring's frequency Ω = sqrt(c/μ), in rad/s.
+    damping : float
+        λ = δ/μ, in 1/s.
+    torques : sequence of torques, optional
+        External torques on the carrier.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> model = gyrostat.MovingMassModel(gyrostat.Body([1.5, 1.5, 1.0]), mass=0.01, arm=1.0, frequency=30.0,
+    ...                                  damping=10.0)
+    >>> model.dim
+    9
+
+    The examples of its methods use this ``model``.
     """
 
     kind = "moving_mass"
@@ -54,20 +81,50 @@ class MovingMassModel(ModelBase):
         self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
 
     def damper(self) -> _core.MovingMassDamper:
-        """The reduced (quasi-static) torque of the same mass, spring and damper."""
+        """The reduced (quasi-static) torque of the same mass, spring and damper.
+
+        Examples
+        --------
+        >>> model.damper()
+        MovingMassDamper(mass=0.01, arm=1, frequency=30, damping=10)
+        """
         return _core.MovingMassDamper(self.mass, self.arm, self.frequency, self.damping)
 
     def quasi_static_state(self, omega) -> np.ndarray:
+        """The full state (ω, u, v) with the mass at its quasi-static displacement for this ω: a
+        start without free oscillation of the mass.
+
+        Parameters
+        ----------
+        omega : array_like, shape (3,)
+            Angular velocity in body axes, in rad/s.
+
+        Examples
+        --------
+        >>> model.quasi_static_state([0.1, 0.0, 1.0]).shape
+        (9,)
+        """
         return np.asarray(self._core.quasi_static_state(floats(omega, "omega")))
 
     def check(self, solution) -> list:
-        """The model's assumptions along a solution: the mass's displacement |u|/ρ ≪ 1 (and the
-        damper torque's, for the reduction it stands behind)."""
         return check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
 
     def assumptions(self, states, times, outputs=None) -> list:
         """A point mass on a linear spring next to its attachment (C++ output displacement_ratio
-        = |u|/ρ)."""
+        = |u|/ρ).
+
+        Parameters
+        ----------
+        states, times, outputs
+            As in :meth:`gyrostat.ModelBase.assumptions`: (n, 9) states, their times in s, what a
+            solve recorded at them.
+
+        Examples
+        --------
+        >>> state = model.quasi_static_state([0.1, 0.0, 1.0])
+        >>> bool(model.assumptions(state[None, :], [0.0])[0].holds)
+        True
+        """
         results = []
         # the explicit model: a point mass on a linear spring next to its attachment (C++ output
         # displacement_ratio = |u|/ρ)

@@ -64,18 +64,62 @@ def _finite(value, what: str) -> float:
 
 
 def constant(value: float) -> _core.MagnitudeLaw:
-    """L(t) = value."""
+    """L(t) = value: a constant magnitude law of the servo torque.
+
+    Parameters
+    ----------
+    value : float
+        L, in N m.
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> law = orthogonal.constant(0.1)
+    >>> law.kind, law(3.0)
+    ('constant', 0.1)
+    """
     return _core.MagnitudeLaw.constant(_finite(value, "constant L"))
 
 
 def polynomial(coefficients: Sequence[float]) -> _core.MagnitudeLaw:
-    """L(t) = Σ c_i tⁱ, coefficients (c0, c1, …)."""
+    """L(t) = Σ c_i tⁱ, coefficients (c0, c1, …).
+
+    Parameters
+    ----------
+    coefficients : sequence of float
+        c_i, in N m / s^i.
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> round(orthogonal.polynomial([0.1, 0.02])(2.0), 12)
+    0.14
+    """
     return _core.MagnitudeLaw.polynomial([_finite(c, f"polynomial coefficient {i}") for i, c in enumerate(coefficients)])
 
 
 def harmonic(mean: float, amplitudes: Sequence[float] = (), frequencies: Sequence[float] = (),
              phases: Sequence[float] | None = None) -> _core.MagnitudeLaw:
-    """L(t) = L0 + Σ A_i sin(w_i t + φ_i) (phases default to 0)."""
+    """L(t) = L0 + Σ A_i sin(w_i t + φ_i) (phases default to 0).
+
+    Parameters
+    ----------
+    mean : float
+        L0, in N m.
+    amplitudes : sequence of float, optional
+        A_i, in N m.
+    frequencies : sequence of float, optional
+        w_i, in rad/s.
+    phases : sequence of float, optional
+        φ_i, in rad (default 0).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gyrostat import orthogonal
+    >>> round(orthogonal.harmonic(0.1, [0.05], [2.0])(np.pi / 4), 12)
+    0.15
+    """
     amplitudes = [float(a) for a in np.atleast_1d(amplitudes)]
     frequencies = [float(w) for w in np.atleast_1d(frequencies)]
     phases = [0.0] * len(amplitudes) if phases is None else [float(p) for p in np.atleast_1d(phases)]
@@ -84,7 +128,24 @@ def harmonic(mean: float, amplitudes: Sequence[float] = (), frequencies: Sequenc
 
 def tabulated(times: Sequence[float], values: Sequence[float], interpolation: str = "linear") -> _core.MagnitudeLaw:
     """L(t) interpolated in a table (``"linear"`` or ``"cubic"`` Hermite); held constant outside it.
-    Times must increase strictly: a zero or negative spacing raises ValueError naming it."""
+    Times must increase strictly: a zero or negative spacing raises ValueError naming it.
+
+    Parameters
+    ----------
+    times : sequence of float
+        The table's times, in s.
+    values : sequence of float
+        L at those times, in N m.
+    interpolation : {"linear", "cubic"}, optional
+        Between the times.
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> law = orthogonal.tabulated([0.0, 1.0, 2.0], [0.0, 1.0, 0.5])
+    >>> law(0.5), law(5.0)
+    (0.5, 0.5)
+    """
     if interpolation not in ("linear", "cubic"):
         raise ValueError(f"interpolation = {interpolation!r}: choose 'linear' or 'cubic'")
     return _core.MagnitudeLaw.tabulated([float(t) for t in np.ravel(times)], [float(v) for v in np.ravel(values)],
@@ -92,7 +153,19 @@ def tabulated(times: Sequence[float], values: Sequence[float], interpolation: st
 
 
 def law_from_spec(spec: dict | float) -> _core.MagnitudeLaw:
-    """A law from a scene table: a number, or {kind = "constant"|"polynomial"|"harmonic"|"tabulated", …}."""
+    """A law from a scene table: a number, or {kind = "constant"|"polynomial"|"harmonic"|"tabulated", …}.
+
+    Parameters
+    ----------
+    spec : dict or float
+        The scene's ``law`` (values in N m, times in s).
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> round(orthogonal.law_from_spec({"kind": "polynomial", "coefficients": [0.1, 0.02]})(2.0), 12)
+    0.14
+    """
     if isinstance(spec, (int, float)):
         return constant(spec)
     kind = spec.get("kind", "constant")
@@ -120,6 +193,37 @@ class OrthogonalModel(ModelBase):
     ``regularisation``: ``"threshold"`` (default: the paper's torque wherever |Q| ≥ δ = η|ω||G|,
     tapered to L Q/n, n = (|Q|² + δ²)/(2δ), below) or ``"smooth"`` (L Q/√(|Q|² + δ²) everywhere:
     smooth, but the applied L is off by a relative δ²/2|Q|² at every |Q|).
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        Moments (kg m^2) and rotor momentum k (kg m^2/s).
+    law : gyrostat.orthogonal law or float
+        The magnitude L(t) of the torque, in N m (:func:`constant`, :func:`polynomial`,
+        :func:`harmonic`, :func:`tabulated`; a number is a constant law).
+    torques : sequence of torques, optional
+        Other torques, added.
+    attitude : bool, optional
+        Integrate the attitude quaternion too.
+    eta : float, optional
+        The regularisation's scale η (δ = η|ω||G|; dimensionless).
+    regularisation : {"threshold", "smooth"}, optional
+        How the torque is tapered near Q = 0 (above).
+
+    Examples
+    --------
+    The torque is orthogonal to G and ω: |G| and h = ω·Jω stay constant.
+
+    >>> import gyrostat
+    >>> from gyrostat import orthogonal
+    >>> model = orthogonal.OrthogonalModel(gyrostat.Body([3.0, 2.0, 1.0]), 0.1)
+    >>> model.state_names
+    ('p', 'q', 'r', 'tau')
+    >>> sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 10.0))
+    >>> bool(abs(sol["angular_momentum_norm"][-1] / sol["angular_momentum_norm"][0] - 1) < 1e-8)
+    True
+
+    The examples of its attributes use this ``model``.
     """
 
     kind = "orthogonal_torque"
@@ -141,19 +245,57 @@ class OrthogonalModel(ModelBase):
 
     @property
     def moments(self) -> np.ndarray:
+        """The body's principal moments (A1, A2, A3), in kg m^2.
+
+        Examples
+        --------
+        >>> model.moments
+        array([3., 2., 1.])
+        """
         return np.asarray(self.body.moments, float)
 
     @property
     def rotor(self) -> np.ndarray:
+        """The rotor momentum k in body axes, in kg m^2/s.
+
+        Examples
+        --------
+        >>> model.rotor
+        array([0., 0., 0.])
+        """
         return np.asarray(self.body.rotor, float)
 
     def tau_rate(self, t, omega) -> np.ndarray:
-        """g = dτ/dt at times t for angular velocities omega (n, 3)."""
+        """g = dτ/dt = 1 − L/|Q| at times t for angular velocities omega (dimensionless).
+
+        Parameters
+        ----------
+        t : float or array_like, shape (n,)
+            Times, in s.
+        omega : array_like, shape (n, 3)
+            Angular velocities in body axes, in rad/s.
+
+        Examples
+        --------
+        >>> model.tau_rate([0.0], [[0.1, 0.2, 1.0]]).round(6)
+        array([0.647327])
+        """
         t = np.atleast_1d(np.asarray(t, float))
         return np.asarray(self._core.tau_rate(t, np.atleast_2d(np.asarray(omega, float))))
 
     def torque_free(self, attitude: bool | None = None) -> Model:
-        """The Zhukovsky–Volterra gyrostat of the same body (the full model without torque)."""
+        """The Zhukovsky–Volterra gyrostat of the same body (the full model without torque).
+
+        Parameters
+        ----------
+        attitude : bool, optional
+            With the attitude quaternion (default: as this model).
+
+        Examples
+        --------
+        >>> model.torque_free()
+        Model(Body(A1=3, A2=2, A3=1, k=[0, 0, 0]), torques=[], attitude=False)
+        """
         return Model(self.body, attitude=self.attitude if attitude is None else attitude)
 
     def __repr__(self) -> str:
@@ -167,7 +309,19 @@ G_FALLS, G_RISES = "g falls through 0", "g rises through 0"
 def g_zero(terminal: bool | int = False) -> list[Event]:
     """The events where g = dτ/dt = 1 − L/|Q| crosses zero: falling (τ stops and then runs
     backwards) and rising (τ turns forward again), located by the engine on the integrator's
-    continuous extension. :func:`tau_report` reads them."""
+    continuous extension. :func:`tau_report` reads them.
+
+    Parameters
+    ----------
+    terminal : bool or int, optional
+        Stop the run at the first (True) or n-th crossing.
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> [event.name for event in orthogonal.g_zero()]
+    ['g falls through 0', 'g rises through 0']
+    """
     return [Event("g", 0.0, -1, terminal, G_FALLS), Event("g", 0.0, 1, terminal, G_RISES)]
 
 
@@ -178,7 +332,27 @@ def tau_report(model: OrthogonalModel, sol, freeze_tol: float = 1e-6) -> dict:
 
     What the motion does: ω moves along the torque-free orbit with speed g. Where g = 0 the servo
     torque cancels ω × G and ω stands still (a uniform rotation about a fixed inertial axis);
-    where g < 0 the body retraces the ZV orbit backwards (τ decreases)."""
+    where g < 0 the body retraces the ZV orbit backwards (τ decreases).
+
+    Parameters
+    ----------
+    model : OrthogonalModel
+        The model solved.
+    sol : gyrostat.Solution
+        Its run, solved with ``events=orthogonal.g_zero()``.
+    freeze_tol : float, optional
+        |g| and |ω̇| (rad/s²) below which the end state counts as frozen.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat import orthogonal
+    >>> model = orthogonal.OrthogonalModel(gyrostat.Body([3.0, 2.0, 1.0]), 0.1)
+    >>> sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 10.0), events=orthogonal.g_zero())
+    >>> report = orthogonal.tau_report(model, sol)
+    >>> round(report["min_g"], 4), report["crossings"]  # L < min|Q|: g stays positive
+    (0.6162, [])
+    """
     names = sol.event_names
     if G_FALLS not in names or G_RISES not in names:
         raise ValueError("tau_report needs the crossings of g = 0: solve with events=orthogonal.g_zero()")
@@ -236,7 +410,27 @@ def tau_report(model: OrthogonalModel, sol, freeze_tol: float = 1e-6) -> dict:
 def orbit_q_range(model: OrthogonalModel, omega0, span: float | None = None, n: int = 20001) -> tuple[float, float]:
     """min and max of |Q| along the torque-free orbit through ω0 (sampled over τ ∈ [0, span]).
     For a constant L this decides the regime: L < min: τ → +∞; L > max: τ → −∞; in between:
-    τ converges to a τ* with |Q(τ*)| = L (the motion freezes)."""
+    τ converges to a τ* with |Q(τ*)| = L (the motion freezes).
+
+    Parameters
+    ----------
+    model : OrthogonalModel
+        The model (its body and rotor).
+    omega0 : array_like, shape (3,)
+        ω at τ = 0, in rad/s.
+    span : float, optional
+        The τ sampled, in s (default: 400 rotations' worth).
+    n : int, optional
+        Samples.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat import orthogonal
+    >>> model = orthogonal.OrthogonalModel(gyrostat.Body([3.0, 2.0, 1.0]), 0.1)
+    >>> [round(x, 4) for x in orthogonal.orbit_q_range(model, [0.1, 0.2, 1.0])]  # in N m
+    [0.2606, 0.3116]
+    """
     omega0 = np.asarray(omega0, float)
     J, k = model.moments, model.rotor
     if span is None:
@@ -248,7 +442,23 @@ def orbit_q_range(model: OrthogonalModel, omega0, span: float | None = None, n: 
 
 
 def constant_law_regime(model: OrthogonalModel, omega0) -> str | None:
-    """For a constant L: which of the three regimes (docs §Singular cases) applies; None otherwise."""
+    """For a constant L: which of the three regimes (docs §Singular cases) applies; None otherwise.
+
+    Parameters
+    ----------
+    model : OrthogonalModel
+        The model, with a constant law.
+    omega0 : array_like, shape (3,)
+        ω at t = 0, in rad/s.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat import orthogonal
+    >>> model = orthogonal.OrthogonalModel(gyrostat.Body([3.0, 2.0, 1.0]), 0.1)
+    >>> orthogonal.constant_law_regime(model, [0.1, 0.2, 1.0])
+    'L = 0.1 < min|Q| = 0.260576 on the torque-free orbit: tau increases without bound'
+    """
     if model.law.kind != "constant":
         return None
     L = model.law(0.0)
@@ -285,7 +495,31 @@ def _evaluate_at(model: Model, y0, tau, **options) -> np.ndarray:
 def torque_free_at_tau(model: OrthogonalModel, omega0, tau, quaternion0=None, **options) -> np.ndarray:
     """The Zhukovsky–Volterra solution through ω0 (and q0 when given) at the times τ: (n, 3) or
     (n, 7). Compare ω(t) with ``torque_free_at_tau(model, ω0, solution.tau)``. The attitude does
-    not map through τ (the servo torque turns the inertial G): only ω and the angles of G do."""
+    not map through τ (the servo torque turns the inertial G): only ω and the angles of G do.
+
+    Parameters
+    ----------
+    model : OrthogonalModel
+        Whose torque-free gyrostat (:meth:`OrthogonalModel.torque_free`) is evaluated.
+    omega0 : array_like, shape (3,)
+        The angular velocity where τ = 0, in rad/s.
+    tau : array_like
+        The times τ, in s (any order).
+    quaternion0 : array_like, shape (4,), optional
+        The attitude at τ = 0 (then the result has the attitude too).
+    **options
+        Options of :func:`gyrostat.solve` (default rtol 1e-12, atol 1e-13).
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat import orthogonal
+    >>> model = orthogonal.OrthogonalModel(gyrostat.Body([3.0, 2.0, 1.0]), 0.1)
+    >>> sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 10.0))
+    >>> free = orthogonal.torque_free_at_tau(model, [0.1, 0.2, 1.0], sol["tau"])
+    >>> bool(abs(free - sol.omega).max() < 1e-6)  # ω(t) is the free motion at τ(t)
+    True
+    """
     free = model.torque_free(attitude=quaternion0 is not None)
     y0 = np.asarray(omega0, float) if quaternion0 is None else np.concatenate([omega0, quaternion0])
     return _evaluate_at(free, y0, tau, **options)
@@ -294,14 +528,40 @@ def torque_free_at_tau(model: OrthogonalModel, omega0, tau, quaternion0=None, **
 # ------------------------------------------------------------------------------ Euler angles
 def attitude_along_momentum(G0, psi0: float = 0.0) -> np.ndarray:
     """The quaternion of Rz(ψ0) Rx(θ0) Rz(φ0) with θ0, φ0 the angles of G0 in body axes, so that
-    the inertial z3 axis lies along G (the frame of the paper's Euler angles (15))."""
+    the inertial z3 axis lies along G (the frame of the paper's Euler angles (15)).
+
+    Parameters
+    ----------
+    G0 : array_like, shape (3,)
+        The angular momentum in body axes, in kg m^2/s.
+    psi0 : float, optional
+        ψ0, in rad.
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> orthogonal.attitude_along_momentum([0.0, 0.0, 2.0])
+    array([1., 0., 0., 0.])
+    """
     s = np.asarray(G0, float) / np.linalg.norm(G0)
     return attitude.quaternion_from_euler([psi0, math.acos(max(-1.0, min(1.0, s[2]))), math.atan2(s[0], s[1])],
                                           "zxz")
 
 
 def wrap(angle):
-    """Angle (differences) to (−π, π]."""
+    """Angle (differences) to (−π, π].
+
+    Parameters
+    ----------
+    angle : float or array_like
+        In rad.
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> orthogonal.wrap([0.1, -4.0]).round(6)
+    array([0.1     , 2.283185])
+    """
     return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
 
 
@@ -324,6 +584,30 @@ class NearlySpherical:
       paper's (29), error O(μ) + O(n²)), :meth:`mean_precession_rate` ((34) corrected:
       (1 − μP*)G/J), :meth:`mean_spin_rate` (from the φ period quadrature) and
       :meth:`mean_spin_rate_simple` (μ D2 cosθ0/J, ⟨cosθ⟩ ≈ cosθ0).
+
+    Parameters
+    ----------
+    J : float
+        The mean moment of inertia, in kg m^2.
+    Jj : sequence of float
+        The deviations J_j (A_j = J + μ J_j), in kg m^2.
+    mu : float
+        μ, the small parameter (dimensionless).
+    k : sequence of float, optional
+        The rotor momentum, in kg m^2/s.
+    G : float, optional
+        |G|, in kg m^2/s.
+    theta0, phi0, psi0 : float, optional
+        The initial Euler angles, in rad (sin θ0 > 0).
+
+    Examples
+    --------
+    >>> from gyrostat import orthogonal
+    >>> ns = orthogonal.NearlySpherical(J=1.0, Jj=[0.3, 0.1, -0.2], mu=0.05)
+    >>> ns.moments
+    array([1.015, 1.005, 0.99 ])
+
+    The examples of its attributes use this ``ns``.
     """
 
     J: float
@@ -350,35 +634,101 @@ class NearlySpherical:
 
     @property
     def b(self) -> np.ndarray:
+        """b_j = J_j / J (dimensionless).
+
+        Examples
+        --------
+        >>> ns.b
+        array([ 0.3,  0.1, -0.2])
+        """
         return self.Jj / self.J
 
     @property
     def moments(self) -> np.ndarray:
+        """The moments A_j = J + μ J_j, in kg m^2.
+
+        Examples
+        --------
+        >>> ns.moments
+        array([1.015, 1.005, 0.99 ])
+        """
         return self.J + self.mu * self.Jj
 
     def body(self) -> _core.Body:
+        """The body with these moments and rotor.
+
+        Examples
+        --------
+        >>> ns.body()
+        Body(A1=1.015, A2=1.005, A3=0.99, k=[0, 0, 0])
+        """
         return _core.Body(self.moments, self.k)
 
     @property
     def q0(self) -> np.ndarray:
-        """The initial attitude: Rz(ψ0) Rx(θ0) Rz(φ0), inertial z3 along G."""
+        """The initial attitude: Rz(ψ0) Rx(θ0) Rz(φ0), inertial z3 along G.
+
+        Examples
+        --------
+        >>> ns.q0.round(6)
+        array([0.877583, 0.479426, 0.      , 0.      ])
+        """
         return attitude.quaternion_from_euler([self.psi0, self.theta0, self.phi0], "zxz")
 
     @property
     def R0(self) -> np.ndarray:
+        """The initial rotation matrix of :attr:`q0` (body → inertial).
+
+        Examples
+        --------
+        >>> ns.R0[2].round(6)  # its last row: G/|G| in body axes
+        array([0.      , 0.841471, 0.540302])
+        """
         return attitude.rotation_matrix(self.q0)
 
     def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
-        """ω0 = A⁻¹(G s0 − k) and q0 (inertial z3 along G)."""
+        """ω0 = A⁻¹(G s0 − k) (rad/s) and q0 (inertial z3 along G).
+
+        Examples
+        --------
+        >>> omega0, q0 = ns.initial_state()
+        >>> omega0.round(6)
+        array([0.      , 0.837285, 0.54576 ])
+        """
         s0 = self.R0[2, :]
         return (self.G * s0 - self.k) / self.moments, self.q0
 
     def exact(self, tau, **options) -> np.ndarray:
-        """(n, 3) (ψ, θ, φ) of the ZV gyrostat with the true moments (the reference in τ)."""
+        """(n, 3) (ψ, θ, φ) of the ZV gyrostat with the true moments (the reference in τ), in rad.
+
+        Parameters
+        ----------
+        tau : array_like
+            Times τ, in s.
+        **options
+            Options of :func:`gyrostat.solve`.
+
+        Examples
+        --------
+        >>> ns.exact([0.0, 1.0]).round(6)
+        array([[0.      , 1.      , 0.      ],
+               [0.995025, 0.999966, 0.008146]])
+        """
         return self._zv_angles(self.moments, tau, **options)
 
     def zeroth(self, tau) -> np.ndarray:
-        """(n, 3) (ψ, θ, φ) of the zeroth approximation (21), closed form."""
+        """(n, 3) (ψ, θ, φ) of the zeroth approximation (21), closed form, in rad.
+
+        Parameters
+        ----------
+        tau : array_like
+            Times τ, in s.
+
+        Examples
+        --------
+        >>> ns.zeroth([1.0])[0, :2].round(6)  # ψ = Gτ/J, θ fixed
+        array([1., 1.])
+        """
         tau = np.atleast_1d(np.asarray(tau, float))
         knorm = float(np.linalg.norm(self.k))
         # R(τ) = Rz(Gτ/J) R0 Rot(k̂, |k|τ/J)ᵀ as quaternions: q_z(Gτ/J) ⊗ q0 ⊗ q_k(−|k|τ/J)
@@ -392,7 +742,23 @@ class NearlySpherical:
         return attitude.euler_angles(q, "zxz")
 
     def first(self, tau, **options) -> np.ndarray:
-        """(n, 3) (ψ, θ, φ) of the first approximation (21) + μ(22), ψ row corrected."""
+        """(n, 3) (ψ, θ, φ) of the first approximation (21) + μ(22), ψ row corrected, in rad.
+
+        Parameters
+        ----------
+        tau : array_like
+            Times τ, in s (and options of :func:`gyrostat.solve`, as for :meth:`exact`).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, 3)
+            The ZV gyrostat's angles with the moments J/(1 − μ b_j).
+
+        Examples
+        --------
+        >>> ns.first([1.0]).round(6)
+        array([[0.995   , 0.999966, 0.008105]])
+        """
         a = (1 - self.mu * self.b) / self.J
         if np.any(a <= 0):
             raise ValueError(f"1 - mu b_j = {(1 - self.mu * self.b).tolist()} must be positive: mu = {self.mu} too large")
@@ -412,14 +778,35 @@ class NearlySpherical:
 
     @property
     def P_star(self) -> float:
+        """P* = (b1 + b2)/2 (dimensionless).
+
+        Examples
+        --------
+        >>> float(ns.P_star)
+        0.2
+        """
         return 0.5 * (self.b[0] + self.b[1])
 
     @property
     def D1(self) -> float:
+        """D1 = (b2 − b1) G, in kg m^2/s.
+
+        Examples
+        --------
+        >>> round(float(ns.D1), 12)
+        -0.2
+        """
         return (self.b[1] - self.b[0]) * self.G
 
     @property
     def D2(self) -> float:
+        """D2 = (P* − b3) G, in kg m^2/s.
+
+        Examples
+        --------
+        >>> float(ns.D2)
+        0.4
+        """
         return (self.P_star - self.b[2]) * self.G
 
     def _rigid(self):
@@ -428,30 +815,81 @@ class NearlySpherical:
                              "(docs/papers/004_orthogonal_torque.md)")
 
     def rigid_orbit(self, phi) -> np.ndarray:
-        """sinθ(φ) on the exact first-order orbit sin²θ (P(φ) − b3) = sin²θ0 (P(φ0) − b3) (k = 0)."""
+        """sinθ(φ) on the exact first-order orbit sin²θ (P(φ) − b3) = sin²θ0 (P(φ0) − b3) (k = 0).
+
+        Parameters
+        ----------
+        phi : array_like
+            φ, in rad.
+
+        Examples
+        --------
+        >>> ns.rigid_orbit([0.0, 0.5]).round(6)
+        array([0.841471, 0.783575])
+        """
         self._rigid()
         c = math.sin(self.theta0) ** 2 * (self._P(self.phi0) - self.b[2])
         return np.sqrt(c / (self._P(np.asarray(phi, float)) - self.b[2]))
 
     def orbit_29(self, phi) -> np.ndarray:
-        """The paper's (29): sinθ ≈ sinθ0 exp[n (sin²φ − sin²φ0)], n = D1/(2 D2) (k = 0)."""
+        """The paper's (29): sinθ ≈ sinθ0 exp[n (sin²φ − sin²φ0)], n = D1/(2 D2) (k = 0).
+
+        Parameters
+        ----------
+        phi : array_like
+            φ, in rad.
+
+        Returns
+        -------
+        numpy.ndarray
+            sin θ at each φ (dimensionless).
+
+        Examples
+        --------
+        >>> ns.orbit_29([0.0, 0.5]).round(6)
+        array([0.841471, 0.794481])
+        """
         self._rigid()
         n = self.D1 / (2 * self.D2)
         return math.sin(self.theta0) * np.exp(n * (np.sin(np.asarray(phi, float)) ** 2 - math.sin(self.phi0) ** 2))
 
     def mean_precession_rate(self) -> float:
-        """(34) corrected: Ω = (1 − μP*) G / J (printed: P* G/J)."""
+        """(34) corrected: Ω = (1 − μP*) G / J (printed: P* G/J), in rad/s.
+
+        Examples
+        --------
+        >>> float(ns.mean_precession_rate())
+        0.99
+        """
         self._rigid()
         return (1 - self.mu * self.P_star) * self.G / self.J
 
     def mean_spin_rate_simple(self) -> float:
-        """(34) corrected, crude: μ D2 cosθ0 / J (printed: D2/J)."""
+        """(34) corrected, crude: μ D2 cosθ0 / J (printed: D2/J), in rad/s.
+
+        Examples
+        --------
+        >>> round(float(ns.mean_spin_rate_simple()), 6)
+        0.010806
+        """
         self._rigid()
         return self.mu * self.D2 * math.cos(self.theta0) / self.J
 
     def mean_spin_rate(self, n: int = 4096) -> float:
-        """±2π/T_φ with T_φ = (J/μ) ∫0^{2π} dφ / (|P(φ) − b3| G |cosθ(φ)|) on the exact first-order
-        orbit (k = 0); the sign is that of (P − b3) cosθ0. Trapezoid rule on a periodic integrand."""
+        """±2π/T_φ, in rad/s, with T_φ = (J/μ) ∫0^{2π} dφ / (|P(φ) − b3| G |cosθ(φ)|) on the exact
+        first-order orbit (k = 0); the sign is that of (P − b3) cosθ0. Trapezoid rule on a periodic
+        integrand.
+
+        Parameters
+        ----------
+        n : int, optional
+            Quadrature points.
+
+        Examples
+        --------
+        >>> round(float(ns.mean_spin_rate()), 6)
+        0.012485
+        """
         self._rigid()
         phi = np.linspace(0, 2 * np.pi, n, endpoint=False)
         u = self.rigid_orbit(phi)

@@ -46,20 +46,32 @@ from gyrostat.torques import TORQUE
 class Model(ModelBase):
     """The full model: Euler's equations of a gyrostat, J ω̇ + ω × (J ω + k) = Σ M_i(t, ω).
 
+    State ω = (p, q, r) in body axes, in rad/s (with ``attitude=True`` also the quaternion
+    (q_w, q_x, q_y, q_z), body → inertial). Outputs: ``angular_momentum_norm`` |G| (kg m^2/s),
+    ``kinetic_energy`` T (J) and, with attitude, the z-x-z Euler angles ``psi``, ``theta``,
+    ``phi`` (rad).
+
     Parameters
     ----------
-    body:
-        A :class:`gyrostat.Body` (principal moments and rotor momentum k).
-    torques:
+    body : gyrostat.Body
+        Principal moments (kg m^2) and rotor momentum k (kg m^2/s).
+    torques : sequence of torques, optional
         Perturbation torques (:class:`gyrostat.ConstantTorque`, :class:`gyrostat.LinearDamping`,
         :class:`gyrostat.ResistiveMedium`, :class:`gyrostat.ViscousCavity`,
-        :class:`gyrostat.MovingMassDamper`); they add up.
-    attitude:
+        :class:`gyrostat.MovingMassDamper`); they add up. Default: none.
+    attitude : bool, optional
         Integrate the attitude quaternion as well (state size 7 instead of 3). Only needed when
         an output or a torque depends on the orientation; it costs four more equations.
 
-    Outputs: ``angular_momentum_norm`` |G|, ``kinetic_energy`` T and, with attitude, the z-x-z
-    Euler angles ``psi``, ``theta``, ``phi``.
+    Examples
+    --------
+    >>> import gyrostat
+    >>> model = gyrostat.Model(gyrostat.Body([2.0, 1.5, 1.0]), [gyrostat.ConstantTorque(moment=[0.0, 0.0, 0.1])])
+    >>> model.state_names, model.output_names
+    (('p', 'q', 'r'), ('angular_momentum_norm', 'kinetic_energy', 'nutation_angle'))
+    >>> sol = gyrostat.solve(model, [0.0, 0.0, 1.0], (0.0, 10.0))
+    >>> round(float(sol["r"][-1]), 6)  # r = 1 + 0.1 t / A3
+    2.0
     """
 
     kind = "full"
@@ -71,7 +83,14 @@ class Model(ModelBase):
 
     @property
     def is_torque_free_rigid_body(self) -> bool:
-        """No torque and no rotor: the closed form (no integration) answers such a scene."""
+        """No torque and no rotor: the closed form (no integration) answers such a scene.
+
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Model(gyrostat.Body([2.0, 1.5, 1.0])).is_torque_free_rigid_body
+        True
+        """
         return not self.torques and not any(self.body.rotor)
 
     def __repr__(self) -> str:
@@ -81,13 +100,31 @@ class Model(ModelBase):
 class TorqueFreeModel(ModelBase):
     """The torque-free rigid body in closed form: Jacobi elliptic functions, no integration.
 
-    State ω = (p, q, r), or with ``attitude=True`` ω and the quaternion (q_w, q_x, q_y, q_z)
-    rotating body axes into inertial axes (the exact flow: the rotation about the fixed inertial
-    angular momentum from the incomplete elliptic integral of the third kind; see
+    State ω = (p, q, r) in rad/s, or with ``attitude=True`` ω and the quaternion (q_w, q_x,
+    q_y, q_z) rotating body axes into inertial axes (the exact flow: the rotation about the fixed
+    inertial angular momentum from the incomplete elliptic integral of the third kind; see
     docs/integrators.md). Outputs |G| and T (exact to rounding at any t) and, with attitude, the
     z-x-z Euler angles. A gyrostat (rotor k ≠ 0) has a closed form here only for a symmetric body
     with the rotor along its symmetry axis (or a spherical body); any other rotor raises
-    ValueError naming the body (use :class:`Model`, which integrates)."""
+    ValueError naming the body (use :class:`Model`, which integrates).
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        Principal moments, in kg m^2.
+    attitude : bool, optional
+        Give the attitude quaternion as well (default False).
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> model = gyrostat.TorqueFreeModel(gyrostat.Body([3.0, 2.0, 1.0]))
+    >>> sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 100.0))
+    >>> sol.method
+    'closed_form'
+    >>> bool(abs(sol["kinetic_energy"][-1] / sol["kinetic_energy"][0] - 1) < 1e-14)
+    True
+    """
 
     kind = "closed_form"
 
@@ -106,9 +143,33 @@ class AveragedModel(ModelBase):
     The body is (nearly) symmetric: A = A1 ≈ A2, C = A3, no rotor. The generating motion is
     p = a cos φ, q = a sin φ, r = const, φ̇ = (C − A) r / A; each torque contributes its own
     averaged (ȧ, ṙ) and the contributions add up. r is signed and may pass through zero (the
-    papers' x = a², y = r² form cannot). Outputs: |G|, T, ``x`` = a², ``y`` = r², the fast
-    frequency and ``slow_to_fast`` (must stay ≪ 1). :func:`gyrostat.validity.check` reports
-    where the assumptions fail; :func:`gyrostat.solve` does so by itself.
+    papers' x = a², y = r² form cannot). State (a, r), in rad/s. Outputs: |G|, T, ``x`` = a²,
+    ``y`` = r², the fast frequency and ``slow_to_fast`` (must stay ≪ 1).
+    :func:`gyrostat.validity.check` reports where the assumptions fail; :func:`gyrostat.solve`
+    does so by itself.
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        A (nearly) symmetric body without rotor; moments in kg m^2.
+    torques : sequence of torques, optional
+        Perturbation torques, each with its averaged contribution.
+
+    Examples
+    --------
+    >>> import gyrostat
+
+    A prolate body (C < A) with a viscous nutation damper (the tutorial's satellite), 10 hours:
+
+    >>> body = gyrostat.Body([12.0, 12.0, 4.0])
+    >>> averaged = gyrostat.AveragedModel(body, [gyrostat.ViscousCavity(density=970.0, viscosity=2.0, radius=0.25)])
+    >>> averaged.state_names
+    ('a', 'r')
+    >>> sol = gyrostat.solve(averaged, [0.05, 2.0], (0.0, 36000.0))
+    >>> bool(sol["r"][-1] < 2.0 and sol["a"][-1] > 0.05)  # towards flat spin about the major axis
+    True
+
+    The examples of its attributes use this ``averaged`` model and its solution ``sol``.
     """
 
     kind = "averaged"
@@ -120,24 +181,69 @@ class AveragedModel(ModelBase):
 
     @property
     def A(self) -> float:
+        """The equatorial moment of inertia A = A1, in kg m^2.
+
+        Examples
+        --------
+        >>> averaged.A
+        12.0
+        """
         return float(self.body.moments[0])
 
     @property
     def C(self) -> float:
+        """The axial moment of inertia C = A3, in kg m^2.
+
+        Examples
+        --------
+        >>> averaged.C
+        4.0
+        """
         return float(self.body.moments[2])
 
     @property
     def exact_reduction(self) -> bool:
         """Whether (a, r) is exact rather than averaged (a symmetric body without rotor under
-        torques that commute with rotations about z: the C++ model says): then r = 0 is no limit."""
+        torques that commute with rotations about z: the C++ model says): then r = 0 is no limit.
+
+        Examples
+        --------
+        >>> averaged.exact_reduction
+        True
+        """
         return self._core.exact_reduction()
 
     def fast_frequency(self, r: float) -> float:
-        """|φ̇| = |(C − A) r / A|."""
+        """The fast frequency |φ̇| = |(C − A) r / A|, in rad/s.
+
+        Parameters
+        ----------
+        r : float
+            Axial angular velocity, in rad/s.
+
+        Examples
+        --------
+        >>> averaged.fast_frequency(1.5)
+        1.0
+        """
         return self._core.fast_frequency(number(r, "r"))
 
     def slow_rate(self, t: float, y) -> float:
-        """max(|ȧ/a|, |ṙ/r|) at (t, a, r)."""
+        """max(|ȧ/a|, |ṙ/r|) at (t, a, r), in 1/s: the slow rate the averaging compares with the
+        fast frequency.
+
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        y : array_like, shape (2,)
+            The slow state (a, r), in rad/s.
+
+        Examples
+        --------
+        >>> round(averaged.slow_rate(0.0, [0.05, 2.0]), 8)
+        0.00010497
+        """
         return self._core.slow_rate(number(t, "t"), floats(y, "y"))
 
     def check(self, solution) -> list:
@@ -145,7 +251,20 @@ class AveragedModel(ModelBase):
 
     def assumptions(self, states, times, outputs=None) -> list:
         """Near symmetry, the distance from the separatrix against the asymmetry, and the fast
-        frequency against the slow rates (not needed where the reduction is exact)."""
+        frequency against the slow rates (not needed where the reduction is exact).
+
+        Parameters
+        ----------
+        states, times, outputs
+            As in :meth:`gyrostat.ModelBase.assumptions`: (n, 2) slow states (a, r) in rad/s, their
+            times in s, what a solve recorded at them (``slow_to_fast``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> [a.statement for a in averaged.assumptions(np.array([[0.05, 2.0]]), np.array([0.0]))][0]
+        'near symmetry |B − A|/A ≪ 1'
+        """
         J = np.asarray(self.body.moments, float)
         A, C = J[0], J[2]
         results = []
@@ -185,7 +304,24 @@ class AveragedModel(ModelBase):
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
     """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no
     integration. The same as ``solve(TorqueFreeModel(body), omega0, (t_eval[0], t_eval[-1]),
-    t_eval=t_eval)``."""
+    t_eval=t_eval)``.
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        A body without rotor; moments in kg m^2.
+    omega0 : array_like, shape (3,)
+        ω at ``t_eval[0]`` in body axes, in rad/s.
+    t_eval : array_like
+        Increasing output times, in s.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> sol = gyrostat.torque_free(gyrostat.Body([3.0, 2.0, 1.0]), [0.1, 0.2, 1.0], [0.0, 5.0, 10.0])
+    >>> sol.omega.shape
+    (3, 3)
+    """
     t = output_times(t_eval)
     if np.any(np.diff(t) < 0):
         raise ValueError(f"t_eval = {shown(t_eval)} is unsorted: the times must be increasing")
@@ -194,7 +330,25 @@ def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
 
 # ------------------------------------------------------------------------------------ the averaged system's outputs
 def slow_variables(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
-    """(a, r) of a solution: the state of the averaged model; a = √(p² + q²) and r of a full one."""
+    """(a, r) of a solution, in rad/s: the state of the averaged model; a = √(p² + q²) and r of a
+    full one.
+
+    Parameters
+    ----------
+    solution : gyrostat.Solution
+        A run of the full or the averaged rigid-body model.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat import averaged
+    >>> body = gyrostat.Body([12.0, 12.0, 4.0])
+    >>> model = gyrostat.AveragedModel(body, [gyrostat.ViscousCavity(density=970.0, viscosity=2.0, radius=0.25)])
+    >>> sol = gyrostat.solve(model, [0.05, 2.0], (0.0, 36000.0), n_out=3)
+    >>> a, r = averaged.slow_variables(sol)
+    >>> bool(a[-1] > a[0] and r[-1] < r[0])  # towards flat spin
+    True
+    """
     if solution.state_names[:2] == ("a", "r"):
         return solution["a"], solution["r"]
     return np.hypot(solution["p"], solution["q"]), solution["r"]
@@ -202,18 +356,66 @@ def slow_variables(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
 
 def r_zero(direction: int = 0, terminal: bool | int = False) -> Event:
     """The event r = 0 (the axial rate changes sign) of the full or the averaged model: there the
-    averaging over the symmetric motion stops being valid (the fast frequency vanishes)."""
+    averaging over the symmetric motion stops being valid (the fast frequency vanishes).
+
+    Parameters
+    ----------
+    direction : {-1, 0, 1}, optional
+        Only downward (-1), only upward (1) or both (0) crossings.
+    terminal : bool or int, optional
+        Stop the run at the first (True) or n-th crossing.
+
+    Examples
+    --------
+    >>> from gyrostat import averaged
+    >>> averaged.r_zero(direction=-1)
+    Event(quantity='r', value=0.0, direction=-1, terminal=False, name='r = 0')
+    """
     return Event("r", 0.0, direction, terminal, "r = 0")
 
 
 def averaging_fails(limit: float = SMALL, terminal: bool | int = False) -> Event:
     """The event where the averaged model's slow rate reaches ``limit`` times its fast frequency
-    (the output ``slow_to_fast`` rising through ``limit``): past it the averaging is not valid."""
+    (the output ``slow_to_fast`` rising through ``limit``): past it the averaging is not valid.
+
+    Parameters
+    ----------
+    limit : float, optional
+        The ratio slow rate / fast frequency (dimensionless; default "≪ 1" = 0.1).
+    terminal : bool or int, optional
+        Stop the run there.
+
+    Examples
+    --------
+    >>> from gyrostat import averaged
+    >>> averaged.averaging_fails(terminal=True).quantity
+    'slow_to_fast'
+    """
     return Event("slow_to_fast", float(limit), 1, terminal, f"slow/fast reaches {limit:g}")
 
 
 def xy(solution: Solution) -> tuple[np.ndarray, np.ndarray]:
-    """Papers 000/001: x = a², y = r² (paper 002 swaps the names: its x is r², its y is a²)."""
+    """Papers 000/001: x = a², y = r², in rad²/s² (paper 002 swaps the names: its x is r², its y is a²).
+
+    Parameters
+    ----------
+    solution : gyrostat.Solution
+        A run of the full or the averaged rigid-body model.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        x and y at the output times.
+
+    Examples
+    --------
+    >>> from gyrostat import averaged
+    >>> import gyrostat
+    >>> sol = gyrostat.solve(gyrostat.Model(gyrostat.Body([2.0, 2.0, 1.0])), [0.3, 0.4, 1.0], (0.0, 1.0), n_out=2)
+    >>> x, y = averaged.xy(sol)
+    >>> round(float(x[0]), 6), round(float(y[0]), 6)
+    (0.25, 1.0)
+    """
     a, r = slow_variables(solution)
     return a**2, r**2
 
@@ -226,7 +428,22 @@ class LotkaVolterra:
         λ1 = −2 D33 / C,  λ2 = −(D11 + D22) / A,  μ1 = 2κ (C − A)/(A C),  μ2 = 2κ C (A − C)/A³,
 
     D the summed linear-resistance matrix (ε included), κ = ρ P0 / ν summed over cavities.
-    A² μ2 + C² μ1 = 0 (the cavity keeps |G|)."""
+    A² μ2 + C² μ1 = 0 (the cavity keeps |G|).
+
+    Parameters
+    ----------
+    lambda1, lambda2 : float
+        λ1, λ2, in 1/s.
+    mu1, mu2 : float
+        μ1, μ2, in s (per rad²/s² of X or Y).
+
+    Examples
+    --------
+    >>> from gyrostat import averaged
+    >>> system = averaged.LotkaVolterra(lambda1=-0.01, lambda2=-0.002, mu1=-0.0005, mu2=5e-05)
+    >>> float(system.first_integral(1.0, 1.0))  # λ2 ln 1 + μ2 − λ1 ln 1 − μ1
+    0.00055
+    """
 
     lambda1: float
     lambda2: float
@@ -235,7 +452,27 @@ class LotkaVolterra:
 
     def first_integral(self, X, Y):
         """Paper 002 eq. (7) in logarithmic form (the exponential form overflows on the paper's
-        own scene): Φ = λ2 ln X + μ2 X − λ1 ln Y − μ1 Y, constant along the averaged solution."""
+        own scene): Φ = λ2 ln X + μ2 X − λ1 ln Y − μ1 Y, constant along the averaged solution.
+
+        Parameters
+        ----------
+        X, Y : array_like
+            r² and a², in rad²/s².
+
+        Examples
+        --------
+        >>> import gyrostat
+        >>> from gyrostat import averaged
+        >>> body = gyrostat.Body([12.0, 12.0, 4.0])
+        >>> torques = [gyrostat.ViscousCavity(density=970.0, viscosity=2.0, radius=0.25),
+        ...            gyrostat.LinearDamping(diagonal=[1e-3, 1e-3, 2e-3])]
+        >>> model = gyrostat.AveragedModel(body, torques)
+        >>> sol = gyrostat.solve(model, [0.05, 2.0], (0.0, 3600.0), rtol=1e-12, atol=1e-14, n_out=3)
+        >>> y, x = averaged.xy(sol)  # the paper's X = r² is xy's y
+        >>> phi = averaged.lotka_volterra(model).first_integral(x, y)
+        >>> bool(abs(phi[-1] - phi[0]) < 1e-8 * abs(phi[0]))
+        True
+        """
         X, Y = np.asarray(X, float), np.asarray(Y, float)
         return self.lambda2 * np.log(X) + self.mu2 * X - self.lambda1 * np.log(Y) - self.mu1 * Y
 
@@ -245,7 +482,23 @@ def lotka_volterra(model) -> LotkaVolterra:
     C++ header gives it (``torque.averaged``): with Y = a², X = r², the system is Lotka–Volterra
     when each contribution has ṙ/r = (λ1 + μ1 a²)/2 and ȧ/a = (λ2 + μ2 r²)/2, which is read off at
     (a, r) = (0, 1), (1, 0) and (1, 1) and checked at a fourth point. A torque without that form
-    (a constant axial torque, the damper's r⁴ terms) raises ValueError naming it."""
+    (a constant axial torque, the damper's r⁴ terms) raises ValueError naming it.
+
+    Parameters
+    ----------
+    model : gyrostat.AveragedModel or gyrostat.Model
+        A symmetric body with its torques.
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> from gyrostat import averaged
+    >>> body = gyrostat.Body([12.0, 12.0, 4.0])
+    >>> model = gyrostat.AveragedModel(body, [gyrostat.LinearDamping(diagonal=[0.01, 0.01, 0.02])])
+    >>> system = averaged.lotka_volterra(model)
+    >>> round(float(system.lambda1), 6), round(float(system.lambda2), 6)  # -2 D33 / C, -(D11 + D22) / A
+    (-0.01, -0.001667)
+    """
     A, C = float(model.body.moments[0]), float(model.body.moments[2])
     lambda1 = lambda2 = mu1 = mu2 = 0.0
     for torque in model.torques:
