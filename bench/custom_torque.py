@@ -62,7 +62,7 @@ def main() -> None:
         "CustomTorque, compiled": best(lambda: run(compiled)),
         "CustomTorque, Python (32 members, x16)": 16 * best(lambda: run(python, members=32), repeats=1),
     }
-    calls = sum(r.stats.rhs_evals for r in run(python, members=32))
+    calls = sum(r.stats["rhs_evals"] for r in run(python, members=32))
     print(f"{MEMBERS} members, t = 0..200, DOP853 rtol 1e-10, {g.simd_lanes} SIMD lanes ({g.simd_instruction_set})")
     base = rows["LinearDamping (built-in), SIMD batches"]
     for name, seconds in rows.items():

@@ -173,7 +173,7 @@ the quaternion (w, x, y, z) body to inertial, M in N m (body axes).
 Parameters
 ----------
 function : callable or scipy.LowLevelCallable
-    A Python callable (each call holds the GIL, about a microsecond of Python per call; an
+    A Python callable (each call holds the GIL and costs about 10 us: bench/custom_torque.py; an
     ensemble runs it one thread at a time; its exception reaches the caller as raised), or a
     ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of the C signature::
 
