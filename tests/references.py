@@ -152,3 +152,18 @@ def damper_torque_series(w, moments, arm, mass, omega2, lam, order=6):
         dK = mass * (2 * smul(dot(D0, u), W) - smul(dot(u, W), D0) - smul(dot(D0, W), u) + cross(D0, der(u)))
         total += -(der(dK)[0] + np.cross(W[0], dK[0]))
     return total
+
+
+def attitude_reference(moments, rotor, torque, omega0, q0, t_eval, rtol=1e-13, atol=1e-14):
+    """(ω, q) of the Euler equations and q̇ = ½ q ⊗ (0, ω) integrated here (euler_rhs, SciPy
+    DOP853, never normalised during the run: the kinematics, not a projection), q normalised at
+    the end and its sign aligned with q0's branch by continuity (q and −q are one rotation)."""
+    y = scipy_reference(moments, rotor, torque, np.concatenate([omega0, q0]), np.asarray(t_eval, float), rtol, atol)
+    y[:, 3:] /= np.linalg.norm(y[:, 3:], axis=1)[:, None]
+    return y
+
+
+def quaternion_distance(q, q_ref):
+    """max over rows of |q − q_ref| with each row's sign aligned with the reference's."""
+    q, q_ref = np.atleast_2d(q), np.atleast_2d(q_ref)
+    return float(np.max(np.abs(q * np.sign(np.sum(q * q_ref, axis=1))[:, None] - q_ref)))
