@@ -245,6 +245,14 @@ def test_splitting_keeps_G_when_the_perturbation_does():
     # only, never accumulated (without it: 1e-13 here, 2.6e-11 over 2e6 steps, a drift)
     assert np.max(np.abs(G / G[0] - 1)) < 1e-15
     assert sol["kinetic_energy"][-1] < 0.99 * sol["kinetic_energy"][0]
+    # the projection keeps |G| whatever the sub-flows do: the sub-flows themselves are checked
+    # by the whole ω against SciPy with the cavity torque written in tests/references.py, over
+    # t ≤ 200 (T falls from 1.555 to 1.18): order 4 at h = 0.5, measured 2.0e-6; 10× it
+    t = np.linspace(0, 200, 5)
+    short = split_run(model, W0, (0, 200), step=0.5, splitting_order=4, t_eval=t)
+    ref = solve_ivp(lambda s, w: (cavity_torque(w, J, EPS) - np.cross(w, J * w)) / J, (0, 200), W0, method="DOP853",
+                    rtol=1e-12, atol=1e-14, t_eval=t).y.T
+    assert np.max(np.abs(short.y - ref)) < 2e-5, np.max(np.abs(short.y - ref))
 
 
 def test_torque_free_splitting_is_the_exact_flow():
@@ -594,8 +602,8 @@ def test_lagrange_top_splitting_keeps_Gz_and_r():
     assert np.max(np.abs(Gz - Gz[0])) < 1e-12 * abs(Gz[0])
     assert np.max(np.abs(r - r[0])) < 1e-15 * abs(r[0])
     dH = np.abs(H / H[0] - 1)
-    # order-4 energy error at h = 0.1: measured 1.9e-7, the same in both halves of the run
-    assert np.max(dH) < 1e-5 and np.max(dH[100:]) < 2 * np.max(dH[:101])
+    # order-4 energy error at h = 0.1: measured 1.9e-7, the same in both halves of the run; 10× it
+    assert np.max(dH) < 2e-6 and np.max(dH[100:]) < 2 * np.max(dH[:101]), np.max(dH)
 
 
 def orthogonal_rhs(moments, L, delta_eta=1e-3):
@@ -637,6 +645,10 @@ def test_order_of_splitting_for_the_orthogonal_torque():
     run = split_run(model, y0, (0, 2000), step=0.1, n_out=11)
     G = run["angular_momentum_norm"]
     assert np.max(np.abs(G / G[0] - 1)) < 1e-15
+    # Q ⊥ ω too, so the quasi-energy ωᵀJω (paper 004 (6)) is kept by both sub-flows, and it is not
+    # projected on: a test of the sub-flows themselves. Measured 9.8e-15 over the 2e4 steps; 10× it
+    h = np.einsum("ni,i,ni->n", run.y[:, :3], J, run.y[:, :3])
+    assert np.max(np.abs(h / h[0] - 1)) < 1e-13, np.max(np.abs(h / h[0] - 1))
     # with L = 0 the splitting is the exact flow and τ = t (rounding per step)
     free = g.orthogonal.OrthogonalModel(g.Body(J), 0.0, attitude=True)
     split = g.solve(free, y0, (0, 50), t_eval=[0, 50], method="splitting", step=0.5).y[-1]
