@@ -476,6 +476,18 @@ def test_paper_claims_on_the_averaged_evolution(averaged_paper_runs):
     j = int(np.argmin(u3[:200]))
     assert tau1[j] == pytest.approx(0.105, abs=0.01) and u3[j] - 1 < 1e-4
     assert u3[200] > 1.01   # τ = 1: back to ≈ 1.014
+    # docs/papers/003_lagrange_top.md: sign R of (2.5) flips in every case, where u3 touches 1 and
+    # G_z = C r, at τ = 0.105, 1.085 and 3.37 (cases 1, 2, 3). G_z − C r from the states (once
+    # per case, between two outputs 0.005 apart), and u3 − 1 there at most 1e-6 (measured
+    # 3.5e-7, 1.7e-8, 4e-15: it touches 1 from above)
+    for case, tau_flip in ((1, 0.105), (2, 1.085), (3, 3.37)):
+        tau, sol = runs[case]
+        d = sol.y[:, 0] - C * sol.y[:, 2]
+        flips = np.nonzero(np.diff(np.sign(d)))[0]
+        assert len(flips) == 1, (case, tau[flips])
+        j = flips[0]
+        assert tau[j] <= tau_flip + 1e-9 and tau_flip < tau[j + 1] + 0.005, (case, tau[j])
+        assert min(sol["u3"][j], sol["u3"][j + 1]) - 1 < 1e-6, (case, sol["u3"][j] - 1)
 
 
 def _errors(case_theta, eps, tau_end=3.0):
