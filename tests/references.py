@@ -152,3 +152,36 @@ def damper_torque_series(w, moments, arm, mass, omega2, lam, order=6):
         dK = mass * (2 * smul(dot(D0, u), W) - smul(dot(u, W), D0) - smul(dot(D0, W), u) + cross(D0, der(u)))
         total += -(der(dK)[0] + np.cross(W[0], dK[0]))
     return total
+
+
+def moving_mass_rhs(moments, mu, rho, omega2, lam, damping=None):
+    """The explicit body + point mass model (docs/papers/001_moving_mass.md §C), in vector form:
+    state (ω, u, v), the mass at d = (0, 0, ρ) + u with velocity v relative to the body,
+    J_B = J − diag(μρ², μρ², 0) the carrier's moments, K = J_B ω + μ d × (ω × d + v),
+    R = −2 ω × v − ω × (ω × d) − Ω² u − λ v; linear resistance −Dω on the body if given."""
+    JB = np.asarray(moments, float) - np.array([mu * rho**2, mu * rho**2, 0.0])
+    D = np.zeros((3, 3)) if damping is None else np.asarray(damping, float)
+
+    def f(t, y):
+        w, u, v = y[:3], y[3:6], y[6:]
+        d = np.array([0, 0, rho]) + u
+        K = JB * w + mu * np.cross(d, np.cross(w, d) + v)
+        R = -2 * np.cross(w, v) - np.cross(w, np.cross(w, d)) - omega2 * u - lam * v
+        wd = (-D @ w - np.cross(w, K) - mu * (2 * (d @ v) * w - v * (d @ w) - d * (v @ w)) - mu * np.cross(d, R)) / JB
+        return np.concatenate([wd, v, R - np.cross(wd, d)])
+    return f
+
+
+def attitude_reference(moments, rotor, torque, omega0, q0, t_eval, rtol=1e-13, atol=1e-14):
+    """(ω, q) of the Euler equations and q̇ = ½ q ⊗ (0, ω) integrated here (euler_rhs, SciPy
+    DOP853, never normalised during the run: the kinematics, not a projection), q normalised at
+    the end and its sign aligned with q0's branch by continuity (q and −q are one rotation)."""
+    y = scipy_reference(moments, rotor, torque, np.concatenate([omega0, q0]), np.asarray(t_eval, float), rtol, atol)
+    y[:, 3:] /= np.linalg.norm(y[:, 3:], axis=1)[:, None]
+    return y
+
+
+def quaternion_distance(q, q_ref):
+    """max over rows of |q − q_ref| with each row's sign aligned with the reference's."""
+    q, q_ref = np.atleast_2d(q), np.atleast_2d(q_ref)
+    return float(np.max(np.abs(q * np.sign(np.sum(q * q_ref, axis=1))[:, None] - q_ref)))

@@ -39,6 +39,39 @@ def reference_rhs(moments, rotor, L, delta_eta=1e-3):
     return f
 
 
+def zv_at_tau(moments, rotor, omega0, tau):
+    """ω of the torque-free (Zhukovsky–Volterra) gyrostat A ω' = −ω × (Aω + k), integrated here in
+    τ by SciPy (DOP853, rtol 1e-12) from τ = 0 forward and backward (τ(t) may run backwards),
+    evaluated at the given τ by the dense output."""
+    moments, rotor, tau = np.asarray(moments, float), np.asarray(rotor, float), np.asarray(tau, float)
+    f = lambda s, w: -np.cross(w, moments * w + rotor) / moments  # noqa: E731
+    out = np.empty((tau.size, 3))
+    for side in (tau >= 0, tau < 0):
+        if side.any():
+            end = tau[side].max() if tau[side].max() > 0 else tau[side].min()
+            run = solve_ivp(f, (0.0, end), omega0, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
+            out[side] = run.sol(tau[side]).T
+    return out
+
+
+def exact_angles(moments, rotor, G, theta0, phi0, psi0, tau):
+    """(ψ, θ, φ) (z-x-z, inertial z along the fixed G) of the torque-free gyrostat with moments A,
+    integrated here: G in body axes is G (sin θ sin φ, sin θ cos φ, cos θ), ω = A⁻¹(G − k), and
+    the kinematic equations θ' = ω1 cos φ − ω2 sin φ, ψ' = (ω1 sin φ + ω2 cos φ)/sin θ,
+    φ' = ω3 − cot θ (ω1 sin φ + ω2 cos φ) (with A_j = J they are paper 004's (21))."""
+    A, k = np.asarray(moments, float), np.asarray(rotor, float)
+
+    def f(t, y):
+        psi, th, ph = y
+        s, c = np.sin(th), np.cos(th)
+        w = (G * np.array([s * np.sin(ph), s * np.cos(ph), c]) - k) / A
+        a = w[0] * np.sin(ph) + w[1] * np.cos(ph)
+        return [a / s, w[0] * np.cos(ph) - w[1] * np.sin(ph), w[2] - c / s * a]
+    tau = np.asarray(tau, float)
+    return solve_ivp(f, (0, tau[-1]), [psi0, theta0, phi0], method="DOP853", rtol=1e-12, atol=1e-12,
+                     t_eval=tau).y.T
+
+
 def model(law, attitude=False, **kw):
     return o.OrthogonalModel(g.Body(A, K), law, attitude=attitude, **kw)
 
@@ -116,19 +149,23 @@ def test_magnitude_laws_evaluate_as_written():
 
 
 # ---------------------------------------------------------------------------------- ZV at τ(t)
-@pytest.mark.parametrize("law, tau_end", [
-    (0.15, 47.532131),    # S1: g ≥ 0.469 (docs)
-    (3.0, -81.574749),    # S2b: L > max|Q|, τ runs backwards (docs)
-    (o.harmonic(0.3, [0.2], [1.3]), 29.708192),  # S2c: g changes sign (docs)
+@pytest.mark.parametrize("law, tau_end, measured", [
+    (0.15, 47.532131, 6.4e-12),    # S1: g ≥ 0.469 (docs)
+    (3.0, -81.574749, 5.1e-11),    # S2b: L > max|Q|, τ runs backwards (docs)
+    (o.harmonic(0.3, [0.2], [1.3]), 29.708192, 8.1e-12),  # S2c: g changes sign (docs)
 ])
-def test_omega_is_torque_free_solution_at_tau(law, tau_end):
+def test_omega_is_torque_free_solution_at_tau(law, tau_end, measured):
     m = model(law)
     sol = solve(m, W0, (0, 60), n_out=601, rtol=1e-12, atol=1e-13)
     # τ(60) printed by the independent SciPy check (rtol 1e-11): agreement to its accuracy
     assert abs(sol["tau"][-1] - tau_end) < 1e-5
-    zv = o.torque_free_at_tau(m, W0, sol["tau"])
-    # both runs ~1e-11; the map ω(t) = ω_ZV(τ(t)) is exact (docs: ≤ 1.5e-10 with SciPy)
-    assert np.max(np.abs(sol.omega - zv)) < 1e-8
+    zv = zv_at_tau(A, K, W0, sol["tau"])
+    # the map ω(t) = ω_ZV(τ(t)) is exact: what is left is both runs' error (docs: ≤ 1.5e-10 with
+    # SciPy); measured (parameter), bound 10× it
+    error = np.max(np.abs(sol.omega - zv))
+    assert error < 10 * measured, error
+    # the library's own map agrees
+    assert np.max(np.abs(o.torque_free_at_tau(m, W0, sol["tau"]) - zv)) < 10 * measured
     # the angles of G in body axes map too: θ(t) = θ_ZV(τ(t))
     Gzv = zv * A + K
     assert np.max(np.abs(np.arccos(Gzv[:, 2] / np.linalg.norm(Gzv, axis=1)) - sol["theta_G"])) < 1e-8
@@ -166,20 +203,39 @@ def test_frozen_motion_and_constant_law_regimes():
 
 
 # ---------------------------------------------------------------------------------- |Q| → 0
+# rhs evaluations of DOP853 at rtol 1e-10 over t ∈ [0, 10], measured: with the default δ = 1e-3
+# |ω||G| (regularised) and with η = 1e-12 (in effect the raw torque; docs: 2855, 26363, 208055
+# with SciPy). At ε = 1e-2, |Q| stays above δ: the two torques are the same there.
+REGULARISED_EVALS = {1e-2: 3314, 1e-3: 12539, 1e-4: 7367}
+RAW_EVALS = {1e-2: 3314, 1e-3: 27263, 1e-4: 209375}
+
+
 @pytest.mark.parametrize("eps", [1e-2, 1e-3, 1e-4])
 def test_near_permanent_rotation_is_regularised(eps):
     # SC: A = (2,3,4), k = (0,0,0.5), ω0 = (ε, 0, 1): |Q| = O(ε); the raw e_L costs nfev ∝ 1/ε
-    # (docs: 2855, 26363, 208055); regularised: ≈ 3000–6000 independent of ε
     m = o.OrthogonalModel(g.Body(A, [0, 0, 0.5]), 0.1)
     w0 = np.array([eps, 0.0, 1.0])
     sol = solve(m, w0, (0, 10), n_out=201)
-    assert sol.success and sol.stats["rhs_evals"] < 20000
+    # the bound, 1.4× the regularised count, lies below the raw torque's count where the two differ
+    assert sol.success and sol.stats["rhs_evals"] < 1.4 * REGULARISED_EVALS[eps], sol.stats["rhs_evals"]
+    assert eps == 1e-2 or 1.4 * REGULARISED_EVALS[eps] < RAW_EVALS[eps]
     drift = max(np.ptp(v) for v in sol.invariants.values())
-    assert drift < 1e-9  # docs: 1.1e-12 with SciPy at rtol 1e-11
-    zv = o.torque_free_at_tau(m, w0, sol["tau"])
-    assert np.max(np.abs(sol.omega - zv)) < 1e-8  # the map stays exact with the regularised torque
+    # measured 2.5e-13, 9.4e-14, 1.2e-14 (docs: 1.1e-12 with SciPy at rtol 1e-11); 10× the largest
+    assert drift < 2.5e-12, drift
+    zv = zv_at_tau(A, [0, 0, 0.5], w0, sol["tau"])
+    # the map stays exact with the regularised torque: measured 3.0e-12, 1.6e-11, 4.5e-11; 10× the largest
+    assert np.max(np.abs(sol.omega - zv)) < 4.5e-10, np.max(np.abs(sol.omega - zv))
     if eps <= 1e-3:  # |Q| ≈ ε·|…| is below δ = 1e-3 |ω||G|: flagged
         assert o.tau_report(m, sol)["regularised_times"]
+
+
+def test_the_raw_torque_costs_evaluations_in_proportion_to_1_over_eps():
+    """The other side of the test above: with η = 1e-12 (δ ≈ 0, the raw torque) the counts are
+    RAW_EVALS, exactly (the same steps on every run)."""
+    for eps in (1e-3, 1e-4):
+        m = o.OrthogonalModel(g.Body(A, [0, 0, 0.5]), 0.1, eta=1e-12)
+        sol = solve(m, np.array([eps, 0.0, 1.0]), (0, 10), n_out=201)
+        assert sol.success and sol.stats["rhs_evals"] > 0.7 * RAW_EVALS[eps], sol.stats["rhs_evals"]
 
 
 def test_smooth_regularisation_option():
@@ -315,6 +371,14 @@ def test_zeroth_and_first_approximations_equal_their_fields():
     assert np.max(angle_error(ns.first(tau), ref)) < 1e-8
 
 
+def assert_printed(measured, printed):
+    """Each measured value rounds to the docs' printed value at the printed number of digits
+    (the tightest check the docs allow: half a unit of the last printed digit)."""
+    for value, text in zip(measured, printed):
+        digits = len(text.split("e")[0].replace(".", "")) - 1
+        assert float(f"{value:.{digits}e}") == float(text), (value, text)
+
+
 def _slope(errors):
     return np.polyfit(np.log(MUS), np.log(errors), 1)[0]
 
@@ -326,17 +390,19 @@ def test_approximation_errors_and_mu_scaling():
         ns = o.NearlySpherical(JN, JJN, mu, KN, GN, 1.0, PHI0, 0.0)
         tau = np.unique(np.r_[np.linspace(0, 1 / mu, 1001), 10.0])
         i = np.searchsorted(tau, 10.0)
-        exact, zeroth, first = ns.exact(tau), ns.zeroth(tau), ns.first(tau)
+        exact = exact_angles(ns.moments, KN, GN, 1.0, PHI0, 0.0, tau)
+        zeroth, first = ns.zeroth(tau), ns.first(tau)
         fixed["zeroth"].append(np.abs(o.wrap(zeroth[i] - exact[i])))
         fixed["first"].append(np.abs(o.wrap(first[i] - exact[i])))
         long.append(angle_error(first, exact))
     z, f, lg = (np.array(v) for v in (fixed["zeroth"], fixed["first"], long))
     # docs (scene N), columns (ψ, θ, φ), at τ = 10 for μ = 0.1 … 0.01:
     # zeroth θ 1.85e-1 … 1.8e-2 (slope 1.02), ψ 1.4e-1 … 1.1e-2 (1.09): O(μ)
-    np.testing.assert_allclose(z[:, 1], [1.85e-1, 9.2e-2, 3.6e-2, 1.8e-2], rtol=0.05)
+    # (docs/papers/004_orthogonal_torque.md; the values are the measured ones to the printed digits)
+    assert_printed(z[:, 1], ["1.85e-1", "9.15e-2", "3.59e-2", "1.78e-2"])
     assert 0.85 < _slope(z[:, 1]) < 1.2 and 0.85 < _slope(z[:, 0]) < 1.3
     # first θ 1.4e-2 … 1.2e-4 (2.06), ψ 1.75e-2 … 1.3e-4 (2.13), φ (1.60): O(μ²)
-    np.testing.assert_allclose(f[:, 1], [1.4e-2, 3.3e-3, 5.0e-4, 1.2e-4], rtol=0.1)
+    assert_printed(f[:, 1], ["1.4e-2", "3.3e-3", "5.0e-4", "1.2e-4"])
     assert 1.8 < _slope(f[:, 1]) < 2.3 and 1.8 < _slope(f[:, 0]) < 2.4 and 1.4 < _slope(f[:, 2]) < 2.4
     # first over τ ∈ [0, 1/μ]: θ 1.4e-2 … 1.75e-3 (0.90), ψ (0.94), φ (0.65): O(μ)
     assert np.all(lg[:, 1] < 0.2 * MUS) and np.all(lg[:, 0] < 0.25 * MUS)
@@ -350,7 +416,7 @@ def test_rigid_nearly_spherical_results():
         ns = o.NearlySpherical(JN, [1.0, 0.8, 2.4], mu, (0, 0, 0), GN, 1.0, 0.3, 0.0)
         T = 4 * JN * 2 * np.pi / (mu * abs(ns.D2) * np.cos(1.0))
         tau = np.linspace(0, T, 20001)
-        ex = ns.exact(tau)
+        ex = exact_angles(ns.moments, (0, 0, 0), GN, 1.0, 0.3, 0.0, tau)
         u, phi = np.sin(ex[:, 1]), np.unwrap(ex[:, 2])
         orbit.append(np.max(np.abs(u - ns.rigid_orbit(phi))))
         o29.append(np.max(np.abs(u - ns.orbit_29(phi))))
@@ -360,10 +426,10 @@ def test_rigid_nearly_spherical_results():
         spin_q.append(abs(ns.mean_spin_rate() / spin - 1))
         spin_s.append(ns.mean_spin_rate_simple() / spin)
     # exact first-order orbit: docs 3.96e-3 … 4.1e-4, slope 0.98
-    np.testing.assert_allclose(orbit, [3.96e-3, 2.02e-3, 8.2e-4, 4.1e-4], rtol=0.05)
+    assert_printed(orbit, ["3.96e-3", "2.02e-3", "8.2e-4", "4.1e-4"])
     assert 0.9 < _slope(orbit) < 1.1
     # (29): docs 4.35e-3 … 7.98e-4 (slope 0.74, tending to an O(n²) floor)
-    np.testing.assert_allclose(o29, [4.35e-3, 2.41e-3, 1.21e-3, 7.98e-4], rtol=0.05)
+    assert_printed(o29, ["4.35e-3", "2.41e-3", "1.21e-3", "7.98e-4"])
     # mean precession: measured 0.95669 … 0.99549, corrected (1 − μP*)G/J 0.955 … 0.9955:
     # error O(μ²) (2e-3 at μ = 0.1 → 1e-5 at μ = 0.01); printed (34) P*G/J = 0.45
     err = np.abs(np.array(prec) - np.array(prec_c))
@@ -384,6 +450,11 @@ def test_full_model_angles_follow_the_approximation_at_tau_of_t():
     assert abs(sol["tau"][-1] - 84.4753) < 1e-3  # docs S3
     ang = np.column_stack([sol["theta_G"], sol["phi_G"]])
     exact = ns.exact(sol["tau"])
+    # the library's exact angles against the test's own at the same τ
+    order_ = np.argsort(sol["tau"])
+    own = exact_angles(ns.moments, KN, GN, 1.0, PHI0, 0.0, sol["tau"][order_])
+    # measured 9.7e-12; 10× it
+    assert np.max(np.abs(o.wrap(own - exact[order_]))) < 1e-10
     assert np.max(np.abs(ang[:, 0] - exact[:, 1])) < 1e-8
     assert np.max(np.abs(o.wrap(ang[:, 1] - exact[:, 2]))) < 1e-8
     first = ns.first(sol["tau"])

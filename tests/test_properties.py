@@ -44,10 +44,19 @@ def test_a_free_body_keeps_its_momentum_and_energy(moments, w, method, rtol):
     assert sol.success, sol.message
     assert np.all(np.isfinite(sol.y))
     G, T = sol["angular_momentum_norm"], sol["kinetic_energy"]
-    # |G| and T are first integrals: a local error rtol per step, over at most ~1e4 steps
+    # |G| and T are first integrals. Measured over these 40 (derandomized) examples, the largest
+    # drift of |G| and T in units of rtol·|G(0)| and rtol·T(0): dop853 2.1 and 4.0, cvode_bdf 13 and
+    # 27, cvode_adams 14 and 29, taylor 0.035 and 0.074, arkode_fehlberg8 2.2e-5 and 5.1e-5 (its
+    # steps are far below rtol's need here). The bound is 10× the larger of the two, per method,
+    # plus 1e-12 for the examples with ω ≈ 0.
+    factor = DRIFT_PER_RTOL[method]
     scale = max(G[0], 1e-12)
-    assert np.max(np.abs(G - G[0])) <= 1e4 * rtol * scale + 1e-12
-    assert np.max(np.abs(T - T[0])) <= 1e4 * rtol * max(T[0], 1e-12) + 1e-12
+    assert np.max(np.abs(G - G[0])) <= factor * rtol * scale + 1e-12, (method, rtol)
+    assert np.max(np.abs(T - T[0])) <= factor * rtol * max(T[0], 1e-12) + 1e-12, (method, rtol)
+
+
+DRIFT_PER_RTOL = {"dop853": 40.0, "cvode_bdf": 300.0, "cvode_adams": 300.0, "taylor": 0.75,
+                  "arkode_fehlberg8": 5e-4}
 
 
 @settings(max_examples=25, deadline=None, database=None, derandomize=True,

@@ -5,6 +5,7 @@ side written here and against each other, with rotors, damping and constant torq
 attitude, and at rtol 1e-13, where the compensated state and the first coefficient's error
 (taylor_rate_error) are used."""
 
+import functools
 import json
 import os
 import subprocess
@@ -47,6 +48,7 @@ MEMBERS = [
 ]
 
 
+@functools.lru_cache(maxsize=None)  # each run once per session: the two tests below share them
 def run(rtol: float, attitude: bool, portable: bool):
     env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
     env.pop("GYROSTAT_PORTABLE_KERNELS", None)
@@ -81,9 +83,19 @@ def test_both_recursions_follow_scipy_and_each_other(rtol, attitude):
         bound = max(30 * rtol, 1e-12) * scale
         assert np.abs(a[:, :3] - ref).max() <= bound, f"{kernel} recursion vs SciPy"
         assert np.abs(b[:, :3] - ref).max() <= bound, "portable recursion vs SciPy"
-        # the two forms differ by rounding only (sums in another order, fused multiply-adds), so
-        # their step sizes agree to ~1e-15 and the runs far inside their error: measured
-        # ≤ 0.008·rtol (0 where both forms are the portable one); bound rtol
-        assert np.abs(a - b).max() <= rtol * scale, "AVX2 vs portable recursion"
         if attitude:  # |q| = 1 in both
             assert np.abs(np.linalg.norm(a[:, 3:], axis=1) - 1.0).max() < 1e-14
+
+
+@pytest.mark.parametrize("rtol, attitude", [(1e-10, False), (1e-13, False), (1e-10, True)])
+def test_avx2_and_portable_recursions_differ_by_rounding(rtol, attitude):
+    kernel, fast = run(rtol, attitude, portable=False)
+    if kernel != "avx2+fma":  # both runs would be the portable recursion: comparing it with itself proves nothing
+        pytest.skip(f"the AVX2 + FMA recursion is not in use on this CPU (kernel {kernel!r})")
+    _, portable = run(rtol, attitude, portable=True)
+    for a, b in zip(fast, portable):
+        scale = np.abs(b[:, :3]).max()
+        # the two forms differ by rounding only (sums in another order, fused multiply-adds), so
+        # their step sizes agree to ~1e-15 and the runs far inside their error: measured
+        # ≤ 0.008·rtol; bound rtol
+        assert np.abs(a - b).max() <= rtol * scale, "AVX2 vs portable recursion"

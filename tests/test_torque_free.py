@@ -10,27 +10,32 @@ from references import euler_poinsot
 MOMENTS = [1.0, 2.0, 3.0]
 OMEGA0 = [1.0, 0.5, -0.3]
 
-# Global error per period of ω, in units of rtol, measured on this problem (max over the run of
-# |ω − ω_exact| with |ω| ≈ 1.2, atol = 1e-3·rtol) and given a margin of ×5. Global errors of
-# adaptive methods grow about linearly with the number of periods (phase drift), so the bound is
-# K·rtol·N_periods. The methods differ a lot:
-#   dop853: K ≈ 1.3 (short) … 160 (long; its local error estimate is sharp);
-#   cvode_*: variable-order multistep with looser error control, K up to 2.8e4 at 2000 periods;
-#   arkode_fehlberg8: K ≤ 24;
-#   taylor: K ≤ 30 (steps sized for a local error of rtol/10: docs/integrators.md; 274 before issue 12);
+# Measured max |ω − ω_exact| over the run (|ω| ≈ 1.2, atol = 1e-3·rtol), per method, rtol and
+# number of periods (build/scratch run of this test's own loop, SUNDIALS 6.4, x86-64). The bound
+# is 10× the measured error: a wrong right-hand side or a broken step control moves the error by
+# far more. The largest possible error is ≈ 2.2 (two opposite points of the polhode), so no bound
+# above HORIZON_CAP = 0.5 is set: where 10× the measured error would exceed it the bound is the
+# cap (dop853/auto at rtol 1e-6 over 2000 periods: 0.24 measured), and where the measured error
+# is itself ≈ the amplitude (cvode_bdf, cvode_adams, arkode_verner6 at rtol 1e-6 over 2000
+# periods: 1.2-1.3, the phase is lost) the case is not run: it could not fail.
+#   cvode_*: variable-order multistep, K = error/(rtol·periods) up to 5e4;
 #   arkode_verner6: the ARKODE_VERNER_8_5_6 table of SUNDIALS 6.4 converges at order 3, not 6
-#     (docs/integrators.md), hence K up to 1e6 at tight tolerances.
-PER_PERIOD_FACTOR = {
-    "dop853": 1e3,
-    "cvode_bdf": 3e5,
-    "cvode_adams": 5e4,
-    "arkode_verner6": 5e6,
-    "arkode_fehlberg8": 2e2,
-    "taylor": 1.5e3,  # measured K ≤ 30 (2000 periods, rtol 1e-6; 274 at 1e-12 before issue 12)
-    # no tolerance: with no torque the splitting is the exact flow (rounding per step, step 1.0)
-    "splitting": 1e2,
-    "auto": 1e3,  # the torque-free body is not stiff: auto is DOP853 step for step
+#     (docs/integrators.md), hence K up to 1e6 at tight tolerances;
+#   taylor: K ≤ 30 (steps sized for a local error of rtol/10: docs/integrators.md);
+#   splitting: with no torque it is the exact flow (rounding per step, step 1.0), no tolerance;
+#   auto: the torque-free body is not stiff: auto is DOP853 step for step.
+MEASURED = {
+    "dop853": {(1e-6, 10): 1.3e-05, (1e-6, 2000): 2.4e-01, (1e-9, 10): 1.1e-08, (1e-9, 2000): 3.2e-04, (1e-12, 10): 5.9e-12, (1e-12, 2000): 1.7e-07},
+    "cvode_bdf": {(1e-6, 10): 8.2e-04, (1e-6, 2000): 1.2e+00, (1e-9, 10): 2.3e-06, (1e-9, 2000): 5.5e-02, (1e-12, 10): 4.3e-09, (1e-12, 2000): 1.1e-04},
+    "cvode_adams": {(1e-6, 10): 2.0e-04, (1e-6, 2000): 1.2e+00, (1e-9, 10): 8.3e-07, (1e-9, 2000): 1.5e-02, (1e-12, 10): 6.1e-10, (1e-12, 2000): 1.1e-6},
+    "arkode_verner6": {(1e-6, 10): 3.4e-04, (1e-6, 2000): 1.3e+00, (1e-9, 10): 2.7e-06, (1e-9, 2000): 3.6e-01, (1e-12, 10): 2.1e-08, (1e-12, 2000): 1.9e-03},
+    "arkode_fehlberg8": {(1e-6, 10): 9.4e-11, (1e-6, 2000): 4.8e-02, (1e-9, 10): 9.3e-11, (1e-9, 2000): 3.3e-05, (1e-12, 10): 9.4e-14, (1e-12, 2000): 1.5e-08},
+    "taylor": {(1e-6, 10): 2.0e-06, (1e-6, 2000): 6.0e-02, (1e-9, 10): 1.8e-09, (1e-9, 2000): 5.7e-05, (1e-12, 10): 2.0e-13, (1e-12, 2000): 7.0e-09},
+    "splitting": {(1e-6, 10): 9.6e-14, (1e-6, 2000): 1.2e-10, (1e-9, 10): 9.6e-14, (1e-9, 2000): 1.2e-10, (1e-12, 10): 9.6e-14, (1e-12, 2000): 1.2e-10},
+    "auto": {(1e-6, 10): 1.3e-05, (1e-6, 2000): 2.4e-01, (1e-9, 10): 1.1e-08, (1e-9, 2000): 3.2e-04, (1e-12, 10): 5.9e-12, (1e-12, 2000): 1.7e-07},
 }
+HORIZON_CAP = 0.5
+LOST_PHASE = {("cvode_bdf", 1e-6, 2000), ("cvode_adams", 1e-6, 2000), ("arkode_verner6", 1e-6, 2000)}
 
 
 @pytest.fixture(scope="module")
@@ -42,6 +47,8 @@ def period():
 @pytest.mark.parametrize("rtol", [1e-6, 1e-9, 1e-12])
 @pytest.mark.parametrize("periods", [10, 2000])
 def test_integrators_against_elliptic_solution(method, rtol, periods, period):
+    if (method, rtol, periods) in LOST_PHASE:
+        pytest.skip("the phase is lost (measured error ≈ the amplitude): no bound could fail")
     t = np.linspace(0.0, periods * period, 1001)
     exact = euler_poinsot(MOMENTS, OMEGA0, t)
     with _verner_warning(method):
@@ -49,11 +56,45 @@ def test_integrators_against_elliptic_solution(method, rtol, periods, period):
                       atol=1e-3 * rtol, max_steps=10**8, step=1.0 if method == "splitting" else None)
     assert sol.success, sol.message
     error = np.max(np.abs(sol.y - exact))
-    bound = PER_PERIOD_FACTOR[method] * rtol * periods
-    assert error < bound, f"{method} rtol={rtol}: error {error:.3e} over {periods} periods exceeds {bound:.3e}"
-    # and it is a real solution, not noise: at the short horizon, tighter tolerance, smaller error
-    if periods == 10 and rtol == 1e-12 and method != "arkode_verner6":
-        assert error < 1e-7
+    measured = MEASURED[method][(rtol, periods)]
+    bound = min(10 * measured, HORIZON_CAP)
+    assert error < bound, f"{method} rtol={rtol}: error {error:.3e} over {periods} periods exceeds {bound:.3e} (measured {measured:.1e})"
+
+
+def test_the_docs_table_is_the_measured_errors():
+    """docs/integrators.md, "Global error on the torque-free body": its table is MEASURED at the
+    printed two digits (the bounds above are 10× these)."""
+    from pathlib import Path
+    text = (Path(__file__).parent.parent / "docs" / "integrators.md").read_text()
+    for method in ("dop853", "cvode_bdf", "cvode_adams", "arkode_fehlberg8", "arkode_verner6", "taylor"):
+        row = next(line for line in text.splitlines() if line.startswith(f"| {method} |") and line.count("/") == 4)
+        printed = [float(v) for v in row.replace("|", "/").split("/")[2:8]]
+        measured = [MEASURED[method][(rtol, n)] for n in (10, 2000) for rtol in (1e-6, 1e-9, 1e-12)]
+        assert printed == [float(f"{m:.1e}") for m in measured], (method, printed, measured)
+
+
+def test_verner_table_converges_at_order_3_with_fixed_steps():
+    """docs/integrators.md: ARKODE_VERNER_8_5_6 of SUNDIALS 6.4 integrates at order 3. Fixed steps
+    h = 0.2 … 0.025 (first_step = max_step = h, tolerances too loose to reject a step) on the
+    torque-free body over t = 4 against the elliptic solution: measured error ratios 2^3.03,
+    2^3.01, 2^3.00 (Fehlberg 8 for comparison: 2^6.9, 2^6.4 before rounding)."""
+    exact = euler_poinsot(MOMENTS, OMEGA0, np.array([4.0]))[-1]
+
+    def errors(method, steps):
+        out = []
+        for h in steps:
+            sol = g.solve(g.Model(g.Body(MOMENTS)), OMEGA0, (0.0, 4.0), t_eval=[0.0, 4.0], method=method, rtol=0.5,
+                          atol=0.5, first_step=h, max_step=h)
+            assert sol.stats["steps"] == round(4.0 / h) and sol.stats["rejected_steps"] == 0
+            out.append(np.max(np.abs(sol.y[-1] - exact)))
+        return np.array(out)
+
+    with pytest.warns(UserWarning, match="order 3"):
+        verner = errors("arkode_verner6", (0.2, 0.1, 0.05, 0.025))
+    orders = np.log2(verner[:-1] / verner[1:])
+    assert np.all(np.abs(orders - 3.0) < 0.1), orders  # an order-6 table would give ≈ 6
+    fehlberg = errors("arkode_fehlberg8", (0.2, 0.1))
+    assert np.log2(fehlberg[0] / fehlberg[1]) > 6.0
 
 
 def test_closed_form_matches_independent_reference():
