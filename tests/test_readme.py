@@ -30,8 +30,8 @@ def _namespace(index):
 def test_readme_results_against_references():
     """The README's results, not only that its snippets run: block 0's forced gyrostat (ω and q)
     against SciPy on Euler's and the quaternion's equations (tests/references.py) and its closed
-    form against the test's elliptic functions; block 1's full model against SciPy with the cavity
-    torque written in tests/references.py; block 2's top against (3.3), r = r0 exp(−(ε/C)∫b dt),
+    form against the test's elliptic functions; block 2's full model against SciPy with the cavity
+    torque written in tests/references.py; block 3's top against (3.3), r = r0 exp(−(ε/C)∫b dt),
     and the servo torque's exact integrals |G| and ω·Jω (paper 004 (5), (6))."""
     import numpy as np
 
@@ -48,7 +48,7 @@ def test_readme_results_against_references():
     # the closed form (GSL) against SciPy's ellipj: rounding of the phase over 100 s, measured 5.0e-14
     assert np.max(np.abs(exact.y - euler_poinsot([1, 2, 3], [1.0, 0.5, -0.3], exact.t))) < 5e-13
 
-    ns = _namespace(1)
+    ns = _namespace(2)  # block 1: user and attitude torques (tests/test_custom_torque.py, test_attitude_torques.py)
     full = ns["full"]
     D0, D1 = np.diag([0.02, 0.02, 0.01]), np.diag([1e-3, 1e-3, 5e-4])
     kappa = 1260 * 0.48 / 1000
@@ -58,7 +58,7 @@ def test_readme_results_against_references():
     # default rtol (1e-8) over t = 60: measured 8.5e-9; 10× it
     assert np.max(np.abs(full.y - ref)) < 8.5e-8, np.max(np.abs(full.y - ref))
 
-    ns = _namespace(2)
+    ns = _namespace(3)
     full, eps = ns["full"], 0.01
     tau = eps * full.t
     r_exact = 1.7 * np.exp(-(tau + tau**2 / 2) / 1.0)  # (3.3), b = 1 + τ, C = 1
