@@ -261,7 +261,7 @@ int main() {
         const double errors[] = {worst(mass, ym), worst(top, yt), worst(servo, yo), worst(smooth, yo), worst(regularised, yr)};
         std::printf("Jacobian vs central differences: moving mass %.1e, top %.1e, orthogonal %.1e / smooth %.1e / "
                     "regularised %.1e\n", errors[0], errors[1], errors[2], errors[3], errors[4]);
-        double flags[9];
+        double flags[model::OrthogonalTorque<false>::outputs_info.size()];  // sized by the model's declaration
         regularised.outputs(0.3, yr, flags);  // own outputs: |G|, h, g, L, |Q|, δ, regularised, ...
         CHECK(flags[6] == 1.0 && flags[4] < flags[5], "the regularised branch (|Q| < δ) is the one tested");
         for (double e : errors) CHECK(e < 1e-7, "analytic Jacobian = finite differences");
