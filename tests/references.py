@@ -86,6 +86,22 @@ def euler_rhs(moments, rotor, torque):
     return f
 
 
+def rotation(q):
+    """R(q): body → inertial, q = (w, x, y, z) normalised first (x_inertial = R x_body)."""
+    w, x, y, z = np.asarray(q, float) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def quaternion_rate(q, w):
+    """q̇ = ½ q ⊗ (0, ω), ω in body axes."""
+    qw, qx, qy, qz = q
+    p, r2, r3 = w
+    return 0.5 * np.array([-(qx * p + qy * r2 + qz * r3), qw * p + qy * r3 - qz * r2,
+                           qw * r2 + qz * p - qx * r3, qw * r3 + qx * r2 - qy * p])
+
+
 def scipy_reference(moments, rotor, torque, y0, t_eval, rtol=1e-12, atol=1e-14):
     """A SciPy DOP853 run at tight tolerance: the reference for forced cases."""
     sol = solve_ivp(euler_rhs(moments, rotor, torque), (t_eval[0], t_eval[-1]), y0, method="DOP853",

@@ -348,18 +348,27 @@ py::class_<T> bound(py::module_& m) {
 }  // namespace
 
 void expose_body(py::module_& m) {
-    py::class_<Body>(m, "Body", R"doc(A rigid body or gyrostat: its principal moments of inertia and the constant angular momentum of its rotors.
+    py::class_<Body>(m, "Body", R"doc(A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
 
-The body axes are its principal axes; every torque and every state is written in them.
+Give either its principal moments (the body axes are then its principal axes) or its inertia
+tensor in any body frame. With a tensor, the models run in the principal axes (the rotation is
+``principal_axes``) and every state, torque parameter given in body axes, rotor and event is
+given and returned in your frame; the named outputs (Euler angles, nutation angle) are those of
+the principal axes, body z being the third principal axis.
 
 Parameters
 ----------
-moments : array_like, shape (3,)
+moments : array_like, shape (3,), optional
     Principal moments of inertia (A1, A2, A3), in kg m^2: finite, positive, and each at most
     the sum of the other two (the triangle inequality of a real body).
 rotor : array_like, shape (3,), optional
     Constant gyrostatic momentum k of rotors spinning at a constant rate relative to the
     carrier, in body axes, in kg m^2/s (N m s). Default: none (a rigid body).
+inertia : array_like, shape (3, 3), optional
+    Instead of ``moments``: the inertia tensor in your body frame, in kg m^2 (products of
+    inertia off the diagonal, I_xy = -sum m x y). Finite and symmetric; its eigenvalues, the
+    principal moments, must satisfy the checks of ``moments``. Its principal axes are ordered
+    and signed to be the rotation closest to the identity: a diagonal tensor keeps its axes.
 
 Examples
 --------
@@ -368,11 +377,23 @@ Examples
 Body(A1=2, A2=2, A3=1, k=[0, 0, 0])
 >>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1])
 Body(A1=3, A2=2, A3=1, k=[0, 0, 0.1])
+>>> body = gyrostat.Body(inertia=[[2.5, 0.3, 0.0], [0.3, 2.0, 0.0], [0.0, 0.0, 1.0]])
+>>> body.moments.round(6)
+array([2.640512, 1.859488, 1.      ])
+>>> body.principal_axes.round(6)
+array([[ 0.905589, -0.424155,  0.      ],
+       [ 0.424155,  0.905589,  0.      ],
+       [ 0.      ,  0.      ,  1.      ]])
 )doc")
-        .def(py::init([](const py::object& moments, const py::object& rotor) {
-                 return Body(vec3(moments, "Body: moments"), rotor.is_none() ? Vec3::Zero() : vec3(rotor, "Body: rotor"));
+        .def(py::init([](const py::object& moments, const py::object& rotor, const py::object& inertia) {
+                 const Vec3 k = rotor.is_none() ? Vec3::Zero() : vec3(rotor, "Body: rotor");
+                 if (moments.is_none() == inertia.is_none())
+                     throw py::type_error("Body: give either moments=[A1, A2, A3] or inertia=[[...], [...], [...]], not " +
+                                          std::string(moments.is_none() ? "neither" : "both"));
+                 if (!inertia.is_none()) return Body::from_inertia(mat3(inertia, "Body: inertia"), k);
+                 return Body(vec3(moments, "Body: moments"), k);
              }),
-             py::arg("moments"), py::arg("rotor") = py::none())
+             py::arg("moments") = py::none(), py::arg("rotor") = py::none(), py::arg("inertia") = py::none())
         .def_property_readonly("moments", &Body::moments, R"doc(The principal moments of inertia (A1, A2, A3), in kg m^2.
 
 Examples
@@ -381,13 +402,52 @@ Examples
 >>> gyrostat.Body([2.0, 2.0, 1.0]).moments
 array([2., 2., 1.])
 )doc")
-        .def_property_readonly("rotor", &Body::rotor, R"doc(The rotors' constant momentum k in body axes, in kg m^2/s (zero for a rigid body).
+        .def_property_readonly("rotor", [](const Body& b) -> Vec3 { return b.principal_axes() * b.rotor(); },
+                               R"doc(The rotors' constant momentum k in your body axes, in kg m^2/s (zero for a rigid body).
 
 Examples
 --------
 >>> import gyrostat
 >>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1]).rotor
 array([0. , 0. , 0.1])
+)doc")
+        .def_property_readonly("principal_rotor", &Body::rotor, R"doc(The rotors' momentum k in principal axes, in kg m^2/s (``principal_axes.T @ rotor``).
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body(inertia=[[1.0, 0.0, 0.0], [0.0, 2.0, 0.3], [0.0, 0.3, 1.5]], rotor=[0.0, 0.0, 0.1]).principal_rotor.round(6)
+array([0.      , 0.042416, 0.090559])
+)doc")
+        .def_property_readonly("inertia", &Body::inertia, R"doc(The inertia tensor in your body frame, in kg m^2.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body([3.0, 2.0, 1.0]).inertia
+array([[3., 0., 0.],
+       [0., 2., 0.],
+       [0., 0., 1.]])
+)doc")
+        .def_property_readonly("principal_axes", &Body::principal_axes, R"doc(R: the principal axes as columns, in your body frame (v = R v_principal, det R = +1).
+
+The identity for a body given by its moments.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body([3.0, 2.0, 1.0]).principal_axes
+array([[1., 0., 0.],
+       [0., 1., 0.],
+       [0., 0., 1.]])
+)doc")
+        .def_property_readonly("principal", &Body::principal, R"doc(Whether the body was given in its principal axes (``principal_axes`` is the identity).
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body(inertia=[[2.0, 0.1, 0.0], [0.1, 2.0, 0.0], [0.0, 0.0, 1.0]]).principal
+False
 )doc")
         .def("__repr__", &Body::describe);
 

@@ -52,6 +52,9 @@ void expose_models(py::module_& m) {
              py::arg("y"))
         .def("initial_state", [](const BoundModel& b, const Eigen::VectorXd& y) { return initial_state(b.model, y); },
              py::arg("given"))
+        .def("principal_states",
+             [](const BoundModel& b, const Eigen::MatrixXd& states) { return principal_states(b.model, states); },
+             py::arg("states"), "States (rows) in the user's body frame, written in the model's principal axes.")
         .def("full_state",
              [](const BoundModel& b, const Eigen::VectorXd& y, double phase) { return full_state(b.model, y, phase); },
              py::arg("slow"), py::arg("phase") = 0.0)

@@ -28,7 +28,15 @@ Examples
 >>> free.period
 10.858161104747332
 )doc")
-        .def(py::init<const Body&, const Vec3&, double>(), py::arg("body"), py::arg("omega0"), py::arg("t0") = 0.0)
+        .def(py::init([](const Body& body, const Vec3& omega0, double t0) {
+                 if (!body.principal())
+                     throw py::value_error(
+                         "TorqueFreeSolution: the closed form is written in principal axes; this body was given by an "
+                         "inertia tensor: use Body(body.moments) and omega0 = body.principal_axes.T @ omega, or solve the "
+                         "torque-free model (it converts)");
+                 return model::TorqueFreeSolution(body, omega0, t0);
+             }),
+             py::arg("body"), py::arg("omega0"), py::arg("t0") = 0.0)
         .def("omega",
              [](const model::TorqueFreeSolution& s, const std::vector<double>& t) {
                  std::vector<double> flat;

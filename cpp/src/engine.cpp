@@ -3,7 +3,9 @@
 
 #include "gyrostat/ensemble.hpp"
 #include "ensemble_batch.hpp"
+#include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/splitting.hpp"
+#include "gyrostat/model/frame.hpp"
 
 namespace gyrostat {
 
@@ -12,6 +14,68 @@ namespace {
 template <class Visitor>
 decltype(auto) visit(const AnyModel& model, Visitor&& visitor) {
     return std::visit(std::forward<Visitor>(visitor), model);
+}
+
+using model::frame::To;
+
+/// Every state a run of `m` holds, from its principal axes to the user's frame
+/// (model/frame.hpp): the outputs' states, the events' states, the last state and the dense output.
+template <class S>
+void to_user_frame(const S& m, integrate::Result& r) {
+    if (!model::frame::rotated(m)) return;
+    const auto convert_rows = [&](std::vector<double>& rows) {
+        for (std::size_t i = 0; i + S::dim <= rows.size(); i += S::dim) model::frame::convert(m, rows.data() + i, To::User);
+    };
+    convert_rows(r.y);
+    for (auto& rows : r.y_events) convert_rows(rows);
+    if (r.y_last.size() == static_cast<std::size_t>(S::dim)) convert_rows(r.y_last);
+    if (r.dense)
+        r.dense->set_transform([body = m.body()](double* y) { model::frame::convert_state<S>(body, y, To::User); });
+}
+
+/// The options of a run of `m` in its principal axes: an event on a state component or a function
+/// of the state sees the state in the user's frame.
+template <class S>
+integrate::Options with_events_in_user_frame(const S& m, const integrate::Options& options) {
+    integrate::Options converted = options;
+    if (!model::frame::rotated(m)) return converted;
+    for (integrate::Event& e : converted.events) {
+        using Quantity = integrate::Event::Quantity;
+        if (e.quantity == Quantity::State && e.index >= 0 && e.index < S::dim) {
+            const int index = e.index;
+            e.quantity = Quantity::Function;
+            e.function = [body = m.body(), index](double, const double* y, int) {
+                typename S::State user = Eigen::Map<const typename S::State>(y);
+                model::frame::convert_state<S>(body, user.data(), To::User);
+                return user[index];
+            };
+        } else if (e.quantity == Quantity::Function && e.function) {
+            e.function = [body = m.body(), f = e.function](double t, const double* y, int dim) {
+                typename S::State user = Eigen::Map<const typename S::State>(y);
+                model::frame::convert_state<S>(body, user.data(), To::User);
+                return f(t, user.data(), dim);
+            };
+        }
+    }
+    return converted;
+}
+
+/// A run of `m` from `start`, its full initial state in principal axes, given and returned in the
+/// user's frame.
+template <class S>
+integrate::Result solve_from_principal(const S& m, double t0, const Eigen::VectorXd& start, double t1,
+                                       const integrate::Options& options, const integrate::Control* control) {
+    if constexpr (!integrate::has_splitting<S>::value && !model::system::is_closed_form<S>::value) {
+        if (options.method == integrate::Method::Splitting)
+            throw std::invalid_argument(std::string("method 'splitting': the '") + S::family +
+                                        "' model does not split into the exact free-body flow and a perturbation "
+                                        "(splitting is offered for the gyrostat Model, the Lagrange top and the orthogonal-torque model); "
+                                        "choose another method");
+    }
+    if (!model::frame::rotated(m)) return solve_system(m, t0, start, t1, options, control);
+    integrate::Result r = solve_system(m, t0, start, t1, with_events_in_user_frame(m, options), control);
+    to_user_frame(m, r);
+    return r;
 }
 
 }  // namespace
@@ -50,14 +114,35 @@ Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y) {
             throw std::invalid_argument("rhs: the state has " + std::to_string(y.size()) + " components; this model needs " +
                                         std::to_string(S::dim) + " (" +
                                         model::system::join_names(S::states) + ")");
-        typename S::State dy;
-        m.rhs(t, typename S::State(y), dy);
+        typename S::State principal = model::frame::initial_state(m, y), dy;
+        m.rhs(t, principal, dy);
+        model::frame::convert(m, dy.data(), To::User);  // the map is linear: it takes rates as it takes states
         return dy;
     });
 }
 
 Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& given) {
-    return visit(model, [&](const auto& m) -> Eigen::VectorXd { return model::system::initial_state(m, given); });
+    return visit(model, [&](const auto& m) -> Eigen::VectorXd {
+        auto y = model::frame::initial_state(m, given);
+        model::frame::convert(m, y.data(), To::User);
+        return y;
+    });
+}
+
+Eigen::MatrixXd principal_states(const AnyModel& model, const Eigen::MatrixXd& states) {
+    return visit(model, [&](const auto& m) -> Eigen::MatrixXd {
+        using S = std::decay_t<decltype(m)>;
+        if (states.cols() != S::dim)
+            throw std::invalid_argument("principal_states: a state has " + std::to_string(states.cols()) +
+                                        " components; this model's have " + std::to_string(S::dim));
+        Eigen::MatrixXd principal = states;
+        for (Eigen::Index i = 0; i < principal.rows(); ++i) {
+            typename S::State y = principal.row(i).transpose();
+            model::frame::convert(m, y.data(), To::Principal);
+            principal.row(i) = y.transpose();
+        }
+        return principal;
+    });
 }
 
 Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, double phase) {
@@ -69,7 +154,9 @@ Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, d
                                             " components; this model needs " + std::to_string(S::dim) + " (" +
                                             model::system::join_names(S::states) + ")");
             if (!std::isfinite(phase)) throw std::invalid_argument("full_state: the phase must be finite");
-            return m.full_state(typename S::State(slow), phase);
+            Eigen::VectorXd lifted = m.full_state(typename S::State(slow), phase);
+            model::frame::convert_rate_state(m.body(), lifted.data(), lifted.size(), To::User);
+            return lifted;
         } else {
             (void)phase;
             throw std::invalid_argument(std::string("full_state: the '") + S::family +
@@ -81,7 +168,7 @@ Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, d
 Eigen::VectorXd outputs_at(const AnyModel& model, double t, const Eigen::VectorXd& y) {
     return visit(model, [&](const auto& m) -> Eigen::VectorXd {
         using S = std::decay_t<decltype(m)>;
-        const typename S::State state = model::system::initial_state(m, y);
+        const typename S::State state = model::frame::initial_state(m, y);
         Eigen::VectorXd out(model::system::n_outputs<S>());
         model::system::outputs(m, t, state, out.data());
         return out;
@@ -90,17 +177,10 @@ Eigen::VectorXd outputs_at(const AnyModel& model, double t, const Eigen::VectorX
 
 integrate::Result solve(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                         const integrate::Options& options, const integrate::Control* control) {
-    const Eigen::VectorXd start = y0;
+    const Eigen::VectorXd given = y0;
     return visit(model, [&](const auto& m) {
-        using S = std::decay_t<decltype(m)>;
-        if constexpr (!integrate::has_splitting<S>::value && !model::system::is_closed_form<S>::value) {
-            if (options.method == integrate::Method::Splitting)
-                throw std::invalid_argument(std::string("method 'splitting': the '") + S::family +
-                                            "' model does not split into the exact free-body flow and a perturbation "
-                                            "(splitting is offered for the gyrostat Model, the Lagrange top and the orthogonal-torque model); "
-                                            "choose another method");
-        }
-        return solve_system(m, t0, start, t1, options, control);
+        if (!model::frame::rotated(m)) return solve_from_principal(m, t0, given, t1, options, control);
+        return solve_from_principal(m, t0, model::frame::initial_state(m, given), t1, options, control);
     });
 }
 
@@ -123,9 +203,23 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         throw std::invalid_argument("solve_ensemble: " + std::to_string(models.size()) + " models for " +
                                     std::to_string(n) + " initial states (give 1 or " + std::to_string(n) + ")");
     integrate::validate(options, t0, t1);
+    const auto model_of = [&](std::size_t i) -> const AnyModel& { return *(models.size() == 1 ? models[0] : models[i]); };
+    // Members on a body given by its inertia tensor start from their state in principal axes
+    // (a start that cannot be converted stays as given: its run then reports why).
+    std::vector<Eigen::VectorXd> starts = y0s;
+    std::vector<char> rotated(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        visit(model_of(i), [&](const auto& m) {
+            if (!model::frame::rotated(m)) return;
+            rotated[i] = 1;
+            try {
+                starts[i] = model::frame::initial_state(m, y0s[i]);
+            } catch (const std::exception&) {
+            }
+        });
     ensemble_batch::Plan plan;
     if (batch)
-        plan = ensemble_batch::plan(models, y0s, options);
+        plan = ensemble_batch::plan(models, starts, options);
     else
         for (std::size_t i = 0; i < n; ++i) plan.single.push_back(i);
     // Tasks: the batches first, then the members that run alone; each task on one thread.
@@ -135,11 +229,15 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         n_batches + plan.single.size(),
         [&](std::size_t task, const integrate::Control* member) {
             if (task < n_batches) {
-                ensemble_batch::solve(plan.batches[task], models, y0s, t0, t1, options, member, results);
+                ensemble_batch::solve(plan.batches[task], models, starts, t0, t1, options, member, results);
+                for (std::size_t i : plan.batches[task])
+                    if (rotated[i]) visit(model_of(i), [&](const auto& m) { to_user_frame(m, results[i]); });
                 return integrate::Result{};
             }
             const std::size_t i = plan.single[task - n_batches];
-            return solve(*(models.size() == 1 ? models[0] : models[i]), t0, y0s[i], t1, options, member);
+            return visit(model_of(i), [&](const auto& m) {
+                return solve_from_principal(m, t0, starts[i], t1, options, member);
+            });
         },
         threads, control);
     for (std::size_t task = 0; task < tasks.size(); ++task) {
@@ -158,7 +256,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         auto& r = results[i];
         r.options = integrate::recorded(options);
         if (!r.state_names.empty()) continue;
-        visit(*(models.size() == 1 ? models[0] : models[i]),
+        visit(model_of(i),
               [&](const auto& m) { integrate::describe<std::decay_t<decltype(m)>>(r, &m); });
         r.method = integrate::method_name(options.method);
     }

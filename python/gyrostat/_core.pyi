@@ -11,18 +11,27 @@ import typing
 __all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'taylor_kernel', 'torque_free_model', 'torque_types']
 class Body:
     """
-    A rigid body or gyrostat: its principal moments of inertia and the constant angular momentum of its rotors.
+    A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
     
-    The body axes are its principal axes; every torque and every state is written in them.
+    Give either its principal moments (the body axes are then its principal axes) or its inertia
+    tensor in any body frame. With a tensor, the models run in the principal axes (the rotation is
+    ``principal_axes``) and every state, torque parameter given in body axes, rotor and event is
+    given and returned in your frame; the named outputs (Euler angles, nutation angle) are those of
+    the principal axes, body z being the third principal axis.
     
     Parameters
     ----------
-    moments : array_like, shape (3,)
+    moments : array_like, shape (3,), optional
         Principal moments of inertia (A1, A2, A3), in kg m^2: finite, positive, and each at most
         the sum of the other two (the triangle inequality of a real body).
     rotor : array_like, shape (3,), optional
         Constant gyrostatic momentum k of rotors spinning at a constant rate relative to the
         carrier, in body axes, in kg m^2/s (N m s). Default: none (a rigid body).
+    inertia : array_like, shape (3, 3), optional
+        Instead of ``moments``: the inertia tensor in your body frame, in kg m^2 (products of
+        inertia off the diagonal, I_xy = -sum m x y). Finite and symmetric; its eigenvalues, the
+        principal moments, must satisfy the checks of ``moments``. Its principal axes are ordered
+        and signed to be the rotation closest to the identity: a diagonal tensor keeps its axes.
     
     Examples
     --------
@@ -31,11 +40,31 @@ class Body:
     Body(A1=2, A2=2, A3=1, k=[0, 0, 0])
     >>> gyrostat.Body([3.0, 2.0, 1.0], rotor=[0.0, 0.0, 0.1])
     Body(A1=3, A2=2, A3=1, k=[0, 0, 0.1])
+    >>> body = gyrostat.Body(inertia=[[2.5, 0.3, 0.0], [0.3, 2.0, 0.0], [0.0, 0.0, 1.0]])
+    >>> body.moments.round(6)
+    array([2.640512, 1.859488, 1.      ])
+    >>> body.principal_axes.round(6)
+    array([[ 0.905589, -0.424155,  0.      ],
+           [ 0.424155,  0.905589,  0.      ],
+           [ 0.      ,  0.      ,  1.      ]])
     """
-    def __init__(self, moments: typing.Any, rotor: typing.Any = None) -> None:
+    def __init__(self, moments: typing.Any = None, rotor: typing.Any = None, inertia: typing.Any = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
+    @property
+    def inertia(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        The inertia tensor in your body frame, in kg m^2.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body([3.0, 2.0, 1.0]).inertia
+        array([[3., 0., 0.],
+               [0., 2., 0.],
+               [0., 0., 1.]])
+        """
     @property
     def moments(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
@@ -48,9 +77,46 @@ class Body:
         array([2., 2., 1.])
         """
     @property
+    def principal(self) -> bool:
+        """
+        Whether the body was given in its principal axes (``principal_axes`` is the identity).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body(inertia=[[2.0, 0.1, 0.0], [0.1, 2.0, 0.0], [0.0, 0.0, 1.0]]).principal
+        False
+        """
+    @property
+    def principal_axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        R: the principal axes as columns, in your body frame (v = R v_principal, det R = +1).
+        
+        The identity for a body given by its moments.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body([3.0, 2.0, 1.0]).principal_axes
+        array([[1., 0., 0.],
+               [0., 1., 0.],
+               [0., 0., 1.]])
+        """
+    @property
+    def principal_rotor(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The rotors' momentum k in principal axes, in kg m^2/s (``principal_axes.T @ rotor``).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body(inertia=[[1.0, 0.0, 0.0], [0.0, 2.0, 0.3], [0.0, 0.3, 1.5]], rotor=[0.0, 0.0, 0.1]).principal_rotor.round(6)
+        array([0.      , 0.042416, 0.090559])
+        """
+    @property
     def rotor(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        The rotors' constant momentum k in body axes, in kg m^2/s (zero for a rigid body).
+        The rotors' constant momentum k in your body axes, in kg m^2/s (zero for a rigid body).
         
         Examples
         --------
@@ -1623,6 +1689,10 @@ class Model:
         ...
     def outputs_at(self, t: typing.SupportsFloat | typing.SupportsIndex, y: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
+    def principal_states(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        States (rows) in the user's body frame, written in the model's principal axes.
+        """
     def quasi_static_state(self, omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     def rate(self, t: typing.SupportsFloat | typing.SupportsIndex) -> float:

@@ -117,6 +117,8 @@ def check(model, states, times=None, warn: bool = True, outputs: dict | None = N
     """
     states = np.atleast_2d(np.asarray(states, float))
     times = np.zeros(len(states)) if times is None else np.asarray(times, float)
+    if states.shape[1] == model.dim:  # the checks look at the motion in principal axes (a body given by a tensor)
+        states = np.asarray(model._core.principal_states(states))
     omegas = _omegas(model, states)
     # each torque's own numbers, as its C++ header declares them (torque.assumptions)
     motion = _core.Motion(model.body.moments, omegas)

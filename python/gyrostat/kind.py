@@ -21,7 +21,7 @@ import numpy as np
 from gyrostat import _core
 from gyrostat import ladder as _ladder
 from gyrostat.modelbase import ModelBase
-from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, SceneError, Table, Vector, all_finite, at_least,
+from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, SceneError, Table, Vector, all_finite, at_least,
                              finite, non_negative, positive, span_order)
 from gyrostat import torques as _torques
 
@@ -242,11 +242,14 @@ PHASE = Field(float, default=0.0, unit="rad", check=finite,
               doc="model = 'auto': the fast phase at which a switch up the ladder lifts the slow variables")
 
 BODY = Table({
-    "moments": Field(Vector(3), required=True, doc="principal moments A1, A2, A3", unit="kg m^2",
-                     check=all_finite),
+    "moments": Field(Vector(3), doc="principal moments A1, A2, A3", unit="kg m^2", check=all_finite),
+    "inertia": Field(Matrix(3, 3), doc="instead of moments: the inertia tensor in the scene's body frame (rows; "
+                                       "symmetric, products of inertia off the diagonal); the run happens in its "
+                                       "principal axes, states and body-axes torque parameters stay in this frame",
+                     unit="kg m^2", check=all_finite),
     "rotor": Field(Vector(3), default=[0.0, 0.0, 0.0], doc="gyrostatic momentum k of the rotors",
                    unit="kg m^2/s", check=all_finite),
-})
+}, one_of=[("moments", "inertia")])
 
 
 
@@ -274,7 +277,10 @@ def build(where: str, make, *args):
 
 def make_body(doc: dict) -> _core.Body:
     """The scene's [body] as a :class:`gyrostat.Body`."""
-    return build("body", _core.Body, doc["body"]["moments"], doc["body"]["rotor"])
+    body = doc["body"]
+    if "inertia" in body:
+        return build("body", lambda: _core.Body(rotor=body["rotor"], inertia=body["inertia"]))
+    return build("body", _core.Body, body["moments"], body["rotor"])
 
 
 def make_torques(doc: dict) -> list:

@@ -162,7 +162,7 @@ class Scene:
         >>> Scene.from_dict({"body": {}})
         Traceback (most recent call last):
         ...
-        gyrostat.schema.SceneError: [body] is missing required key 'moments' (principal moments A1, A2, A3 [kg m^2])
+        gyrostat.schema.SceneError: [body] needs exactly one of 'moments' or 'inertia'; none is given
         """
         if not isinstance(data, dict):
             raise SceneError(f"a scene is a table of keys, got {type(data).__name__}")

@@ -289,6 +289,40 @@ int main() {
     // Validation.
     CHECK(throws_invalid([] { Body(Vec3(-1.0, 2.0, 2.0)); }), "negative moment");
     CHECK(throws_invalid([] { Body(Vec3(1.0, 1.0, 3.0)); }), "triangle inequality");
+
+    // A body from its inertia tensor: R diagonalises it (rounding), a diagonal tensor keeps its
+    // axes, a non-symmetric one and one without a real body are refused; the engine's state in
+    // the user's frame: ω = R ω_p through rhs (Euler's equations with the full tensor written
+    // here, I ω̇ = −ω × (I ω + k)), and the Lagrange top refuses the tensor.
+    {
+        Mat3 I;
+        I << 2.0, 0.1, -0.2, 0.1, 1.5, 0.05, -0.2, 0.05, 1.2;
+        const Vec3 k(0.01, -0.02, 0.03);
+        const Body tilted = Body::from_inertia(I, k);
+        const Mat3& R = tilted.principal_axes();
+        CHECK(!tilted.principal() && (R * tilted.moments().asDiagonal() * R.transpose() - I).cwiseAbs().maxCoeff() < 4e-15,
+              "from_inertia: R diag(A) Rᵀ = I");
+        CHECK(std::abs(R.determinant() - 1.0) < 1e-14 && (tilted.principal_axes() * tilted.rotor() - k).norm() < 1e-16,
+              "from_inertia: a rotation; the rotor in principal axes");
+        const Body diagonal = Body::from_inertia(Vec3(1.0, 3.0, 2.5).asDiagonal().toDenseMatrix());
+        CHECK(diagonal.principal() && diagonal.moments() == Vec3(1.0, 3.0, 2.5), "a diagonal tensor keeps its axes");
+        Mat3 skew_tensor = I;
+        skew_tensor(0, 1) = 0.3;
+        CHECK(throws_invalid([&] { Body::from_inertia(skew_tensor); }), "a non-symmetric tensor");
+        Mat3 flat = Mat3::Zero();
+        flat.diagonal() << 5.0, 1.0, 1.0;
+        flat(0, 1) = flat(1, 0) = 0.1;
+        CHECK(throws_invalid([&] { Body::from_inertia(flat); }), "triangle inequality of the eigenvalues");
+        const AnyModel gyro = model::Gyrostat<false>(tilted, TorqueSet{});
+        const Vec3 w(0.3, -0.2, 0.9);
+        const Eigen::VectorXd dw = rhs(gyro, 0.0, w);
+        const Vec3 expected = I.lu().solve(Vec3(-w.cross(I * w + k)));
+        CHECK((Vec3(dw) - expected).norm() < 1e-15, "rhs in the user's frame = Euler's equations with the full tensor");
+        Mat3 symmetric_tensor = I;
+        symmetric_tensor << 2.0, 0.1, 0.0, 0.1, 2.0, 0.0, 0.0, 0.0, 1.2;
+        CHECK(throws_invalid([&] { model::LagrangeTop(Body::from_inertia(symmetric_tensor), 1.0, TorqueSet{}); }),
+              "the Lagrange top takes principal moments only");
+    }
     CHECK(throws_invalid([&] {
               integrate::Options o;
               o.rtol = 0.0;

@@ -16,9 +16,16 @@ inline Mat3 skew(const Vec3& a) {
     return s;
 }
 
-/// Principal moments J = diag(A1, A2, A3) (body axes are principal axes) and the constant
-/// gyrostatic momentum k of rotors spinning at constant rate relative to the carrier.
-/// The angular momentum is G = J ω + k. A body is a gyrostat with k = 0.
+/// Principal moments J = diag(A1, A2, A3) and the constant gyrostatic momentum k of rotors
+/// spinning at constant rate relative to the carrier. The angular momentum is G = J ω + k.
+/// A body is a gyrostat with k = 0.
+///
+/// Every model runs in the principal axes: moments() and rotor() are in them. A body given by its
+/// inertia tensor I in some other body frame (the user's) records the rotation between the two,
+///   v_user = R v_principal,   I = R diag(A1, A2, A3) Rᵀ,   det R = +1,
+/// and the engine gives and returns every state in the user's frame (engine.cpp, model/frame.hpp):
+/// ω_user = R ω_p, and the attitude quaternions q_p = q_user ⊗ q_R with R(q_R) = R. A body given
+/// by its moments has R = I (principal() is true) and nothing is converted.
 class Body {
 public:
     /// Throws std::invalid_argument naming the bad value when a moment is not finite, not
@@ -26,9 +33,28 @@ public:
     /// or when a rotor component is not finite.
     Body(const Vec3& moments, const Vec3& rotor = Vec3::Zero());
 
+    /// A body from its inertia tensor in the user's body frame, and the rotor's momentum k in that
+    /// frame. I must be finite and symmetric (to 1e-12 relative to its largest entry; it is then
+    /// symmetrised) and its eigenvalues, the principal moments, satisfy the constructor's checks
+    /// (positive, triangle inequality), which name them. The principal axes are the eigenvectors
+    /// of Eigen's SelfAdjointEigenSolver, ordered and signed so that R is the rotation (det +1)
+    /// closest to the identity among the axes' 24 proper relabellings: a diagonal I gives R = I
+    /// and the moments in the order given.
+    static Body from_inertia(const Mat3& inertia, const Vec3& rotor = Vec3::Zero());
+
     const Vec3& moments() const { return moments_; }
     const Vec3& inverse_moments() const { return inverse_moments_; }
+    /// k in principal axes.
     const Vec3& rotor() const { return rotor_; }
+
+    /// Whether the user's body frame is the principal one (R = I).
+    bool principal() const { return principal_; }
+    /// R: the principal axes as columns, in the user's body frame (v_user = R v_principal).
+    const Mat3& principal_axes() const { return axes_; }
+    /// The unit quaternion q_R of R (w ≥ 0).
+    const Eigen::Vector4d& principal_quaternion() const { return axes_quaternion_; }
+    /// The inertia tensor in the user's frame, R diag(A) Rᵀ.
+    Mat3 inertia() const { return axes_ * moments_.asDiagonal() * axes_.transpose(); }
 
     Vec3 angular_momentum(const Vec3& omega) const { return moments_.cwiseProduct(omega) + rotor_; }
     /// Kinetic energy of the carrier's rotation, T = ω·Jω / 2 (conserved for a free gyrostat).
@@ -40,6 +66,9 @@ private:
     Vec3 moments_;
     Vec3 inverse_moments_;
     Vec3 rotor_;
+    bool principal_ = true;
+    Mat3 axes_ = Mat3::Identity();
+    Eigen::Vector4d axes_quaternion_ = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
 };
 
 /// The shortest decimal text that reads back as x (as Python's repr): for error messages.

@@ -40,12 +40,21 @@ integrate::Result described(const AnyModel& model);
 Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y);
 /// The full initial state from what was given (e.g. ω alone for a model with attitude).
 Eigen::VectorXd initial_state(const AnyModel& model, const Eigen::VectorXd& given);
+/// States (rows, dim each) in the user's body frame written in the model's principal axes
+/// (model/frame.hpp; unchanged for a body given by its principal moments): what the model's own
+/// checks look at.
+Eigen::MatrixXd principal_states(const AnyModel& model, const Eigen::MatrixXd& states);
 /// An averaged model's state lifted to the model it averages, at the fast phase given
 /// (model/system.hpp: full_state); std::invalid_argument for a model that averages nothing.
 Eigen::VectorXd full_state(const AnyModel& model, const Eigen::VectorXd& slow, double phase);
 /// The model's named outputs at (t, y), as the engine records them (NaN where undefined).
 Eigen::VectorXd outputs_at(const AnyModel& model, double t, const Eigen::VectorXd& y);
 
+/// Every function here takes and returns states in the user's body frame: for a body given by its
+/// inertia tensor (Body::from_inertia) the model runs in the principal axes and the engine
+/// converts at its edges (model/frame.hpp); the named outputs are the model's, in principal axes
+/// (the Euler angles are those of the principal axes, body z the third principal axis).
+///
 /// Solves `model` from (t0, y0) to t1 (y0 may be short: see initial_state). Bad input throws
 /// std::invalid_argument naming the value (method 'splitting' for a model that does not split
 /// names the model); a failing run returns its partial trajectory.

@@ -195,7 +195,8 @@ class MovingMass(Kind):
         reduced_model = build("damper", Model, body, [damper, *torques])
         checks = [a for a in check(reduced_model, omega, warn=False)
                   if a.part == "moving-mass damper" and "condition (4)" not in a.statement]
-        fast = _core.Motion(body.moments, omega[np.newaxis, :]).axial_frequency  # |(C − A) r / A|, from C++
+        principal = reduced_model._core.principal_states(omega[np.newaxis, :])  # ω in principal axes
+        fast = _core.Motion(body.moments, principal).axial_frequency  # |(C − A) r / A|, from C++
         reduced = _ladder.Rung(
             "reduced", reduced_model, omega, "the rigid body under the damper's quasi-static torque (Chernousko)",
             compare=compare, fast_period=2.0 * math.pi / fast if fast > 0 else math.inf,

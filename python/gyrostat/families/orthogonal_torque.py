@@ -436,7 +436,7 @@ def orbit_q_range(model: OrthogonalModel, omega0, span: float | None = None, n: 
     if span is None:
         span = 400.0 / (np.linalg.norm(omega0) + np.linalg.norm(k) / J.min() + 1e-300)
     zv = solve(model.torque_free(attitude=False), omega0, (0.0, span), n_out=n, rtol=1e-10, atol=1e-12)
-    Q = np.cross(zv.omega, zv.omega * J + k)
+    Q = np.cross(zv.omega, zv.omega @ model.body.inertia.T + k)  # ω × G in the body frame given
     q = np.linalg.norm(Q, axis=1)
     return float(q.min()), float(q.max())
 
@@ -1160,7 +1160,7 @@ class OrthogonalTorqueKind(Kind):
                 q0 = np.asarray(doc["initial"]["attitude"], float)
                 q0 = q0 / np.linalg.norm(q0)
             else:  # inertial z3 along G(0), ψ0 = 0: the Euler angles of (15)-(16)
-                q0 = attitude_along_momentum(np.asarray(body.moments) * omega0 + np.asarray(body.rotor))
+                q0 = attitude_along_momentum(np.asarray(body.inertia) @ omega0 + np.asarray(body.rotor))
         integ = doc["integration"]
         runs = []
         for i, spec in enumerate(doc["runs"]):

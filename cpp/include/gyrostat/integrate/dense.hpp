@@ -63,8 +63,12 @@ public:
             for (int k = order_[i] - 1; k >= 0; --k) y = y * s + Eigen::Map<const Eigen::VectorXd>(c + k * dim_, dim_);
         }
         if (quaternion_ >= 0) y.segment<4>(quaternion_).normalize();
+        if (transform_) transform_(y.data());
         return y;
     }
+    /// A map applied to every state returned (the model's principal axes to the user's frame:
+    /// model/frame.hpp).
+    void set_transform(std::function<void(double*)> transform) { transform_ = std::move(transform); }
 
 private:
     static void check_inside(double t, double a, double b) {
@@ -80,6 +84,7 @@ private:
     std::vector<double> coefficients_;
     std::function<Eigen::VectorXd(double)> exact_;
     double exact_a_ = 0.0, exact_b_ = 0.0;
+    std::function<void(double*)> transform_;
 };
 
 }  // namespace gyrostat::integrate

@@ -37,7 +37,11 @@ public:
     static constexpr const char* family = "averaged_symmetric";
     static constexpr std::array<Quantity, dim> states{{{"a", "rad/s", "a = sqrt(p^2 + q^2), the transverse amplitude"}, {"r", "rad/s", "angular velocity about body z"}}};
 
-    AveragedSymmetric(Body body, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)) {
+    /// (a, r) do not depend on the body frame (model/frame.hpp); the ω they are lifted from and to
+    /// does.
+    static constexpr std::array<int, 0> body_vectors{};
+
+    AveragedSymmetric(Body body, TorqueSet torques) : body_(std::move(body)), torques_(torques.in_principal_axes(body)) {
         if (body_.rotor().squaredNorm() != 0.0)
             throw std::invalid_argument("AveragedSymmetric: averaging over the Euler–Poinsot motion is for a rigid body "
                                         "(rotor k = 0); this body has |k| = " + format_value(body_.rotor().norm()));

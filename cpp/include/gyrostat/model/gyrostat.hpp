@@ -46,7 +46,7 @@ public:
     static constexpr auto states = rate_states<WithAttitude>();
 
     Gyrostat(Body body, TorqueSet torques)
-        : body_(std::move(body)), torques_(std::move(torques)), affine_(AffineEuler<double>::of(body_, torques_)) {
+        : body_(std::move(body)), torques_(torques.in_principal_axes(body)), affine_(AffineEuler<double>::of(body_, torques_)) {
         if constexpr (!WithAttitude) torques_.require_no_attitude("Model(attitude=False)");
     }
 

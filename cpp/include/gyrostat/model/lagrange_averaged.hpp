@@ -46,8 +46,10 @@ public:
     static constexpr const char* family = "lagrange_averaged";
     static constexpr std::array<Quantity, dim> states{{{"G_z", "kg m^2/s", "the angular momentum about the vertical"}, {"H", "J", "the top's energy, rotation plus gravity"}, {"r", "rad/s", "angular velocity about body z"}}};
 
+    const Body& body() const { return top_.body(); }
+
     LagrangeAveraged(Body body, double mu, TorqueSet torques)
-        : top_(std::move(body), mu, torques), torques_(std::move(torques)) {
+        : top_(body, mu, torques), torques_(torques.in_principal_axes(body)) {
         for (const auto& part : torques_.parts()) {
             if (const auto* medium = std::get_if<torque::ResistiveMedium>(&part)) {
                 for (std::size_t k = 0; k < medium->coefficients.size(); ++k)

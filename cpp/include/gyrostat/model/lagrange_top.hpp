@@ -98,11 +98,15 @@ public:
     static constexpr auto states = rate_states<true>();
     static constexpr bool carries_attitude = true;
 
-    LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(std::move(torques)), mu_(mu) {
+    LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(torques.in_principal_axes(body)), mu_(mu) {
         const Vec3& J = body_.moments();
         if (J[0] != J[1])
             throw std::invalid_argument("LagrangeTop: the top must be dynamically symmetric (A1 = A2); got A1 = " +
                                         format_value(J[0]) + ", A2 = " + format_value(J[1]));
+        if (!body_.principal())
+            throw std::invalid_argument(
+                "LagrangeTop: give the top by its principal moments (A, A, C): its centre of mass lies on its "
+                "symmetry axis z, which a body given by an inertia tensor with products of inertia does not place");
         if (body_.rotor().squaredNorm() != 0.0)
             throw std::invalid_argument("LagrangeTop: a rigid top has no rotor; got |k| = " +
                                         format_value(body_.rotor().norm()));

@@ -42,8 +42,12 @@ public:
                                                         {"v_2", "m/s", "the displacement's rate, body y"},
                                                         {"v_3", "m/s", "the displacement's rate, body z"}}};
 
+    /// ω, u and v are vectors in body axes (model/frame.hpp); on a body given by its inertia
+    /// tensor the mass moves about its attachment on the third principal axis.
+    static constexpr std::array<int, 3> body_vectors{{0, 3, 6}};
+
     MovingMass(Body system_body, double mass, double arm, double frequency, double damping, TorqueSet external)
-        : body_(std::move(system_body)), torques_(std::move(external)), mu_(mass), rho_(arm),
+        : body_(std::move(system_body)), torques_(external.in_principal_axes(system_body)), mu_(mass), rho_(arm),
           omega2_(frequency * frequency), lambda_(damping) {
         // the parameters are validated as those of the reduced torque
         torque::MovingMassDamper check(mass, arm, frequency, damping);

@@ -186,7 +186,7 @@ public:
     /// smooth = true selects the form n_δ = √(|Q|² + δ²) of the docs' first recommendation
     /// (smooth everywhere, but the applied L is off by a relative δ²/2|Q|² at every |Q|).
     OrthogonalTorque(Body body, MagnitudeLaw law, TorqueSet torques = {}, double eta = 1e-3, bool smooth = false)
-        : body_(std::move(body)), law_(std::move(law)), torques_(std::move(torques)), eta_(eta), smooth_(smooth) {
+        : body_(std::move(body)), law_(std::move(law)), torques_(torques.in_principal_axes(body)), eta_(eta), smooth_(smooth) {
         if (!std::isfinite(eta) || eta <= 0.0)
             throw std::invalid_argument("OrthogonalTorque: regularisation eta = " + format_value(eta) +
                                         " must be finite and positive (the torque direction Q/|Q| is undefined at Q = 0)");

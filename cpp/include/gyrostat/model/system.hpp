@@ -72,6 +72,10 @@ struct OutputInfo {
 ///                                                                model it averages with these slow
 ///                                                                variables, at the fast phase given
 ///                                                                (the model ladder's switch up)
+///   static constexpr std::array<int, n> body_vectors;            the state's vectors in body axes
+///                                                                (model/frame.hpp: a body given by
+///                                                                its inertia tensor; default: only
+///                                                                bodies given in principal axes)
 ///   using LaneModel = …;                                         W members side by side in SIMD
 ///                                                                lanes (numeric/lanes.hpp), for the
 ///                                                                ensembles' batches (integrate/
@@ -347,6 +351,8 @@ class RateAttitude {
 public:
     using State = Eigen::Matrix<double, Dim, 1>;
     static constexpr bool carries_attitude = WithAttitude;
+    /// ω is a vector in body axes (model/frame.hpp).
+    static constexpr std::array<int, 1> body_vectors{{0}};
 
     /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
     template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>

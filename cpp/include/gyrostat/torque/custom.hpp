@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
@@ -79,6 +80,10 @@ private:
 /// central difference quotients with steps h_j = 1e-6 max(1, |ω_j|) (error O(h²) relative, ~1e-12;
 /// 6 calls). It has no averaged contribution and no Taylor coefficients (the models refuse it
 /// there), and is never folded into the affine part or batched in SIMD lanes.
+///
+/// On a body given by its inertia tensor (Body::from_inertia) f still sees the user's frame: the
+/// model's principal-axes ω_p and q_p become ω = R ω_p and q = q_p ⊗ q_R* before the call, and
+/// M_p = Rᵀ M, ∂M_p/∂ω_p = Rᵀ (∂M/∂ω) R after it (in_principal_axes).
 struct Custom {
     static constexpr const char* name = "custom";
     static constexpr const char* python_name = "CustomTorque";
@@ -98,16 +103,30 @@ struct Custom {
 
     bool uses_attitude() const { return attitude; }
 
+    /// The same function on the principal axes of `body` (the comment above the class).
+    Custom in_principal_axes(const Body& body) const {
+        Custom rotated = *this;
+        rotated.rotated_ = !body.principal();
+        rotated.axes_ = body.principal_axes();
+        const Eigen::Vector4d& q = body.principal_quaternion();
+        rotated.axes_conjugate_ = Eigen::Vector4d(q[0], -q[1], -q[2], -q[3]);
+        return rotated;
+    }
+
     /// M = f(t, ω[, q]).
     Vec3 operator()(double t, const Vec3& omega, const Vec3& /*moments*/, const Eigen::Vector4d* quaternion) const {
-        return function->torque(t, omega, attitude ? quaternion : nullptr);
+        const Eigen::Vector4d* q = attitude ? quaternion : nullptr;
+        if (!rotated_) return function->torque(t, omega, q);
+        const Eigen::Vector4d q_user = q ? quaternion_product(*q, axes_conjugate_) : Eigen::Vector4d::Zero();
+        return axes_.transpose() * function->torque(t, axes_ * omega, q ? &q_user : nullptr);
     }
     /// The user's ∂M/∂ω, or central difference quotients.
     void add_jacobian(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* quaternion, Mat3& d) const {
         const Eigen::Vector4d* q = attitude ? quaternion : nullptr;
         Mat3 user;
-        if (function->jacobian(t, omega, q, user)) {
-            d += user;
+        const Eigen::Vector4d q_user = q && rotated_ ? quaternion_product(*q, axes_conjugate_) : Eigen::Vector4d::Zero();
+        if (function->jacobian(t, rotated_ ? Vec3(axes_ * omega) : omega, q && rotated_ ? &q_user : q, user)) {
+            d += rotated_ ? Mat3(axes_.transpose() * user * axes_) : user;
             return;
         }
         for (int j = 0; j < 3; ++j) {
@@ -118,6 +137,11 @@ struct Custom {
         }
     }
     bool axisymmetric() const { return false; }
+
+private:
+    bool rotated_ = false;
+    Mat3 axes_ = Mat3::Identity();
+    Eigen::Vector4d axes_conjugate_ = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
 };
 
 }  // namespace gyrostat::torque

@@ -35,9 +35,9 @@ struct DipoleFieldTorque {
          Constraint::Positive},
         {"dipole_axis", "dipole axis d", Shape::Vector3, "1",
          "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)",
-         Constraint::Finite, 0, true, "[0, 0, -1]"},
+         Constraint::Finite, 0, true, "[0, 0, -1]", Axes::Inertial},
         {"orbit_normal", "orbit normal N", Shape::Vector3, "1", "the orbit plane's normal in inertial axes",
-         Constraint::Finite, 0, true, "[0, 0, 1]"},
+         Constraint::Finite, 0, true, "[0, 0, 1]", Axes::Inertial},
         {"phase", "orbit phase", Shape::Scalar, "rad", "the body's angle on the orbit from the ascending node at t = 0",
          Constraint::Finite, 0, true, "0"},
     }};

@@ -38,7 +38,7 @@ struct GravityGradient {
         {"orbit_rate", "orbit rate n", Shape::Scalar, "rad/s", "the orbit's mean motion n = sqrt(mu / r^3)",
          Constraint::Positive},
         {"orbit_normal", "orbit normal N", Shape::Vector3, "1", "the orbit plane's normal in inertial axes",
-         Constraint::Finite, 0, true, "[0, 0, 1]"},
+         Constraint::Finite, 0, true, "[0, 0, 1]", Axes::Inertial},
         {"phase", "orbit phase", Shape::Scalar, "rad", "the body's angle on the orbit from the ascending node at t = 0",
          Constraint::Finite, 0, true, "0"},
     }};

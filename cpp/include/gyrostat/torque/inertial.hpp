@@ -23,7 +23,7 @@ struct InertialTorque {
     static constexpr const char* python_name = "InertialTorque";
     static constexpr const char* description = "a constant torque fixed in inertial space (needs the attitude)";
     static constexpr std::array<Parameter, 1> parameters{{
-        {"moment", "moment", Shape::Vector3, "N m", "M_I in inertial axes"},
+        {"moment", "moment", Shape::Vector3, "N m", "M_I in inertial axes", Constraint::Finite, 0, true, nullptr, Axes::Inertial},
     }};
     static constexpr bool needs_attitude = true;
 

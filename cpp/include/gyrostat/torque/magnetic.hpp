@@ -23,7 +23,8 @@ struct MagneticTorque {
         "a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude)";
     static constexpr std::array<Parameter, 2> parameters{{
         {"dipole", "dipole m", Shape::Vector3, "A m^2", "the body's magnetic dipole moment m in body axes"},
-        {"field", "field B", Shape::Vector3, "T", "the magnetic field B in inertial axes"},
+        {"field", "field B", Shape::Vector3, "T", "the magnetic field B in inertial axes", Constraint::Finite, 0, true, nullptr,
+         Axes::Inertial},
     }};
     static constexpr bool needs_attitude = true;
 

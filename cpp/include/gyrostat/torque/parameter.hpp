@@ -26,6 +26,15 @@ enum class Shape {
     Matrices,  ///< one or more 3×3 matrices (the coefficients of a polynomial in t)
 };
 
+/// The frame a vector or matrix parameter is written in. A body given by its inertia tensor in
+/// some frame other than its principal axes (Body::from_inertia) has its torques' body-axes
+/// parameters rotated into the principal axes (TorqueSet::in_principal_axes): v → Rᵀ v and
+/// D → Rᵀ D R; inertial-axes parameters stay as given.
+enum class Axes {
+    Body,      ///< the body frame the user gave the body in
+    Inertial,  ///< inertial axes
+};
+
 /// What a parameter's every component must satisfy.
 enum class Constraint {
     Finite,       ///< finite
@@ -48,6 +57,7 @@ struct Parameter {
     int choice = 0;
     bool stored = true;
     const char* default_value = nullptr;
+    Axes axes = Axes::Body;  ///< for Vector3, Matrix3 and Matrices
 };
 
 /// A parameter's value.

@@ -99,6 +99,41 @@ std::vector<torque::Assumption> assumptions_of(const T& x, const torque::Motion&
         return {};
 }
 
+/// A torque that moves itself to the principal axes (a user's function: Custom) declares
+/// `T in_principal_axes(const Body&) const`; every other torque is moved by its declaration.
+template <class T, class = void>
+struct rotates_itself : std::false_type {};
+template <class T>
+struct rotates_itself<T, std::void_t<decltype(std::declval<const T&>().in_principal_axes(std::declval<const Body&>()))>>
+    : std::true_type {};
+
+/// x with its body-axes parameters (torque/parameter.hpp: Axes::Body) written in the principal
+/// axes of `body`: v_p = Rᵀ v, D_p = Rᵀ D R (R = body.principal_axes(): v = R v_p); scalars and
+/// inertial-axes parameters as they are. Rebuilt with T::from, so its checks run again.
+template <class T>
+T in_principal_axes(const T& x, const Body& body) {
+    if constexpr (rotates_itself<T>::value) {
+        return x.in_principal_axes(body);
+    } else {
+        if (body.principal()) return x;
+        const Mat3& R = body.principal_axes();
+        torque::Values values = x.values();
+        for (const torque::Parameter& p : T::parameters) {
+            if (p.axes != torque::Axes::Body || !values.has(p.name)) continue;
+            if (p.shape == torque::Shape::Vector3) {
+                values.set(p.name, Vec3(R.transpose() * values.vector(p.name)));
+            } else if (p.shape == torque::Shape::Matrix3) {
+                values.set(p.name, Mat3(R.transpose() * values.matrix(p.name) * R));
+            } else if (p.shape == torque::Shape::Matrices) {
+                std::vector<Mat3> rotated = values.matrices(p.name);
+                for (Mat3& m : rotated) m = R.transpose() * m * R;
+                values.set(p.name, std::move(rotated));
+            }
+        }
+        return T::from(values);
+    }
+}
+
 namespace detail {
 template <class... Torques>
 std::string python_names(std::variant<Torques...>*) {
@@ -127,6 +162,15 @@ public:
     }
 
     const std::vector<AnyTorque>& parts() const { return parts_; }
+    /// The same torques on the principal axes of `body` (in_principal_axes above); itself when the
+    /// body was given in its principal axes. Every model applies it to the torques it is given.
+    TorqueSet in_principal_axes(const Body& body) const {
+        if (body.principal()) return *this;
+        std::vector<AnyTorque> rotated;
+        for (const auto& part : parts_)
+            rotated.push_back(std::visit([&](const auto& x) -> AnyTorque { return gyrostat::in_principal_axes(x, body); }, part));
+        return TorqueSet(std::move(rotated));
+    }
     bool empty() const { return parts_.empty(); }
     bool has_damping() const { return has_damping_; }
     /// Only constant and linear torques: the right-hand side is a quadratic polynomial.
