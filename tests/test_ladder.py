@@ -74,6 +74,27 @@ def test_exact_reduction_takes_the_averaged_model_within_its_estimate():
     assert "exact" in ladder["estimate"]["basis"]
 
 
+def test_the_same_scene_again_reuses_its_choice():
+    """The ladder's choice is kept per scene (issue 30): the same scene solved again skips the
+    probes and runs the same rung to the same numbers; a scene that differs in anything probes
+    afresh."""
+    from gyrostat import ladder
+
+    doc = _doc("p000_A8_C4_M3-0p1")
+    doc["integration"].update(model="auto", accuracy=1e-6)
+    ladder._CHOICES.clear()
+    _, first, report = _solve(doc)
+    _, again, reused = _solve(doc)
+    assert report["ladder"]["reused"] is False and reused["ladder"]["reused"] is True
+    assert reused["ladder"]["chosen"] == report["ladder"]["chosen"] == "averaged"
+    assert reused["ladder"]["estimate"] == report["ladder"]["estimate"]
+    assert np.array_equal(first.y, again.y) and np.array_equal(first.t, again.t)
+    other = copy.deepcopy(doc)
+    other["integration"]["accuracy"] = 1e-7
+    assert _solve(other)[2]["ladder"]["reused"] is False
+    assert ladder.scene_key({"f": print}) is None  # not plain data: never cached
+
+
 def test_paper_002_own_scene_takes_the_full_model():
     """Paper 002's own scene breaks the averaging (the cavity rate is ~1e8 times the fast
     frequency): auto refuses the averaged model at the start and says why."""
