@@ -341,14 +341,11 @@ def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tupl
     for name, sol in segments:
         if not len(sol):
             continue
-        if name == lower.name:
-            outputs = (np.column_stack([sol[n] for n in core.output_names]) if core.output_names else
-                       np.zeros((len(sol), 0)))
-            parts.append((sol.t, sol.y, outputs, 0))
+        if name == lower.name:  # the lower model's own run: its outputs' matrix, in output_names' order
+            parts.append((sol.t, sol.y, sol._result.outputs, 0))
         else:
-            projected = np.array([core.initial_state(row) for row in sol.y])
-            parts.append((sol.t, projected, np.array([core.outputs_at(float(t), row)
-                                                      for t, row in zip(sol.t, projected)]), 1))
+            projected = core.initial_states(sol.y)
+            parts.append((sol.t, projected, core.outputs_along(sol.t, projected), 1))
     name, last = segments[-1]
     y_last = last.y_last if name == lower.name else np.asarray(core.initial_state(last.y_last))
     return Solution.join(lower.model, segments, parts, switches, y_last)
@@ -359,12 +356,12 @@ def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
     projected state, minus 0 (so g falls through 0 where every assumption holds with margin)."""
     core = lower.model._core
     names = list(core.output_names)
-    indices = [names.index(w.output) for w in lower.watches]
+    watched = [(names.index(w.output), w.ratio) for w in lower.watches]
+    outputs_at = core.outputs_at
 
-    def back_down(t, y):
-        values = np.asarray(core.outputs_at(float(t), np.asarray(y, float)))
-        ratios = [w.ratio(values[i]) for w, i in zip(lower.watches, indices)]
-        worst = max(ratios)
+    def back_down(t, y):  # called at every step of the top's run (y: the engine's float array)
+        values = outputs_at(t, y)
+        worst = max([ratio(float(values[i])) for i, ratio in watched])
         return worst if math.isfinite(worst) else 1.0
 
     back_down.direction = -1
