@@ -190,6 +190,84 @@ DISTRIBUTIONS = {"uniform": Uniform, "normal": Normal, "loguniform": LogUniform}
 Distribution = Uniform | Normal | LogUniform
 
 
+# ------------------------------------------------------------------------------------ members' streams
+# Member i of a dispersion draws from default_rng(SeedSequence(seed, spawn_key=(i,))). Made one by
+# one, that generator costs ~25 us (NumPy's SeedSequence hashing and PCG64 seeding in Python); a
+# chunk's streams are computed here together, NumPy's algorithms word for word on arrays (the
+# SeedSequence of NumPy's bit_generator.pyx, PCG64's pcg_setseq_128_srandom_r), and set into one
+# PCG64 member by member: the same numbers (tests/test_sweeps.py compares them with default_rng).
+_INIT_A, _MULT_A, _INIT_B, _MULT_B = 0x43B0D7E5, 0x931E8875, 0x8B51F9DD, 0x58F38DED
+_MIX_L, _MIX_R = 0xCA01F9DD, 0x4973F715
+_PCG_MULT = 0x2360ED051FC65DA44385DF649FCCF645
+_MASK32, _MASK128 = 0xFFFFFFFF, (1 << 128) - 1
+
+
+def _words(n: int) -> list[int]:
+    """A non-negative integer as 32-bit words, least significant first (0: one word)."""
+    out = [n & _MASK32]
+    while n > _MASK32:
+        n >>= 32
+        out.append(n & _MASK32)
+    return out
+
+
+def _pcg64_states(seed: int, members: np.ndarray) -> list[tuple[int, int]]:
+    """(state, inc) of PCG64(SeedSequence(seed, spawn_key=(i,))) for each member i < 2**32."""
+    u32 = np.uint32
+    run = _words(seed)
+    run += [0] * (4 - len(run))  # a spawned sequence pads its entropy to the pool size
+    count = len(members)
+    entropy = [np.full(count, w, u32) for w in run] + [members.astype(u32)]
+    hash_a = [_INIT_A]
+
+    def hashmix(value):
+        value = value ^ u32(hash_a[0])
+        hash_a[0] = (hash_a[0] * _MULT_A) & _MASK32
+        value = value * u32(hash_a[0])
+        return value ^ (value >> u32(16))
+
+    def mix(x, y):
+        result = u32(_MIX_L) * x - u32(_MIX_R) * y
+        return result ^ (result >> u32(16))
+
+    with np.errstate(over="ignore"):  # arithmetic modulo 2**32, as in NumPy's C
+        pool = [hashmix(entropy[i]) for i in range(4)]
+        for source in range(4):
+            for target in range(4):
+                if source != target:
+                    pool[target] = mix(pool[target], hashmix(pool[source]))
+        for source in range(4, len(entropy)):
+            for target in range(4):
+                pool[target] = mix(pool[target], hashmix(entropy[source]))
+        hash_b, state = _INIT_B, []
+        for k in range(8):  # generate_state(4, uint64): 8 words, pairs (low, high)
+            value = pool[k % 4] ^ u32(hash_b)
+            hash_b = (hash_b * _MULT_B) & _MASK32
+            value = value * u32(hash_b)
+            state.append((value ^ (value >> u32(16))).tolist())
+    out = []
+    for m in range(count):
+        seed_high, seed_low, inc_high, inc_low = (state[2 * j][m] | (state[2 * j + 1][m] << 32) for j in range(4))
+        inc = ((((inc_high << 64) | inc_low) << 1) | 1) & _MASK128
+        current = (((inc + ((seed_high << 64) | seed_low)) & _MASK128) * _PCG_MULT + inc) & _MASK128
+        out.append((current, inc))
+    return out
+
+
+def _member_generators(seed: int, start: int, stop: int):
+    """Each member's generator in turn, for members start … stop − 1 (one Generator, reseeded)."""
+    if stop > 2**32 or stop - start < 8:  # beyond 2**32 a spawn key has two words; a few members: NumPy's own way
+        for i in range(start, stop):
+            yield np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i,)))
+        return
+    bits = np.random.PCG64(0)
+    generator = np.random.Generator(bits)
+    for current, inc in _pcg64_states(seed, np.arange(start, stop, dtype=np.uint64)):
+        bits.state = {"bit_generator": "PCG64", "state": {"state": current, "inc": inc}, "has_uint32": 0,
+                      "uinteger": 0}
+        yield generator
+
+
 # ------------------------------------------------------------------------------------ paths
 _SEGMENT = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
 _INDEX = re.compile(r"\[\s*(-?\d+)\s*(?::\s*(-?\d+)\s*)?\]")
@@ -612,11 +690,29 @@ class Plan:
         """
         if not 0 <= i < self.size:
             raise IndexError(f"member {i} of a sweep of {self.size}")
+        return self.values_range(i, i + 1)[0]
+
+    def values_range(self, start: int, stop: int) -> list[tuple[float, ...]]:
+        """:meth:`values` of members ``start`` … ``stop - 1``, made together (a dispersion's
+        streams are computed for the whole range at once: the same numbers).
+
+        Parameters
+        ----------
+        start, stop : int
+            The members, ``range(start, stop)``.
+
+        Examples
+        --------
+        >>> plan.values_range(0, 2)
+        [(0.1,), (0.2,)]
+        """
+        if not 0 <= start <= stop <= self.size:
+            raise IndexError(f"members {start} … {stop - 1} of a sweep of {self.size}")
         if self.mode == "grid":
-            index = np.unravel_index(i, self.shape)
-            return tuple(p.values[k] for p, k in zip(self.parameters, index))
-        rng = np.random.default_rng(np.random.SeedSequence(self.seed, spawn_key=(i,)))
-        return tuple(p.distribution.draw(rng) for p in self.parameters)
+            return [tuple(p.values[k] for p, k in zip(self.parameters, np.unravel_index(i, self.shape)))
+                    for i in range(start, stop)]
+        return [tuple(p.distribution.draw(rng) for p in self.parameters)
+                for rng in _member_generators(self.seed, start, stop)]
 
     def document(self, values: Sequence[float]) -> dict:
         """The scene document with ``values`` set, each changed key checked as in a scene file.
@@ -633,8 +729,9 @@ class Plan:
         """
         doc = self.base
         changed = {}
+        index = {id(parameter): k for k, parameter in enumerate(self.parameters)}
         for parameter, parts, located in self.located:
-            doc = _assign(doc, parts, parameter.scale * values[self.parameters.index(parameter)])
+            doc = _assign(doc, parts, parameter.scale * values[index[id(parameter)]])
             changed[located.field_parts] = located
         for field_parts, located in changed.items():
             doc = _assign(doc, field_parts, located.revalidate(doc))
@@ -776,6 +873,12 @@ def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extr
         arrays["terminal_event"][j] = solution.event_names[solution.terminal_event]
 
 
+def _put_values(arrays: dict, plan: Plan, drawn: list[tuple[float, ...]]) -> None:
+    """The members' parameter values (one tuple per member) into their columns of a chunk."""
+    for k, parameter in enumerate(plan.parameters):
+        arrays[parameter.name][:] = [values[k] for values in drawn]
+
+
 def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajectories: bool = True,
                 extrema: Sequence[str] = (), check_validity: bool = True, progress=None) -> dict[str, np.ndarray]:
     """Solves members ``start`` to ``stop - 1`` of a plan and returns their arrays (what a sweep
@@ -819,10 +922,9 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
     arrays = _blank(plan, count, trajectories, extrema)
     arrays["interrupted"] = np.zeros(1, dtype=bool)
     groups: dict[tuple, list] = {}
-    for j in range(count):
-        values = plan.values(start + j)
-        for parameter, value in zip(plan.parameters, values):
-            arrays[parameter.name][j] = value
+    drawn = plan.values_range(start, stop)
+    _put_values(arrays, plan, drawn)
+    for j, values in enumerate(drawn):
         try:
             run = plan.member(values)
         except (SceneError, ValueError) as error:
@@ -1121,8 +1223,7 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     missing = [r for r in ranges if r not in finished]
     for start, stop in missing:  # never run: written as such, so that no member is lost
         blank = _blank(plan, stop - start, trajectories, extrema)
-        for parameter_index, parameter in enumerate(plan.parameters):
-            blank[parameter.name][:] = [plan.values(i)[parameter_index] for i in range(start, stop)]
+        _put_values(blank, plan, plan.values_range(start, stop))
         sink.put(start, blank)
     attrs = {"gyrostat_version": _core.__version__, "scene": plan.scene_name, "kind": plan.kind_name,
              "run": plan.run, "model": plan.model_choice, "model_reason": plan.model_reason, "mode": plan.mode,
@@ -1186,8 +1287,7 @@ def _run_dask(plan, ranges, sink, bar, client, threads, options) -> dict:
                 chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
                 chunk["status"][:] = "failed"
                 chunk["message"][:] = f"the Dask task failed: {type(error).__name__}: {' '.join(str(error).split())}"
-                for k, parameter in enumerate(plan.parameters):
-                    chunk[parameter.name][:] = [plan.values(i)[k] for i in range(start, stop)]
+                _put_values(chunk, plan, plan.values_range(start, stop))
             sink.put(start, chunk)
             finished[(start, stop)] = True
             done += stop - start
