@@ -137,6 +137,18 @@ def test_a_chunks_streams_are_numpys_own(seed):
         plan.values_range(2999, 3001)
 
 
+def test_summaries_alone_equal_the_summaries_kept_with_trajectories():
+    """A summaries-only sweep records its members' columns together (issue 30): the same values,
+    statuses and statistics as the member-by-member record of a sweep that keeps trajectories,
+    refused members included."""
+    doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=11)
+    summaries = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False, trajectories=False)
+    full = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False, trajectories=True)
+    assert (summaries["status"] != "success").any() and (summaries["status"] == "success").any()
+    for name in summaries.data_vars:
+        xr.testing.assert_identical(summaries[name].drop_attrs(), full[name].drop_attrs())
+
+
 def test_dispersion_statistics():
     doc = scene("torque_free_integrated", t_span=[0.0, 0.1], n_out=2)
     vary = {"initial.omega[0]": g.Normal(2.0, 0.5), "initial.omega[1]": g.LogUniform(1e-2, 1e2)}

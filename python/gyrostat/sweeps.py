@@ -873,6 +873,41 @@ def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extr
         arrays["terminal_event"][j] = solution.event_names[solution.terminal_event]
 
 
+def _record_many(arrays: dict, rows: list[int], solutions: list, plan: Plan, trajectories: bool,
+                 extrema: tuple[str, ...]) -> None:
+    """:func:`_record` for the members of one solve_ensemble call (chunk rows ``rows``): status,
+    message, statistics and, for a summaries-only sweep without events, the final values of the
+    members with the plan's names, one column at a time; every other member by :func:`_record`."""
+    if trajectories or extrema or plan.event_labels:
+        for j, solution in zip(rows, solutions):
+            _record(arrays, j, solution, plan, trajectories, extrema)
+        return
+    results = [s._result for s in solutions]
+    arrays["status"][rows] = [s.status for s in solutions]
+    arrays["message"][rows] = [r.message for r in results]
+    stats = [r.stats for r in results]
+    for name in STATS + ("last_step",):
+        arrays[name][rows] = [getattr(s, name) for s in stats]
+    kept, last_t, last_y, last_outputs = [], [], [], []
+    for j, solution, r in zip(rows, solutions, results):
+        t = r.t
+        if not len(t):
+            continue
+        if r.terminal_event >= 0 or tuple(r.state_names) != plan.state_names or \
+                tuple(r.output_names) != plan.output_names:
+            _record(arrays, j, solution, plan, trajectories, extrema)
+            continue
+        kept.append(j)
+        last_t.append(t[-1])
+        last_y.append(r.y[-1])
+        last_outputs.append(r.outputs[-1])
+    if kept:
+        arrays["t_final"][kept] = last_t
+        finals = np.hstack([np.array(last_y), np.array(last_outputs).reshape(len(kept), len(plan.output_names))])
+        for k, name in enumerate(plan.names):
+            arrays[f"final_{name}"][kept] = finals[:, k]
+
+
 def _put_values(arrays: dict, plan: Plan, drawn: list[tuple[float, ...]]) -> None:
     """The members' parameter values (one tuple per member) into their columns of a chunk."""
     for k, parameter in enumerate(plan.parameters):
@@ -914,11 +949,15 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
     >>> list(chunk["status"]), chunk["final_r"].round(4)  # r in rad/s at t1
     (['success', 'success'], array([1.4521, 2.9912]))
     """
-    from gyrostat.modelbase import ModelBase
-    from gyrostat.solve import solve_ensemble
+    return _solve_members(plan, _members(plan, start, stop, trajectories, tuple(extrema)), threads=threads,
+                          trajectories=trajectories, extrema=tuple(extrema), check_validity=check_validity,
+                          progress=progress)
 
+
+def _members(plan: Plan, start: int, stop: int, trajectories: bool, extrema: tuple[str, ...]) -> tuple[dict, dict]:
+    """The first half of :func:`solve_chunk`, pure Python: the chunk's arrays with every member's
+    values (and the refused members' status), and the runs grouped by span, options and events."""
     count = stop - start
-    extrema = tuple(extrema)
     arrays = _blank(plan, count, trajectories, extrema)
     arrays["interrupted"] = np.zeros(1, dtype=bool)
     groups: dict[tuple, list] = {}
@@ -933,6 +972,18 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
         options = tuple(sorted((k, v) for k, v in run.options.items() if k != "events"))
         key = (run.t_span, options, tuple(run.options.get("events", ())))
         groups.setdefault(key, []).append((j, run))
+    return arrays, groups
+
+
+def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: int, trajectories: bool,
+                   extrema: tuple[str, ...], check_validity: bool, progress) -> dict[str, np.ndarray]:
+    """The second half of :func:`solve_chunk`: the groups solved (one solve_ensemble each, the
+    engine's pool with the GIL released) and each member's summary recorded."""
+    from gyrostat.modelbase import ModelBase
+    from gyrostat.solve import solve_ensemble
+
+    arrays, groups = members_of_chunk
+    count = len(arrays["status"])
     done = count - sum(len(members) for members in groups.values())
     for (span, options, events), members in groups.items():
         share = len(members) / count
@@ -945,8 +996,8 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
             solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
                                        threads=threads, events=list(events) or None, check_validity=False,
                                        progress=report if progress is not None else False, **dict(options))
+        _record_many(arrays, [j for j, _ in members], solutions, plan, trajectories, extrema)
         for (j, run), solution in zip(members, solutions):
-            _record(arrays, j, solution, plan, trajectories, extrema)
             arrays["accuracy_warning"][j] = solution.accuracy_warnings[0] if solution.accuracy_warnings else ""
             if check_validity and len(solution) and type(run.model).check is not ModelBase.check:
                 broken = [str(a) for a in run.model.check(solution) if not a.holds]  # the averaging's assumptions
@@ -1241,12 +1292,27 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
 
 
 def _run_local(plan, ranges, sink, bar, threads, options) -> dict:
+    """The chunks in turn on this machine. The next chunk's members are made (Python) on a helper
+    thread while this thread solves the current one (C++, the GIL released) and records it: the
+    same members, values and results as :func:`solve_chunk`, with the Python work beside the
+    engine's instead of between its runs. Ctrl-C reaches the engine as in one solve_ensemble call
+    (this thread runs it)."""
+    from concurrent.futures import ThreadPoolExecutor
+
     finished: dict = {}
     done = 0
+    making = (options["trajectories"], tuple(options["extrema"]))
+    solving = {k: v for k, v in options.items() if k not in ("trajectories", "extrema")}
+    helper = ThreadPoolExecutor(max_workers=1, thread_name_prefix="gyrostat-sweep-members")
+    upcoming = helper.submit(_members, plan, *ranges[0], *making) if ranges else None
     try:
-        for start, stop in ranges:
+        for index, (start, stop) in enumerate(ranges):
+            members = upcoming.result()
+            if index + 1 < len(ranges):
+                upcoming = helper.submit(_members, plan, *ranges[index + 1], *making)
             report = None if bar is None else (lambda f, d=done, n=stop - start: bar((d + f * n) / plan.size))
-            chunk = solve_chunk(plan, start, stop, threads=threads, progress=report, **options)
+            chunk = _solve_members(plan, members, threads=threads, trajectories=making[0], extrema=making[1],
+                                   progress=report, **solving)
             sink.put(start, chunk)
             finished[(start, stop)] = True
             done += stop - start
@@ -1257,6 +1323,8 @@ def _run_local(plan, ranges, sink, bar, threads, options) -> dict:
                 break
     except KeyboardInterrupt:
         finished["interrupted"] = True
+    finally:
+        helper.shutdown(wait=True, cancel_futures=True)
     return finished
 
 
