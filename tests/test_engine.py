@@ -209,7 +209,7 @@ def test_options_are_one_object_with_the_defaults():
 
 
 def test_t_eval_lists_reuse_their_options_and_keep_every_check():
-    """t_eval given as a list is cached with its values and their types (issue 30): the same
+    """t_eval given as a list is cached with its values and their types: the same
     list again gives the same output times, another list others, and every bad one is still
     refused on every call, naming the value."""
     model = g.Model(BODY)

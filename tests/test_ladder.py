@@ -75,7 +75,7 @@ def test_exact_reduction_takes_the_averaged_model_within_its_estimate():
 
 
 def test_the_same_scene_again_reuses_its_choice():
-    """The ladder's choice is kept per scene (issue 30): the same scene solved again skips the
+    """The ladder's choice is kept per scene: the same scene solved again skips the
     probes and runs the same rung to the same numbers; a scene that differs in anything probes
     afresh."""
     from gyrostat import ladder

@@ -123,7 +123,7 @@ def test_a_dispersion_is_reproducible_member_by_member_and_keeps_failed_members(
 
 @pytest.mark.parametrize("seed", [0, 1, 11, 2**32 + 5, 2**63 - 1])
 def test_a_chunks_streams_are_numpys_own(seed):
-    """A chunk's members draw from streams computed together (issue 30): the same numbers as
+    """A chunk's members draw from streams computed together: the same numbers as
     NumPy's default_rng(SeedSequence(seed, spawn_key=(i,))), member by member."""
     plan = sweeps.Plan(scene("forced_damped"), DISPERSED, samples=3000, seed=seed)
     together = plan.values_range(2980, 3000) + plan.values_range(0, 20)
@@ -138,7 +138,7 @@ def test_a_chunks_streams_are_numpys_own(seed):
 
 
 def test_summaries_alone_equal_the_summaries_kept_with_trajectories():
-    """A summaries-only sweep records its members' columns together (issue 30): the same values,
+    """A summaries-only sweep records its members' columns together: the same values,
     statuses and statistics as the member-by-member record of a sweep that keeps trajectories,
     refused members included."""
     doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=11)
