@@ -123,9 +123,10 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         throw std::invalid_argument("solve_ensemble: " + std::to_string(models.size()) + " models for " +
                                     std::to_string(n) + " initial states (give 1 or " + std::to_string(n) + ")");
     integrate::validate(options, t0, t1);
+    const ensemble_batch::Implementation& kernels = ensemble_batch::current();
     ensemble_batch::Plan plan;
     if (batch)
-        plan = ensemble_batch::plan(models, y0s, options);
+        plan = kernels.plan(models, y0s, options);
     else
         for (std::size_t i = 0; i < n; ++i) plan.single.push_back(i);
     // Tasks: the batches first, then the members that run alone; each task on one thread.
@@ -135,7 +136,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         n_batches + plan.single.size(),
         [&](std::size_t task, const integrate::Control* member) {
             if (task < n_batches) {
-                ensemble_batch::solve(plan.batches[task], models, y0s, t0, t1, options, member, results);
+                kernels.solve(plan.batches[task], models, y0s, t0, t1, options, member, results);
                 return integrate::Result{};
             }
             const std::size_t i = plan.single[task - n_batches];

@@ -349,7 +349,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     time, step size and status: the gyrostat :class:`Model` with constant and linear torques
     (with or without attitude) under ``taylor`` or ``dop853``, and the averaged symmetric model
     under ``dop853``, without events, dense output or ``every_step`` (and not ``taylor`` for ω
-    alone in the portable build on a CPU with AVX2, where one body at a time is faster:
+    alone with the SSE2 batches on a CPU with AVX2, where one body at a time is faster:
     :data:`gyrostat.taylor_kernel`). They equal single
     :func:`solve` runs to the tolerance, not bit for bit (vectorised rounding; a Taylor batch
     uses the highest order any lane needs). Every other member, and every member with
