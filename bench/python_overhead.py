@@ -6,10 +6,11 @@ Rows (best of 7 repeats of N calls each; this machine is shared and noisy, so on
 repeat is kept):
 * `gyrostat.solve`: the whole Python call on a trivial problem (a zero-length span, two
   outputs): argument checks, options, the binding, the engine, the Solution.
+* `gyrostat.solve, t_eval=[t0, t1]`: the same call with the output times given as a list.
 * `_core.solve`: the binding and the engine alone, with options built once.
 * `engine (C++)`: the engine's own time for the same problem, measured inside C++ by
   `_core.solve_ensemble` over 10 000 members on one thread (per member, binding excluded).
-The Python overhead is the first row minus the engine's own time.
+The Python overhead is the first row (and the second) minus the engine's own time.
 
 Then the averaged model against the full one at ε = 1e-4 from Python, on the problem of
 `gyrostat_bench`'s averaged rows (oblate body (1, 1, 1.8), a cavity of strength κ = 0.4 ε and a
@@ -44,15 +45,18 @@ def main() -> None:
     options.n_out = 2
     n = 100_000
     python = best_per_call(lambda: g.solve(model, y0, (0.0, 0.0), n_out=2), n)
+    python_t_eval = best_per_call(lambda: g.solve(model, y0, (0.0, 0.0), t_eval=[0.0, 0.0]), n)
     binding = best_per_call(lambda: _core.solve(model._core, y0, 0.0, 0.0, options), n)
     members = 10_000
     starts = np.tile(y0, (members, 1))
     engine = best_per_call(lambda: _core.solve_ensemble([model._core], starts, 0.0, 0.0, options, 1), 3) / members
     print("Python overhead of one solve call (trivial problem: zero-length span, 2 outputs)")
-    print(f"  gyrostat.solve      {python * 1e6:7.2f} us per call")
-    print(f"  _core.solve         {binding * 1e6:7.2f} us per call (binding + engine)")
-    print(f"  engine (C++)        {engine * 1e6:7.2f} us per solve (inside one ensemble call)")
-    print(f"  Python overhead     {(python - engine) * 1e6:7.2f} us per call (target: at most 3 us)")
+    print(f"  gyrostat.solve, n_out=2             {python * 1e6:7.2f} us per call")
+    print(f"  gyrostat.solve, t_eval=[t0, t1]     {python_t_eval * 1e6:7.2f} us per call (output times as a list)")
+    print(f"  _core.solve                         {binding * 1e6:7.2f} us per call (binding + engine)")
+    print(f"  engine (C++)                        {engine * 1e6:7.2f} us per solve (inside one ensemble call)")
+    print(f"  Python overhead, n_out=2            {(python - engine) * 1e6:7.2f} us per call (target: at most 3 us)")
+    print(f"  Python overhead, t_eval list        {(python_t_eval - engine) * 1e6:7.2f} us per call (target: at most 3 us)")
 
     epsilon = 1e-4
     body = g.Body([1.0, 1.0, 1.8])

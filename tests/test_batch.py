@@ -133,3 +133,62 @@ def test_simd_lanes_are_reported():
     (two SSE2 registers per operation on the baseline x86-64 build)."""
     assert g.simd_instruction_set in ("sse2", "avx", "avx2", "avx512f", "scalar")
     assert g.simd_lanes == (8 if g.simd_instruction_set == "avx512f" else 4)
+
+
+def _cpu_flags() -> set[str]:
+    try:
+        with open("/proc/cpuinfo") as info:
+            return next((set(line.split(":", 1)[1].split()) for line in info if line.startswith("flags")), set())
+    except OSError:
+        return set()
+
+
+def _runs(isa: str) -> bool:
+    """Whether this CPU runs the batches' plugin for `isa` and the plugin is installed beside _core."""
+    from pathlib import Path
+
+    needs = {"avx2": {"avx2", "fma"}, "avx512": {"avx512f", "avx512dq", "avx512vl", "avx512bw"}}[isa]
+    return needs <= _cpu_flags() and (Path(g._core.__file__).parent / f"_batch_{isa}.so").exists()
+
+
+def _in_process(asked: str, code: str) -> str:
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "GYROSTAT_SIMD": asked}
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return out.stdout.strip()
+
+
+def test_the_widest_instruction_set_the_cpu_runs_is_chosen():
+    """Runtime dispatch of the SIMD lanes: the default build loads the widest form of the batches
+    the CPU runs (AVX-512, then AVX2 + FMA, else its own SSE2 form); GYROSTAT_SIMD asks for one."""
+    expected = "avx512f" if _runs("avx512") else "avx2" if _runs("avx2") else g.simd_instruction_set
+    if g.simd_instruction_set not in ("sse2", "avx2", "avx512f"):
+        pytest.skip(f"a native build ({g.simd_instruction_set}) carries its own batches")
+    assert g.simd_instruction_set == expected and g.simd_lanes == (8 if expected == "avx512f" else 4)
+    report = "import gyrostat as g; print(g.simd_instruction_set, g.simd_lanes)"
+    assert _in_process("sse2", report) == "sse2 4"
+    if _runs("avx2"):
+        assert _in_process("avx2", report) == "avx2 4"
+    with pytest.raises(ValueError, match="GYROSTAT_SIMD = 'neon': choose sse2, avx2 or avx512"):
+        g._core.load_batches("", "neon")
+
+
+@pytest.mark.parametrize("isa", ["sse2", "avx2", "avx512"])
+def test_every_instruction_set_of_the_batches_agrees_with_single_runs(isa):
+    """Each form of the batches (SSE2, AVX2 + FMA, AVX-512) passes this file's tests against the
+    scalar path and SciPy, in a process that asked for it."""
+    import os
+    import subprocess
+    import sys
+
+    if isa != "sse2" and not _runs(isa):
+        pytest.skip(f"this CPU does not run the {isa} batches, or their plugin is not installed")
+    env = {**os.environ, "GYROSTAT_SIMD": isa}
+    check = f"import gyrostat as g; assert g.simd_instruction_set == {('avx512f' if isa == 'avx512' else isa)!r}"
+    subprocess.run([sys.executable, "-c", check], env=env, check=True)
+    result = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", __file__, "-k",
+                             "not instruction_set"], env=env, capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout[-3000:]

@@ -208,6 +208,32 @@ def test_options_are_one_object_with_the_defaults():
     assert len(tight) == 5 and g.Options().rtol == 1e-8  # a user's Options never changes the defaults
 
 
+def test_t_eval_lists_reuse_their_options_and_keep_every_check():
+    """t_eval given as a list is cached with its values and their types: the same
+    list again gives the same output times, another list others, and every bad one is still
+    refused on every call, naming the value."""
+    model = g.Model(BODY)
+    for _ in range(2):
+        assert g.solve(model, W0, (0.0, 1.0), t_eval=[0.0, 0.5, 1.0]).t.tolist() == [0.0, 0.5, 1.0]
+        assert g.solve(model, W0, (0.0, 1.0), t_eval=(0, 1)).t.tolist() == [0.0, 1.0]
+        assert g.solve(model, W0, (0.0, 1.0), t_eval=[0.25]).t.tolist() == [0.25]
+        with pytest.raises(ValueError, match=r"t_eval\[1\] = 2 lies outside"):
+            g.solve(model, W0, (0.0, 1.0), t_eval=[0.0, 2.0])
+        with pytest.raises(ValueError, match="t_eval must be output times"):
+            g.solve(model, W0, (0.0, 1.0), t_eval=[0.0, "a"])
+        with pytest.raises(ValueError, match="t_eval must be output times"):
+            g.solve(model, W0, (0.0, 1.0), t_eval=[True])  # True == 1, yet a boolean is no time
+        with pytest.raises(ValueError, match="t_eval must be one-dimensional"):
+            g.solve(model, W0, (0.0, 1.0), t_eval=[[0.0, 1.0]])
+        with pytest.raises(ValueError, match="give t_eval or n_out, not both"):
+            g.solve(model, W0, (0.0, 1.0), t_eval=[0.0, 1.0], n_out=2)
+    assert g.solve(model, W0, (0.0, 1.0), t_eval=[1]).t.tolist() == [1.0]
+    # a float array of the state is used as it is; others are converted (or refused) as before
+    assert np.array_equal(g.solve(model, np.array(W0, np.float32), (0.0, 1.0), n_out=2).y[0], np.float32(W0))
+    with pytest.raises(ValueError, match="y0 must be real numbers"):
+        g.solve(model, np.array(["a", "b", "c"]), (0.0, 1.0))
+
+
 def test_progress_is_reported_and_changes_nothing():
     from gyrostat import _core
 

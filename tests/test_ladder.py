@@ -74,6 +74,42 @@ def test_exact_reduction_takes_the_averaged_model_within_its_estimate():
     assert "exact" in ladder["estimate"]["basis"]
 
 
+def test_the_same_scene_again_reuses_its_choice():
+    """The ladder's choice is kept per scene: the same scene solved again skips the
+    probes and runs the same rung to the same numbers; a scene that differs in anything probes
+    afresh."""
+    from gyrostat import ladder
+
+    doc = _doc("p000_A8_C4_M3-0p1")
+    doc["integration"].update(model="auto", accuracy=1e-6)
+    ladder._CHOICES.clear()
+    _, first, report = _solve(doc)
+    _, again, reused = _solve(doc)
+    assert report["ladder"]["reused"] is False and reused["ladder"]["reused"] is True
+    assert reused["ladder"]["chosen"] == report["ladder"]["chosen"] == "averaged"
+    assert reused["ladder"]["estimate"] == report["ladder"]["estimate"]
+    assert np.array_equal(first.y, again.y) and np.array_equal(first.t, again.t)
+    other = copy.deepcopy(doc)
+    other["integration"]["accuracy"] = 1e-7
+    assert _solve(other)[2]["ladder"]["reused"] is False
+    assert ladder.scene_key({"f": print}) is None  # not plain data: never cached
+
+
+def test_many_rows_map_as_each_row_does():
+    """Model.initial_states and Model.outputs_along (the ladder maps a run of the top down with
+    them) give, row for row, what initial_state and outputs_at give."""
+    body = g.Body([8.0, 8.0, 4.0])
+    averaged = g.AveragedModel(body, [g.ViscousCavity(1260.0, 1e4, 0.48)])._core
+    rows = np.array([[1.0, 0.0, 2.0], [0.3, -0.4, 1.5], [0.0, 0.2, -1.0]])
+    t = np.array([0.0, 1.5, 3.0])
+    projected = averaged.initial_states(rows)
+    assert np.array_equal(projected, np.array([averaged.initial_state(r) for r in rows]))
+    outputs = averaged.outputs_along(t, projected)
+    assert np.array_equal(outputs, np.array([averaged.outputs_at(s, r) for s, r in zip(t, projected)]))
+    with pytest.raises(ValueError, match="outputs_along: 2 times for 3 states"):
+        averaged.outputs_along(t[:2], projected)
+
+
 def test_paper_002_own_scene_takes_the_full_model():
     """Paper 002's own scene breaks the averaging (the cavity rate is ~1e8 times the fast
     frequency): auto refuses the averaged model at the start and says why."""

@@ -121,6 +121,34 @@ def test_a_dispersion_is_reproducible_member_by_member_and_keeps_failed_members(
     assert not np.array_equal(other["body.moments[0]"].values, ds["body.moments[0]"].values)
 
 
+@pytest.mark.parametrize("seed", [0, 1, 11, 2**32 + 5, 2**63 - 1])
+def test_a_chunks_streams_are_numpys_own(seed):
+    """A chunk's members draw from streams computed together: the same numbers as
+    NumPy's default_rng(SeedSequence(seed, spawn_key=(i,))), member by member."""
+    plan = sweeps.Plan(scene("forced_damped"), DISPERSED, samples=3000, seed=seed)
+    together = plan.values_range(2980, 3000) + plan.values_range(0, 20)
+    alone = []
+    for i in list(range(2980, 3000)) + list(range(20)):
+        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i,)))
+        alone.append(tuple(p.distribution.draw(rng) for p in plan.parameters))
+    assert together == alone
+    assert plan.values_range(5, 5) == [] and plan.values(7) == alone[27]
+    with pytest.raises(IndexError, match="members 2999 … 3000 of a sweep of 3000"):
+        plan.values_range(2999, 3001)
+
+
+def test_summaries_alone_equal_the_summaries_kept_with_trajectories():
+    """A summaries-only sweep records its members' columns together: the same values,
+    statuses and statistics as the member-by-member record of a sweep that keeps trajectories,
+    refused members included."""
+    doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=11)
+    summaries = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False, trajectories=False)
+    full = g.sweep(doc, DISPERSED, samples=40, seed=3, progress=False, trajectories=True)
+    assert (summaries["status"] != "success").any() and (summaries["status"] == "success").any()
+    for name in summaries.data_vars:
+        xr.testing.assert_identical(summaries[name].drop_attrs(), full[name].drop_attrs())
+
+
 def test_dispersion_statistics():
     doc = scene("torque_free_integrated", t_span=[0.0, 0.1], n_out=2)
     vary = {"initial.omega[0]": g.Normal(2.0, 0.5), "initial.omega[1]": g.LogUniform(1e-2, 1e2)}

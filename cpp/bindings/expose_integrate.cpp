@@ -11,6 +11,7 @@
 #include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/numeric/lanes.hpp"
 #include "gyrostat/model/affine_euler_avx2.hpp"
+#include "../src/ensemble_batch.hpp"
 
 namespace gyrostat::bindings {
 
@@ -344,6 +345,19 @@ Examples
     m.attr("simd_lanes") = lanes::width;
     m.attr("max_output_bytes") = integrate::kMaxOutputBytes;
     m.attr("simd_instruction_set") = lanes::instruction_set;
+    m.def(
+        "load_batches",
+        [m](const std::string& directory, const std::string& asked) mutable {
+            if (!asked.empty() && asked != "sse2" && asked != "avx2" && asked != "avx512")
+                throw py::value_error("GYROSTAT_SIMD = '" + asked + "': choose sse2, avx2 or avx512 (or leave it unset)");
+            const auto& form = ensemble_batch::load(directory, asked);
+            m.attr("simd_lanes") = form.width;
+            m.attr("simd_instruction_set") = form.instruction_set;
+            return py::make_tuple(form.instruction_set, form.width);
+        },
+        py::arg("directory"), py::arg("asked") = "",
+        "Installs the widest SIMD form of the ensemble batches the CPU runs, from the plugins in "
+        "``directory`` (or the one ``asked`` names: sse2, avx2, avx512); returns (instruction set, lanes).");
     m.attr("taylor_kernel") = model::affine_euler_avx2_available() ? "avx2+fma" : "portable";
 }
 

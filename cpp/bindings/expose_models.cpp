@@ -8,6 +8,8 @@ namespace gyrostat::bindings {
 
 namespace {
 
+using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 /// The model held, when it is of type T; otherwise a ValueError naming both families.
 template <class T>
 const T& as(const AnyModel& model, const char* needed) {
@@ -61,6 +63,25 @@ void expose_models(py::module_& m) {
         .def("outputs_at",
              [](const BoundModel& b, double t, const Eigen::VectorXd& y) { return outputs_at(b.model, t, y); },
              py::arg("t"), py::arg("y"))
+        // the two above over many rows at once (the model ladder maps a run of the top rung down)
+        .def("initial_states",
+             [](const BoundModel& b, const Eigen::Ref<const Rows>& given) {
+                 Rows out(given.rows(), dim(b.model));
+                 for (Eigen::Index i = 0; i < given.rows(); ++i)
+                     out.row(i) = initial_state(b.model, given.row(i).transpose()).transpose();
+                 return out;
+             },
+             py::arg("given"), "initial_state of every row of ``given`` (n, k): (n, dim).")
+        .def("outputs_along",
+             [](const BoundModel& b, const Eigen::Ref<const Eigen::VectorXd>& t, const Eigen::Ref<const Rows>& y) {
+                 if (t.size() != y.rows())
+                     throw py::value_error("outputs_along: " + std::to_string(t.size()) + " times for " +
+                                           std::to_string(y.rows()) + " states");
+                 Rows out(y.rows(), static_cast<Eigen::Index>(output_names(b.model).size()));
+                 for (Eigen::Index i = 0; i < y.rows(); ++i) out.row(i) = outputs_at(b.model, t[i], y.row(i).transpose()).transpose();
+                 return out;
+             },
+             py::arg("t"), py::arg("y"), "outputs_at at every time t[i] (n,) and state y[i] (n, dim): (n, outputs).")
         // averaged symmetric system
         .def("fast_frequency",
              [](const BoundModel& b, double r) {

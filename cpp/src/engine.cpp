@@ -217,9 +217,10 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
             } catch (const std::exception&) {
             }
         });
+    const ensemble_batch::Implementation& kernels = ensemble_batch::current();
     ensemble_batch::Plan plan;
     if (batch)
-        plan = ensemble_batch::plan(models, starts, options);
+        plan = kernels.plan(models, starts, options);
     else
         for (std::size_t i = 0; i < n; ++i) plan.single.push_back(i);
     // Tasks: the batches first, then the members that run alone; each task on one thread.
@@ -229,7 +230,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         n_batches + plan.single.size(),
         [&](std::size_t task, const integrate::Control* member) {
             if (task < n_batches) {
-                ensemble_batch::solve(plan.batches[task], models, starts, t0, t1, options, member, results);
+                kernels.solve(plan.batches[task], models, starts, t0, t1, options, member, results);
                 for (std::size_t i : plan.batches[task])
                     if (rotated[i]) visit(model_of(i), [&](const auto& m) { to_user_frame(m, results[i]); });
                 return integrate::Result{};

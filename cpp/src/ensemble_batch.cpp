@@ -2,6 +2,11 @@
 #include "ensemble_batch.hpp"
 
 #include <array>
+#include <utility>
+#if defined(__linux__)
+#include <dlfcn.h>
+#endif
+#include <atomic>
 #include <type_traits>
 #include <variant>
 
@@ -89,6 +94,46 @@ void solve(const std::vector<std::size_t>& batch, const std::vector<const AnyMod
                 run<System>(batch, models, y0s, t0, t1, options, control, results);
         },
         model_of(models, batch.front()));
+}
+
+const Implementation& compiled() {
+    static const Implementation own{lanes::instruction_set, lanes::width, &plan, &solve};
+    return own;
+}
+
+namespace {
+std::atomic<const Implementation*> installed{nullptr};
+}  // namespace
+
+const Implementation& current() {
+    const Implementation* chosen = installed.load(std::memory_order_acquire);
+    return chosen ? *chosen : compiled();
+}
+
+void use(const Implementation* implementation) { installed.store(implementation, std::memory_order_release); }
+
+const Implementation& load(const std::string& directory, const std::string& asked) {
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
+    __builtin_cpu_init();
+    const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
+    const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    const std::pair<const char*, bool> plugins[] = {{"avx512", avx512}, {"avx2", avx2}};
+    for (const auto& [name, runs] : plugins) {
+        if (!runs || (!asked.empty() && asked != name)) continue;
+        void* handle = dlopen((directory + "/_batch_" + name + ".so").c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) continue;
+        using Entry = const Implementation* (*)();
+        const auto entry = reinterpret_cast<Entry>(dlsym(handle, "gyrostat_batch_implementation"));
+        if (!entry) continue;
+        use(entry());
+        return current();
+    }
+#else
+    (void)directory, (void)asked;
+#endif
+    use(nullptr);
+    return current();
 }
 
 }  // namespace gyrostat::ensemble_batch

@@ -10,6 +10,8 @@ outputs and plots; ``gyrostat run`` runs one from the command line. :func:`sweep
 over a grid or a seeded dispersion of its entries (locally or on Dask) into an xarray Dataset.
 """
 
+import os as _os
+
 from gyrostat import _core
 from gyrostat._core import Body, TorqueFreeSolution
 from gyrostat.assumptions import ValidityWarning
@@ -59,10 +61,16 @@ __all__ = [
     "taylor_kernel",
 ]
 __version__ = _core.__version__
-#: Members one SIMD batch of :func:`solve_ensemble` integrates at once (8 with AVX-512, 4 with
-#: AVX2 in the native build; 4 in the portable default build, two SSE2 registers per operation).
+# The ensembles' SIMD batches in the widest form this CPU runs: the default build carries them
+# compiled for AVX-512 and for AVX2 + FMA as plugins beside _core (without them, or on another
+# CPU, the library's own form runs); GYROSTAT_SIMD=sse2|avx2|avx512 asks for one (tests, timing).
+_core.load_batches(_os.path.dirname(_core.__file__), _os.environ.get("GYROSTAT_SIMD", ""))
+#: Members one SIMD batch of :func:`solve_ensemble` integrates at once: 8 with AVX-512, 4 with
+#: AVX2 or SSE2 (two SSE2 registers per operation), as :data:`simd_instruction_set` says.
 simd_lanes: int = _core.simd_lanes
-#: The instruction set the C++ core was compiled for ("sse2" in the portable default build).
+#: The instruction set of the SIMD batches in use, chosen when gyrostat is imported: "avx512f"
+#: or "avx2" (the widest the CPU runs, from the default build's plugins, or the native build's
+#: own), "sse2" (the portable form; or with GYROSTAT_SIMD=sse2 set before the import).
 simd_instruction_set: str = _core.simd_instruction_set
 #: The form of the gyrostat's Taylor recursion this process uses: "avx2+fma" (chosen at run time
 #: on CPUs with AVX2 and FMA, whatever the build) or "portable" (elsewhere, or with the

@@ -27,6 +27,8 @@ import math
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
+from inspect import CO_VARARGS
+from types import FunctionType
 
 from gyrostat import _core
 
@@ -78,6 +80,13 @@ def _terminal_count(terminal, what) -> int:
 def _check_signature(function: Callable, i: int, name: str) -> None:
     """A callable event is called as f(t, y): one that cannot be is a TypeError naming it now,
     before the run (a callable without a signature to read is called as it is)."""
+    if type(function) is FunctionType:  # a plain function: its code says it, without inspect (~100 us)
+        code = function.__code__
+        required = code.co_argcount - len(function.__defaults__ or ())
+        keywords = code.co_varnames[code.co_argcount:code.co_argcount + code.co_kwonlyargcount]
+        if ((code.co_argcount >= 2 or code.co_flags & CO_VARARGS) and required <= 2
+                and all(k in (function.__kwdefaults__ or {}) for k in keywords)):
+            return
     import inspect
 
     try:

@@ -29,7 +29,9 @@ DOP853 or CVODE BDF by the stiffness measured along the run.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
+import json
 import math
 import time
 from collections.abc import Callable
@@ -132,6 +134,8 @@ class Choice:
     accuracy: float
     entries: list[dict] = field(default_factory=list)
     estimate: Estimate | None = None
+    reused: bool = False
+    """The choice was made for an identical scene solved before (no probe ran this time)."""
 
     @property
     def summary(self) -> str:
@@ -143,7 +147,8 @@ class Choice:
 
     def report(self) -> dict:
         return {"accuracy": self.accuracy, "chosen": self.chosen.name, "summary": self.summary,
-                "estimate": self.estimate.as_dict() if self.estimate else None, "rungs": self.entries}
+                "estimate": self.estimate.as_dict() if self.estimate else None, "rungs": self.entries,
+                "reused": self.reused}
 
 
 # ------------------------------------------------------------------------------------ compared quantities
@@ -204,9 +209,49 @@ def probe(rung: Rung, top: Rung, span: tuple[float, float], options: dict) -> Es
     return Estimate(value, measured, growth, (t0, t0 + window), seconds, basis)
 
 
-def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy: float = ACCURACY) -> Choice:
+CACHE_SIZE = 64
+"""The choices of this many scenes are kept (:func:`scene_key`): solving a scene again skips its probes."""
+_CHOICES: dict[str, Choice] = {}
+
+
+def scene_key(doc: dict) -> str | None:
+    """The scene document (defaults filled in) as a canonical string: equal documents give equal
+    rungs, models and probes, hence the same choice. None for a document holding anything but
+    numbers, strings, booleans, lists, tables and NumPy arrays (a Python callable, say): such a
+    scene is probed every time."""
+
+    def plain(value):
+        if isinstance(value, np.ndarray):
+            return {"__array__": value.tolist(), "dtype": str(value.dtype)}
+        if isinstance(value, np.generic):
+            return value.item()
+        raise TypeError(type(value).__name__)
+
+    try:
+        return json.dumps(doc, sort_keys=True, default=plain, allow_nan=True)
+    except (TypeError, ValueError):
+        return None
+
+
+def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy: float = ACCURACY,
+           key: str | None = None) -> Choice:
     """The cheapest rung that can answer, whose assumptions hold at the start and whose measured
-    estimate is at most ``accuracy``; the top when none is."""
+    estimate is at most ``accuracy``; the top when none is.
+
+    With ``key`` (:func:`scene_key` of the scene that made the rungs) the choice of the last
+    :data:`CACHE_SIZE` scenes is kept: the same scene solved again reuses it, probes and all
+    (``Choice.reused``; its report says so), instead of probing again. The choice is a function
+    of the scene alone (its rungs, span, options and accuracy all come from it), so it is the
+    same choice."""
+    if key is not None:
+        cached = _CHOICES.get(key)
+        if cached is not None:
+            return dataclasses.replace(cached, entries=copy.deepcopy(cached.entries), reused=True)
+        made = choose(rungs, span, options, accuracy)
+        if len(_CHOICES) >= CACHE_SIZE:
+            _CHOICES.pop(next(iter(_CHOICES)))
+        _CHOICES[key] = made
+        return made
     rungs = list(rungs)
     top = rungs[-1]
     entries: list[dict] = []
@@ -296,14 +341,11 @@ def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tupl
     for name, sol in segments:
         if not len(sol):
             continue
-        if name == lower.name:
-            outputs = (np.column_stack([sol[n] for n in core.output_names]) if core.output_names else
-                       np.zeros((len(sol), 0)))
-            parts.append((sol.t, sol.y, outputs, 0))
+        if name == lower.name:  # the lower model's own run: its outputs' matrix, in output_names' order
+            parts.append((sol.t, sol.y, sol._result.outputs, 0))
         else:
-            projected = np.array([core.initial_state(row) for row in sol.y])
-            parts.append((sol.t, projected, np.array([core.outputs_at(float(t), row)
-                                                      for t, row in zip(sol.t, projected)]), 1))
+            projected = core.initial_states(sol.y)
+            parts.append((sol.t, projected, core.outputs_along(sol.t, projected), 1))
     name, last = segments[-1]
     y_last = last.y_last if name == lower.name else np.asarray(core.initial_state(last.y_last))
     return Solution.join(lower.model, segments, parts, switches, y_last)
@@ -314,12 +356,12 @@ def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
     projected state, minus 0 (so g falls through 0 where every assumption holds with margin)."""
     core = lower.model._core
     names = list(core.output_names)
-    indices = [names.index(w.output) for w in lower.watches]
+    watched = [(names.index(w.output), w.ratio) for w in lower.watches]
+    outputs_at = core.outputs_at
 
-    def back_down(t, y):
-        values = np.asarray(core.outputs_at(float(t), np.asarray(y, float)))
-        ratios = [w.ratio(values[i]) for w, i in zip(lower.watches, indices)]
-        worst = max(ratios)
+    def back_down(t, y):  # called at every step of the top's run (y: the engine's float array)
+        values = outputs_at(t, y)
+        worst = max([ratio(float(values[i])) for i, ratio in watched])
         return worst if math.isfinite(worst) else 1.0
 
     back_down.direction = -1

@@ -131,7 +131,8 @@ def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Cho
     the one run solved (named as the kind's plots expect it)."""
     template = scene.runs[0]
     integration = scene.doc["integration"]
-    choice = _ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"])
+    choice = _ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"],
+                            key=_ladder.scene_key(scene.doc))
     rung = choice.chosen
     name = rung.run
     events = [e for e in template.options.get("events", ()) if getattr(e, "quantity", None) in

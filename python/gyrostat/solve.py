@@ -99,14 +99,17 @@ _CACHE: dict[tuple, Options] = {}
 def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step=None,
              splitting_order=None) -> Options:
     """make_options, with the Options of recent keyword combinations kept (they are never
-    modified once made): repeated calls with the same options cost a dictionary look-up."""
-    if t_eval is None and options is None:
+    modified once made): repeated calls with the same options, ``t_eval`` given as a short list
+    or tuple included, cost a dictionary look-up."""
+    if options is None and (t_eval is None or (n_out is None and type(t_eval) in (list, tuple) and len(t_eval) <= 64)):
         values = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
         key = values + tuple(map(type, values))  # True == 1, yet n_out=True is refused and n_out=1 is not
+        if t_eval is not None:  # a short list of output times: its values and their types join the key
+            key += (tuple(t_eval), tuple(map(type, t_eval)))
         try:
             return _CACHE[key]
         except KeyError:
-            made = make_options(method=method, rtol=rtol, atol=atol, n_out=n_out, every_step=every_step,
+            made = make_options(method=method, rtol=rtol, atol=atol, t_eval=t_eval, n_out=n_out, every_step=every_step,
                                 max_steps=max_steps, first_step=first_step, max_step=max_step, step=step,
                                 splitting_order=splitting_order)
             if len(_CACHE) >= 256:
@@ -123,6 +126,7 @@ def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, 
 
 
 _BASE_CHECK = ModelBase.check
+_FLOAT = np.dtype(float)
 
 
 def _with_events(opts: Options, events, dense_output: bool, core) -> Options:
@@ -304,9 +308,10 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     if events is not None or dense_output is not False:
         opts = _with_events(opts, events, dense_output, core)
     t0, t1 = _span(t_span)
-    if isinstance(y0, Solution):
-        y0, opts = _continuation(y0, t0, opts, first_step)
-    y0 = floats(y0, "y0")
+    if type(y0) is not np.ndarray or y0.dtype is not _FLOAT:  # an array of floats needs no conversion
+        if isinstance(y0, Solution):
+            y0, opts = _continuation(y0, t0, opts, first_step)
+        y0 = floats(y0, "y0")
     if y0.ndim != 1:
         raise ValueError(f"y0 must be one state (a 1-D array), got shape {y0.shape}")
     if atol is not None and atol > 1e-3:
@@ -344,7 +349,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     time, step size and status: the gyrostat :class:`Model` with constant and linear torques
     (with or without attitude) under ``taylor`` or ``dop853``, and the averaged symmetric model
     under ``dop853``, without events, dense output or ``every_step`` (and not ``taylor`` for ω
-    alone in the portable build on a CPU with AVX2, where one body at a time is faster:
+    alone with the SSE2 batches on a CPU with AVX2, where one body at a time is faster:
     :data:`gyrostat.taylor_kernel`). They equal single
     :func:`solve` runs to the tolerance, not bit for bit (vectorised rounding; a Taylor batch
     uses the highest order any lane needs). Every other member, and every member with

@@ -190,6 +190,84 @@ DISTRIBUTIONS = {"uniform": Uniform, "normal": Normal, "loguniform": LogUniform}
 Distribution = Uniform | Normal | LogUniform
 
 
+# ------------------------------------------------------------------------------------ members' streams
+# Member i of a dispersion draws from default_rng(SeedSequence(seed, spawn_key=(i,))). Made one by
+# one, that generator costs ~25 us (NumPy's SeedSequence hashing and PCG64 seeding in Python); a
+# chunk's streams are computed here together, NumPy's algorithms word for word on arrays (the
+# SeedSequence of NumPy's bit_generator.pyx, PCG64's pcg_setseq_128_srandom_r), and set into one
+# PCG64 member by member: the same numbers (tests/test_sweeps.py compares them with default_rng).
+_INIT_A, _MULT_A, _INIT_B, _MULT_B = 0x43B0D7E5, 0x931E8875, 0x8B51F9DD, 0x58F38DED
+_MIX_L, _MIX_R = 0xCA01F9DD, 0x4973F715
+_PCG_MULT = 0x2360ED051FC65DA44385DF649FCCF645
+_MASK32, _MASK128 = 0xFFFFFFFF, (1 << 128) - 1
+
+
+def _words(n: int) -> list[int]:
+    """A non-negative integer as 32-bit words, least significant first (0: one word)."""
+    out = [n & _MASK32]
+    while n > _MASK32:
+        n >>= 32
+        out.append(n & _MASK32)
+    return out
+
+
+def _pcg64_states(seed: int, members: np.ndarray) -> list[tuple[int, int]]:
+    """(state, inc) of PCG64(SeedSequence(seed, spawn_key=(i,))) for each member i < 2**32."""
+    u32 = np.uint32
+    run = _words(seed)
+    run += [0] * (4 - len(run))  # a spawned sequence pads its entropy to the pool size
+    count = len(members)
+    entropy = [np.full(count, w, u32) for w in run] + [members.astype(u32)]
+    hash_a = [_INIT_A]
+
+    def hashmix(value):
+        value = value ^ u32(hash_a[0])
+        hash_a[0] = (hash_a[0] * _MULT_A) & _MASK32
+        value = value * u32(hash_a[0])
+        return value ^ (value >> u32(16))
+
+    def mix(x, y):
+        result = u32(_MIX_L) * x - u32(_MIX_R) * y
+        return result ^ (result >> u32(16))
+
+    with np.errstate(over="ignore"):  # arithmetic modulo 2**32, as in NumPy's C
+        pool = [hashmix(entropy[i]) for i in range(4)]
+        for source in range(4):
+            for target in range(4):
+                if source != target:
+                    pool[target] = mix(pool[target], hashmix(pool[source]))
+        for source in range(4, len(entropy)):
+            for target in range(4):
+                pool[target] = mix(pool[target], hashmix(entropy[source]))
+        hash_b, state = _INIT_B, []
+        for k in range(8):  # generate_state(4, uint64): 8 words, pairs (low, high)
+            value = pool[k % 4] ^ u32(hash_b)
+            hash_b = (hash_b * _MULT_B) & _MASK32
+            value = value * u32(hash_b)
+            state.append((value ^ (value >> u32(16))).tolist())
+    out = []
+    for m in range(count):
+        seed_high, seed_low, inc_high, inc_low = (state[2 * j][m] | (state[2 * j + 1][m] << 32) for j in range(4))
+        inc = ((((inc_high << 64) | inc_low) << 1) | 1) & _MASK128
+        current = (((inc + ((seed_high << 64) | seed_low)) & _MASK128) * _PCG_MULT + inc) & _MASK128
+        out.append((current, inc))
+    return out
+
+
+def _member_generators(seed: int, start: int, stop: int):
+    """Each member's generator in turn, for members start … stop − 1 (one Generator, reseeded)."""
+    if stop > 2**32 or stop - start < 8:  # beyond 2**32 a spawn key has two words; a few members: NumPy's own way
+        for i in range(start, stop):
+            yield np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i,)))
+        return
+    bits = np.random.PCG64(0)
+    generator = np.random.Generator(bits)
+    for current, inc in _pcg64_states(seed, np.arange(start, stop, dtype=np.uint64)):
+        bits.state = {"bit_generator": "PCG64", "state": {"state": current, "inc": inc}, "has_uint32": 0,
+                      "uinteger": 0}
+        yield generator
+
+
 # ------------------------------------------------------------------------------------ paths
 _SEGMENT = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\]]*\])*)")
 _INDEX = re.compile(r"\[\s*(-?\d+)\s*(?::\s*(-?\d+)\s*)?\]")
@@ -612,11 +690,29 @@ class Plan:
         """
         if not 0 <= i < self.size:
             raise IndexError(f"member {i} of a sweep of {self.size}")
+        return self.values_range(i, i + 1)[0]
+
+    def values_range(self, start: int, stop: int) -> list[tuple[float, ...]]:
+        """:meth:`values` of members ``start`` … ``stop - 1``, made together (a dispersion's
+        streams are computed for the whole range at once: the same numbers).
+
+        Parameters
+        ----------
+        start, stop : int
+            The members, ``range(start, stop)``.
+
+        Examples
+        --------
+        >>> plan.values_range(0, 2)
+        [(0.1,), (0.2,)]
+        """
+        if not 0 <= start <= stop <= self.size:
+            raise IndexError(f"members {start} … {stop - 1} of a sweep of {self.size}")
         if self.mode == "grid":
-            index = np.unravel_index(i, self.shape)
-            return tuple(p.values[k] for p, k in zip(self.parameters, index))
-        rng = np.random.default_rng(np.random.SeedSequence(self.seed, spawn_key=(i,)))
-        return tuple(p.distribution.draw(rng) for p in self.parameters)
+            return [tuple(p.values[k] for p, k in zip(self.parameters, np.unravel_index(i, self.shape)))
+                    for i in range(start, stop)]
+        return [tuple(p.distribution.draw(rng) for p in self.parameters)
+                for rng in _member_generators(self.seed, start, stop)]
 
     def document(self, values: Sequence[float]) -> dict:
         """The scene document with ``values`` set, each changed key checked as in a scene file.
@@ -633,8 +729,9 @@ class Plan:
         """
         doc = self.base
         changed = {}
+        index = {id(parameter): k for k, parameter in enumerate(self.parameters)}
         for parameter, parts, located in self.located:
-            doc = _assign(doc, parts, parameter.scale * values[self.parameters.index(parameter)])
+            doc = _assign(doc, parts, parameter.scale * values[index[id(parameter)]])
             changed[located.field_parts] = located
         for field_parts, located in changed.items():
             doc = _assign(doc, field_parts, located.revalidate(doc))
@@ -776,6 +873,47 @@ def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extr
         arrays["terminal_event"][j] = solution.event_names[solution.terminal_event]
 
 
+def _record_many(arrays: dict, rows: list[int], solutions: list, plan: Plan, trajectories: bool,
+                 extrema: tuple[str, ...]) -> None:
+    """:func:`_record` for the members of one solve_ensemble call (chunk rows ``rows``): status,
+    message, statistics and, for a summaries-only sweep without events, the final values of the
+    members with the plan's names, one column at a time; every other member by :func:`_record`."""
+    if trajectories or extrema or plan.event_labels:
+        for j, solution in zip(rows, solutions):
+            _record(arrays, j, solution, plan, trajectories, extrema)
+        return
+    results = [s._result for s in solutions]
+    arrays["status"][rows] = [s.status for s in solutions]
+    arrays["message"][rows] = [r.message for r in results]
+    stats = [r.stats for r in results]
+    for name in STATS + ("last_step",):
+        arrays[name][rows] = [getattr(s, name) for s in stats]
+    kept, last_t, last_y, last_outputs = [], [], [], []
+    for j, solution, r in zip(rows, solutions, results):
+        t = r.t
+        if not len(t):
+            continue
+        if r.terminal_event >= 0 or tuple(r.state_names) != plan.state_names or \
+                tuple(r.output_names) != plan.output_names:
+            _record(arrays, j, solution, plan, trajectories, extrema)
+            continue
+        kept.append(j)
+        last_t.append(t[-1])
+        last_y.append(r.y[-1])
+        last_outputs.append(r.outputs[-1])
+    if kept:
+        arrays["t_final"][kept] = last_t
+        finals = np.hstack([np.array(last_y), np.array(last_outputs).reshape(len(kept), len(plan.output_names))])
+        for k, name in enumerate(plan.names):
+            arrays[f"final_{name}"][kept] = finals[:, k]
+
+
+def _put_values(arrays: dict, plan: Plan, drawn: list[tuple[float, ...]]) -> None:
+    """The members' parameter values (one tuple per member) into their columns of a chunk."""
+    for k, parameter in enumerate(plan.parameters):
+        arrays[parameter.name][:] = [values[k] for values in drawn]
+
+
 def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajectories: bool = True,
                 extrema: Sequence[str] = (), check_validity: bool = True, progress=None) -> dict[str, np.ndarray]:
     """Solves members ``start`` to ``stop - 1`` of a plan and returns their arrays (what a sweep
@@ -811,18 +949,21 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
     >>> list(chunk["status"]), chunk["final_r"].round(4)  # r in rad/s at t1
     (['success', 'success'], array([1.4521, 2.9912]))
     """
-    from gyrostat.modelbase import ModelBase
-    from gyrostat.solve import solve_ensemble
+    return _solve_members(plan, _members(plan, start, stop, trajectories, tuple(extrema)), threads=threads,
+                          trajectories=trajectories, extrema=tuple(extrema), check_validity=check_validity,
+                          progress=progress)
 
+
+def _members(plan: Plan, start: int, stop: int, trajectories: bool, extrema: tuple[str, ...]) -> tuple[dict, dict]:
+    """The first half of :func:`solve_chunk`, pure Python: the chunk's arrays with every member's
+    values (and the refused members' status), and the runs grouped by span, options and events."""
     count = stop - start
-    extrema = tuple(extrema)
     arrays = _blank(plan, count, trajectories, extrema)
     arrays["interrupted"] = np.zeros(1, dtype=bool)
     groups: dict[tuple, list] = {}
-    for j in range(count):
-        values = plan.values(start + j)
-        for parameter, value in zip(plan.parameters, values):
-            arrays[parameter.name][j] = value
+    drawn = plan.values_range(start, stop)
+    _put_values(arrays, plan, drawn)
+    for j, values in enumerate(drawn):
         try:
             run = plan.member(values)
         except (SceneError, ValueError) as error:
@@ -831,6 +972,18 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
         options = tuple(sorted((k, v) for k, v in run.options.items() if k != "events"))
         key = (run.t_span, options, tuple(run.options.get("events", ())))
         groups.setdefault(key, []).append((j, run))
+    return arrays, groups
+
+
+def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: int, trajectories: bool,
+                   extrema: tuple[str, ...], check_validity: bool, progress) -> dict[str, np.ndarray]:
+    """The second half of :func:`solve_chunk`: the groups solved (one solve_ensemble each, the
+    engine's pool with the GIL released) and each member's summary recorded."""
+    from gyrostat.modelbase import ModelBase
+    from gyrostat.solve import solve_ensemble
+
+    arrays, groups = members_of_chunk
+    count = len(arrays["status"])
     done = count - sum(len(members) for members in groups.values())
     for (span, options, events), members in groups.items():
         share = len(members) / count
@@ -843,8 +996,8 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
             solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
                                        threads=threads, events=list(events) or None, check_validity=False,
                                        progress=report if progress is not None else False, **dict(options))
+        _record_many(arrays, [j for j, _ in members], solutions, plan, trajectories, extrema)
         for (j, run), solution in zip(members, solutions):
-            _record(arrays, j, solution, plan, trajectories, extrema)
             arrays["accuracy_warning"][j] = solution.accuracy_warnings[0] if solution.accuracy_warnings else ""
             if check_validity and len(solution) and type(run.model).check is not ModelBase.check:
                 broken = [str(a) for a in run.model.check(solution) if not a.holds]  # the averaging's assumptions
@@ -1121,8 +1274,7 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     missing = [r for r in ranges if r not in finished]
     for start, stop in missing:  # never run: written as such, so that no member is lost
         blank = _blank(plan, stop - start, trajectories, extrema)
-        for parameter_index, parameter in enumerate(plan.parameters):
-            blank[parameter.name][:] = [plan.values(i)[parameter_index] for i in range(start, stop)]
+        _put_values(blank, plan, plan.values_range(start, stop))
         sink.put(start, blank)
     attrs = {"gyrostat_version": _core.__version__, "scene": plan.scene_name, "kind": plan.kind_name,
              "run": plan.run, "model": plan.model_choice, "model_reason": plan.model_reason, "mode": plan.mode,
@@ -1140,12 +1292,27 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
 
 
 def _run_local(plan, ranges, sink, bar, threads, options) -> dict:
+    """The chunks in turn on this machine. The next chunk's members are made (Python) on a helper
+    thread while this thread solves the current one (C++, the GIL released) and records it: the
+    same members, values and results as :func:`solve_chunk`, with the Python work beside the
+    engine's instead of between its runs. Ctrl-C reaches the engine as in one solve_ensemble call
+    (this thread runs it)."""
+    from concurrent.futures import ThreadPoolExecutor
+
     finished: dict = {}
     done = 0
+    making = (options["trajectories"], tuple(options["extrema"]))
+    solving = {k: v for k, v in options.items() if k not in ("trajectories", "extrema")}
+    helper = ThreadPoolExecutor(max_workers=1, thread_name_prefix="gyrostat-sweep-members")
+    upcoming = helper.submit(_members, plan, *ranges[0], *making) if ranges else None
     try:
-        for start, stop in ranges:
+        for index, (start, stop) in enumerate(ranges):
+            members = upcoming.result()
+            if index + 1 < len(ranges):
+                upcoming = helper.submit(_members, plan, *ranges[index + 1], *making)
             report = None if bar is None else (lambda f, d=done, n=stop - start: bar((d + f * n) / plan.size))
-            chunk = solve_chunk(plan, start, stop, threads=threads, progress=report, **options)
+            chunk = _solve_members(plan, members, threads=threads, trajectories=making[0], extrema=making[1],
+                                   progress=report, **solving)
             sink.put(start, chunk)
             finished[(start, stop)] = True
             done += stop - start
@@ -1156,6 +1323,8 @@ def _run_local(plan, ranges, sink, bar, threads, options) -> dict:
                 break
     except KeyboardInterrupt:
         finished["interrupted"] = True
+    finally:
+        helper.shutdown(wait=True, cancel_futures=True)
     return finished
 
 
@@ -1186,8 +1355,7 @@ def _run_dask(plan, ranges, sink, bar, client, threads, options) -> dict:
                 chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
                 chunk["status"][:] = "failed"
                 chunk["message"][:] = f"the Dask task failed: {type(error).__name__}: {' '.join(str(error).split())}"
-                for k, parameter in enumerate(plan.parameters):
-                    chunk[parameter.name][:] = [plan.values(i)[k] for i in range(start, stop)]
+                _put_values(chunk, plan, plan.values_range(start, stop))
             sink.put(start, chunk)
             finished[(start, stop)] = True
             done += stop - start
