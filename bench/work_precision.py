@@ -4,7 +4,7 @@ problems, in one run. Error is the max-norm error of the final state against the
 executable prints (the closed form for the torque-free body); time is the best of repeated runs
 of one whole trajectory.
 
-    python bench/work_precision.py --bench-exe build/bench/gyrostat_bench [--quick]
+    python bench/work_precision.py --bench-exe build/release/gyrostat_bench [--quick]
 
 Writes bench/out/work_precision_<problem>.png, bench/out/rows.csv and prints the ratios at equal
 error (log-log interpolation of each method's time against its error).

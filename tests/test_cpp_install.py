@@ -1,6 +1,7 @@
 """The C++ library for C++ users: `cmake --install` gives headers, the core library and a CMake
 package; examples/cpp/ is configured with find_package(gyrostat), linked to gyrostat::core and
-run. Reuses the C++ test build of `bash run.sh test` (build/cpp-tests) when it is there."""
+run. Reuses the build of `bash run.sh test` (build/release: the package's core and the C++ tests)
+when it is there."""
 
 import shutil
 import subprocess
@@ -9,7 +10,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-BUILD = ROOT / "build" / "cpp-tests"
+BUILD = ROOT / "build" / "release"
 
 
 def run(*command):
@@ -26,7 +27,7 @@ def test_installed_package_builds_and_runs_the_example(tmp_path):
         run("cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release")
     run("cmake", "--build", build, "--target", "gyrostat_core", "-j", "1")
     prefix = tmp_path / "prefix"
-    run("cmake", "--install", build, "--prefix", prefix)
+    run("cmake", "--install", build, "--prefix", prefix, "--component", "development")
     assert (prefix / "include" / "gyrostat" / "engine.hpp").is_file()
     configs = list(prefix.glob("lib*/cmake/gyrostat/gyrostatConfig.cmake"))
     assert len(configs) == 1 and (configs[0].parent / "gyrostatConfigVersion.cmake").is_file()

@@ -1,9 +1,10 @@
-// Instantiates the engine for the models at indices 0, 4, 8, 12 of AnyModel (solve_system.hpp):
-// one of four translation units, for parallel builds.
+// Part 0 of the engine's integration: the models GYROSTAT_SOLVED_MODELS (solve_system.hpp)
+// assigns to part 0, one of four translation units for parallel builds.
+#define GYROSTAT_SOLVE_PART 0
 #include "gyrostat/solve_system.hpp"
 
 namespace gyrostat {
 
-GYROSTAT_INSTANTIATE_SOLVE_PART(0)
+GYROSTAT_SOLVED_MODELS(GYROSTAT_SOLVE_IN_PART)
 
 }  // namespace gyrostat

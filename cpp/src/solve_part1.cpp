@@ -1,9 +1,10 @@
-// Instantiates the engine for the models at indices 1, 5, 9, 13 of AnyModel (solve_system.hpp):
-// one of four translation units, for parallel builds.
+// Part 1 of the engine's integration: the models GYROSTAT_SOLVED_MODELS (solve_system.hpp)
+// assigns to part 1, one of four translation units for parallel builds.
+#define GYROSTAT_SOLVE_PART 1
 #include "gyrostat/solve_system.hpp"
 
 namespace gyrostat {
 
-GYROSTAT_INSTANTIATE_SOLVE_PART(1)
+GYROSTAT_SOLVED_MODELS(GYROSTAT_SOLVE_IN_PART)
 
 }  // namespace gyrostat

@@ -1,9 +1,10 @@
-// Instantiates the engine for the models at indices 2, 6, 10, 14 of AnyModel (solve_system.hpp):
-// one of four translation units, for parallel builds.
+// Part 2 of the engine's integration: the models GYROSTAT_SOLVED_MODELS (solve_system.hpp)
+// assigns to part 2, one of four translation units for parallel builds.
+#define GYROSTAT_SOLVE_PART 2
 #include "gyrostat/solve_system.hpp"
 
 namespace gyrostat {
 
-GYROSTAT_INSTANTIATE_SOLVE_PART(2)
+GYROSTAT_SOLVED_MODELS(GYROSTAT_SOLVE_IN_PART)
 
 }  // namespace gyrostat

@@ -21,7 +21,8 @@ namespace gyrostat {
 
 /// Every model the library integrates (each implements model/system.hpp). Adding a model: its
 /// header (included above), one alternative here, and its constructor in the bindings
-/// (cpp/bindings/expose_models.cpp); its solve is instantiated by src/solve_part*.cpp.
+/// (cpp/bindings/expose_models.cpp), and one line in GYROSTAT_SOLVED_MODELS (solve_system.hpp:
+/// which src/solve_part*.cpp compiles its solve).
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
                               model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
@@ -75,8 +76,8 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
                                               const integrate::Control* control = nullptr, bool batch = true);
 
 /// The integration of one model type: the whole engine (every method) instantiated for it. Each
-/// alternative of AnyModel is instantiated in one of the translation units src/solve_part*.cpp,
-/// chosen by its index (solve_system.hpp), so that a new model needs no line there.
+/// alternative of AnyModel is instantiated in one of the translation units src/solve_part*.cpp
+/// (solve_system.hpp: GYROSTAT_SOLVED_MODELS).
 template <class Model>
 integrate::Result solve_system(const Model& model, double t0, const Eigen::VectorXd& y0, double t1,
                                const integrate::Options& options, const integrate::Control* control);

@@ -1,10 +1,11 @@
-// The definition of solve_system (engine.hpp) and its explicit instantiation for the alternatives
-// of AnyModel, spread over the translation units src/solve_part<K>.cpp by index (alternative i in
-// part i mod kSolveParts): parallel builds, and no list of models to keep here.
+// The definition of solve_system (engine.hpp), and the one place each alternative of AnyModel has
+// its integration compiled: integrate::solve<Model> and solve_system<Model> are instantiated
+// explicitly, for model i in the translation unit src/solve_part<K>.cpp that GYROSTAT_SOLVED_MODELS
+// names, and declared `extern template` for every other translation unit that includes
+// integrate/solve.hpp (the engine, the C++ tests, the benchmark): they link to that one copy
+// instead of compiling the integrators again.
 #pragma once
 
-#include <cstddef>
-#include <stdexcept>
 #include <type_traits>
 #include <variant>
 
@@ -13,52 +14,74 @@
 
 namespace gyrostat {
 
-/// The number of translation units that instantiate the engine (src/solve_part0.cpp …).
-inline constexpr std::size_t kSolveParts = 4;
-/// Room for this many models: a static_assert below says when AnyModel outgrows it.
-inline constexpr std::size_t kMaxModels = 16;
-static_assert(std::variant_size_v<AnyModel> <= kMaxModels, "AnyModel has more models than kMaxModels: raise it");
-
-/// The model at index I of AnyModel, or a placeholder past its end (instantiated to nothing).
-template <std::size_t I>
-struct NoModel {};
-template <std::size_t I, class = void>
-struct model_at {
-    using type = NoModel<I>;
-};
-template <std::size_t I>
-struct model_at<I, std::enable_if_t<(I < std::variant_size_v<AnyModel>)>> {
-    using type = std::variant_alternative_t<I, AnyModel>;
-};
-
-template <class T>
-struct is_placeholder : std::false_type {};
-template <std::size_t I>
-struct is_placeholder<NoModel<I>> : std::true_type {};
-
 template <class Model>
 integrate::Result solve_system(const Model& model, double t0, const Eigen::VectorXd& y0, double t1,
                                const integrate::Options& options, const integrate::Control* control) {
-    if constexpr (is_placeholder<Model>::value) {
-        (void)model, (void)t0, (void)y0, (void)t1, (void)options, (void)control;
-        throw std::logic_error("no model at this index of AnyModel");
-    } else {
-        const auto start = model::system::initial_state(model, y0);
-        return integrate::solve(model, t0, start, t1, options, control);
-    }
+    const auto start = model::system::initial_state(model, y0);
+    return integrate::solve(model, t0, start, t1, options, control);
 }
 
 }  // namespace gyrostat
 
-/// Instantiates solve_system for the alternative of AnyModel at index I, if there is one.
-#define GYROSTAT_INSTANTIATE_SOLVE_AT(I)                                                                          \
-    template integrate::Result solve_system<model_at<I>::type>(const model_at<I>::type&, double,                  \
-                                                              const Eigen::VectorXd&, double,                      \
-                                                              const integrate::Options&, const integrate::Control*);
-/// Part K of the engine: the alternatives K, K + 4, K + 8, K + 12 of AnyModel.
-#define GYROSTAT_INSTANTIATE_SOLVE_PART(K)                                                            \
-    static_assert(K < kSolveParts && kSolveParts * 4 == kMaxModels, "four parts of four models each"); \
-    GYROSTAT_INSTANTIATE_SOLVE_AT(K)                                                                  \
-    GYROSTAT_INSTANTIATE_SOLVE_AT(K + 4)                                                              \
-    GYROSTAT_INSTANTIATE_SOLVE_AT(K + 8)                                                              \
-    GYROSTAT_INSTANTIATE_SOLVE_AT(K + 12)
+/// Every alternative of AnyModel as X(K, Model), K the part (src/solve_part<K>.cpp, K in 0..3)
+/// that compiles its integration; the parts share the work about evenly (parallel builds). A new
+/// model: one line here (a static_assert below says when AnyModel has one not listed).
+#define GYROSTAT_SOLVED_MODELS(X)                                                          \
+    X(0, model::Gyrostat<false>) X(1, model::Gyrostat<true>) X(2, model::AveragedSymmetric) \
+    X(3, model::MovingMass) X(0, model::LagrangeTop) X(1, model::LagrangeAveraged)          \
+    X(2, model::OrthogonalTorque<false>) X(3, model::OrthogonalTorque<true>)                \
+    X(0, model::TorqueFree) X(1, model::TorqueFreeAttitude)
+
+#define GYROSTAT_SOLVE_SIGNATURE(M)                                                                            \
+    integrate::Result integrate::solve<M>(const M&, double, const M::State&, double, const integrate::Options&, \
+                                          const integrate::Control*)
+#define GYROSTAT_SOLVE_SYSTEM_SIGNATURE(M)                                                          \
+    integrate::Result solve_system<M>(const M&, double, const Eigen::VectorXd&, double, const integrate::Options&, \
+                                      const integrate::Control*)
+
+namespace gyrostat {
+
+/// 1 when M is an alternative of AnyModel.
+template <class M, class Variant>
+struct is_alternative;
+template <class M, class... Ts>
+struct is_alternative<M, std::variant<Ts...>> : std::bool_constant<(std::is_same_v<M, Ts> || ...)> {};
+#define GYROSTAT_COUNT_ALTERNATIVE(K, M) +(is_alternative<M, AnyModel>::value ? 1 : 0)
+static_assert((0 GYROSTAT_SOLVED_MODELS(GYROSTAT_COUNT_ALTERNATIVE)) == std::variant_size_v<AnyModel>,
+              "GYROSTAT_SOLVED_MODELS (solve_system.hpp) must list every alternative of AnyModel once");
+#undef GYROSTAT_COUNT_ALTERNATIVE
+
+// In the part that compiles them (GYROSTAT_SOLVE_PART defined), nothing is declared extern.
+#ifndef GYROSTAT_SOLVE_PART
+#define GYROSTAT_EXTERN_SOLVE(K, M) extern template GYROSTAT_SOLVE_SIGNATURE(M); \
+                                    extern template GYROSTAT_SOLVE_SYSTEM_SIGNATURE(M);
+GYROSTAT_SOLVED_MODELS(GYROSTAT_EXTERN_SOLVE)
+#undef GYROSTAT_EXTERN_SOLVE
+#endif
+
+}  // namespace gyrostat
+
+#ifdef GYROSTAT_SOLVE_PART
+/// In src/solve_part<K>.cpp (GYROSTAT_SOLVE_PART = K): the explicit instantiations of part K.
+#define GYROSTAT_INSTANTIATE_SOLVE(M) template GYROSTAT_SOLVE_SIGNATURE(M); template GYROSTAT_SOLVE_SYSTEM_SIGNATURE(M);
+#define GYROSTAT_SOLVE_IN_PART(K, M) GYROSTAT_SOLVE_IN_PART_##K(M)
+#define GYROSTAT_SOLVE_IN_PART_0(M)
+#define GYROSTAT_SOLVE_IN_PART_1(M)
+#define GYROSTAT_SOLVE_IN_PART_2(M)
+#define GYROSTAT_SOLVE_IN_PART_3(M)
+#if GYROSTAT_SOLVE_PART == 0
+#undef GYROSTAT_SOLVE_IN_PART_0
+#define GYROSTAT_SOLVE_IN_PART_0(M) GYROSTAT_INSTANTIATE_SOLVE(M)
+#elif GYROSTAT_SOLVE_PART == 1
+#undef GYROSTAT_SOLVE_IN_PART_1
+#define GYROSTAT_SOLVE_IN_PART_1(M) GYROSTAT_INSTANTIATE_SOLVE(M)
+#elif GYROSTAT_SOLVE_PART == 2
+#undef GYROSTAT_SOLVE_IN_PART_2
+#define GYROSTAT_SOLVE_IN_PART_2(M) GYROSTAT_INSTANTIATE_SOLVE(M)
+#elif GYROSTAT_SOLVE_PART == 3
+#undef GYROSTAT_SOLVE_IN_PART_3
+#define GYROSTAT_SOLVE_IN_PART_3(M) GYROSTAT_INSTANTIATE_SOLVE(M)
+#else
+#error "GYROSTAT_SOLVE_PART is 0, 1, 2 or 3"
+#endif
+#endif
