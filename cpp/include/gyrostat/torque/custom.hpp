@@ -37,6 +37,8 @@ public:
     virtual Vec3 torque(double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const = 0;
     /// ∂M/∂ω into d and true, or false when the user gave no Jacobian.
     virtual bool jacobian(double t, const Vec3& omega, const Eigen::Vector4d* quaternion, Mat3& d) const = 0;
+    /// One call at a time, whatever the threads (a Python callable: it holds the GIL).
+    virtual bool serialised() const { return true; }
 };
 
 /// A compiled torque function and its optional Jacobian (C signature above).
@@ -47,6 +49,7 @@ public:
         : label_(std::move(label)), torque_(torque), data_(user_data), jacobian_(jacobian), jacobian_data_(jacobian_data) {
         if (!torque_) throw std::invalid_argument("CustomTorque '" + label_ + "': the function pointer is null");
     }
+    bool serialised() const override { return false; }  ///< called from every thread at once
     Vec3 torque(double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const override {
         Vec3 m = Vec3::Zero();
         const int status = torque_(t, omega.data(), quaternion ? quaternion->data() : nullptr, m.data(), data_);

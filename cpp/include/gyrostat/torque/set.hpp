@@ -201,6 +201,14 @@ public:
             throw std::invalid_argument(std::string(name) + " depends on the attitude, which " + model +
                                         " does not carry: use a model with the attitude quaternion (attitude=True)");
     }
+    /// Some torque runs one call at a time (a user's Python function, which holds the GIL): an
+    /// ensemble of such members runs on one thread, since more only hand the GIL back and forth.
+    bool serialised() const {
+        for (const auto& part : parts_)
+            if (const auto* custom = std::get_if<torque::Custom>(&part); custom && custom->function->serialised())
+                return true;
+        return false;
+    }
     /// The first torque without an averaged contribution (nullptr: every one has it).
     const char* without_averaged() const {
         for (const auto& part : parts_) {
