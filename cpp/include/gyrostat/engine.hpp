@@ -21,12 +21,22 @@ namespace gyrostat {
 
 /// Every model the library integrates (each implements model/system.hpp). Adding a model: its
 /// header (included above), one alternative here, and its constructor in the bindings
-/// (cpp/bindings/expose_models.cpp), and one line in GYROSTAT_SOLVED_MODELS (solve_system.hpp:
-/// which src/solve_part*.cpp compiles its solve).
+/// (cpp/bindings/expose_models.cpp), and one line in GYROSTAT_SOLVED_MODELS below (which
+/// src/solve_part*.cpp compiles its solve).
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
                               model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
                               model::TorqueFreeAttitude>;
+
+/// Every alternative of AnyModel as X(K, Model), K the part (src/solve_part<K>.cpp, K in 0..3)
+/// that compiles its integration; the parts share the work about evenly (parallel builds). A new
+/// model: one line here, beside its alternative above (solve_system.hpp's static_assert says when
+/// AnyModel has one not listed).
+#define GYROSTAT_SOLVED_MODELS(X)                                                          \
+    X(0, model::Gyrostat<false>) X(1, model::Gyrostat<true>) X(2, model::AveragedSymmetric) \
+    X(3, model::MovingMass) X(0, model::LagrangeTop) X(1, model::LagrangeAveraged)          \
+    X(2, model::OrthogonalTorque<false>) X(3, model::OrthogonalTorque<true>)                \
+    X(0, model::TorqueFree) X(1, model::TorqueFreeAttitude)
 
 /// The family of a model: "gyrostat", "averaged_symmetric", "moving_mass", "lagrange_top",
 /// "lagrange_averaged", "orthogonal_torque", "torque_free".

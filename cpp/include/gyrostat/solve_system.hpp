@@ -23,14 +23,6 @@ integrate::Result solve_system(const Model& model, double t0, const Eigen::Vecto
 
 }  // namespace gyrostat
 
-/// Every alternative of AnyModel as X(K, Model), K the part (src/solve_part<K>.cpp, K in 0..3)
-/// that compiles its integration; the parts share the work about evenly (parallel builds). A new
-/// model: one line here (a static_assert below says when AnyModel has one not listed).
-#define GYROSTAT_SOLVED_MODELS(X)                                                          \
-    X(0, model::Gyrostat<false>) X(1, model::Gyrostat<true>) X(2, model::AveragedSymmetric) \
-    X(3, model::MovingMass) X(0, model::LagrangeTop) X(1, model::LagrangeAveraged)          \
-    X(2, model::OrthogonalTorque<false>) X(3, model::OrthogonalTorque<true>)                \
-    X(0, model::TorqueFree) X(1, model::TorqueFreeAttitude)
 
 #define GYROSTAT_SOLVE_SIGNATURE(M)                                                                            \
     integrate::Result integrate::solve<M>(const M&, double, const M::State&, double, const integrate::Options&, \

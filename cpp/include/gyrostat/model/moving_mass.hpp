@@ -8,6 +8,7 @@
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/numeric/dual.hpp"
+#include "gyrostat/model/frame.hpp"
 #include "gyrostat/model/system.hpp"
 #include "gyrostat/torque/set.hpp"
 
@@ -144,9 +145,12 @@ public:
     /// state that starts the mass without a free oscillation. Elastic part
     /// u1 = −Ω⁻² [ω (ω·d0) − d0 |ω|² + ω̇ × d0] with ω̇ from the torque-free Euler equations of
     /// the system, damper part u2 = −λ Ω⁻² u̇1; v = u̇1 + u̇2 from the same series.
+    /// ω and the state returned are in the frame the body was given in (model/frame.hpp).
     State quasi_static_state(const Vec3& omega) const;
 
 private:
+    State quasi_static_state_in_principal_axes(const Vec3& omega) const;
+
     Body body_;
     TorqueSet torques_;
     double mu_, rho_, omega2_, lambda_;
@@ -154,6 +158,14 @@ private:
 };
 
 inline MovingMass::State MovingMass::quasi_static_state(const Vec3& omega) const {
+    Vec3 principal = omega;
+    frame::rotate_vector(body_, principal.data(), frame::To::Principal);
+    State y = quasi_static_state_in_principal_axes(body_.principal() ? omega : principal);
+    frame::convert_state<MovingMass>(body_, y.data(), frame::To::User);
+    return y;
+}
+
+inline MovingMass::State MovingMass::quasi_static_state_in_principal_axes(const Vec3& omega) const {
     // Taylor coefficients of ω(t) along J ω̇ = Jω × ω (system moments), orders 0..4.
     constexpr int N = 4;
     const Vec3& J = body_.moments();
