@@ -57,6 +57,8 @@ def assert_member_is_single_run(ds: xr.Dataset, plan: sweeps.Plan, i: int, index
     ("p001_A1p5_C1_I1-1p25", {"torques[1].damping": [50.0, 98.0], "initial.omega[2]": [0.5, 1.0]}, "averaged",
      {"t_span": [0.0, 10.0], "n_out": 41}),
     ("p001_explicit_moving_mass", {"damper.damping": [20.0, 40.0]}, None, {"t_span": [0.0, 2.0], "n_out": 21}),
+    ("explorer1_flat_spin", {"torques[0].p0": [1e-4, 2e-4], "initial.omega[0]": [0.05, 0.1]}, "averaged",
+     {"t_span": [0.0, 2e4], "n_out": 21, "model": "averaged_triaxial"}),
     ("p003_case1_theta0_5deg", {"initial.theta_deg": [5.0, 20.0], "torque.b[0]": [0.5, 1.0]}, "averaged",
      {"tau_end": 0.5, "n_out": 31}),
     ("p004_triaxial", {"runs[0].law.value": [0.05, 0.1], "initial.omega[0]": [0.5, 1.0]}, "constant",

@@ -140,6 +140,12 @@ void expose_models(py::module_& m) {
         },
         py::arg("body"), py::arg("torques"));
     m.def(
+        "averaged_triaxial_model",
+        [](const Body& body, const py::iterable& torques) -> BoundModel {
+            return {model::AveragedTriaxial(body, TorqueSet(torques_from(torques)))};
+        },
+        py::arg("body"), py::arg("torques"));
+    m.def(
         "moving_mass_model",
         [](const Body& body, const py::object& mass, const py::object& arm, const py::object& frequency,
            const py::object& damping, const py::iterable& torques) -> BoundModel {

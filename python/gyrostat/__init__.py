@@ -1,7 +1,8 @@
 """gyrostat: perturbed rotational motion of rigid bodies and gyrostats about the centre of mass.
 
 A thin Python layer over the C++ engine (``gyrostat._core``): build a :class:`Body`, add torques,
-make a model of any family (:class:`Model`, :class:`AveragedModel`, :class:`MovingMassModel`,
+make a model of any family (:class:`Model`, :class:`AveragedModel`, :class:`TriaxialAveragedModel`,
+:class:`MovingMassModel`,
 :class:`TorqueFreeModel`, :class:`gyrostat.lagrange.LagrangeTop`,
 :class:`gyrostat.lagrange.LagrangeAveraged`, :class:`gyrostat.orthogonal.OrthogonalModel`),
 :func:`solve` it (or :func:`solve_ensemble` many at once) and get a :class:`Solution` with the
@@ -16,7 +17,7 @@ from gyrostat import _core
 from gyrostat._core import Body, TorqueFreeSolution
 from gyrostat.assumptions import ValidityWarning
 from gyrostat.families.moving_mass import MovingMassModel
-from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel, torque_free
+from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel, TriaxialAveragedModel, torque_free
 from gyrostat.modelbase import ModelBase
 from gyrostat.solution import AccuracyWarning, Solution
 from gyrostat.solve import METHODS, Options, solve, solve_ensemble
@@ -34,6 +35,7 @@ __all__ = [
     "ModelBase",
     "Model",
     "AveragedModel",
+    "TriaxialAveragedModel",
     "MovingMassModel",
     "TorqueFreeModel",
     "Solution",

@@ -83,7 +83,10 @@ class Assumption:
 
 
 def _omegas(model, states: np.ndarray) -> np.ndarray:
-    """(n, 3) angular velocities: for an averaged model ω = (a, 0, r) stands for the motion."""
+    """(n, 3) angular velocities: for an averaged model ω = (a, 0, r) stands for the motion, or the
+    model's own ``omegas_of`` (the free motion at the carried phase)."""
+    if hasattr(model, "omegas_of"):
+        return model.omegas_of(states)
     if states.shape[1] == 2:
         return np.column_stack([states[:, 0], np.zeros(len(states)), states[:, 1]])
     return states[:, :3]

@@ -27,7 +27,7 @@ from gyrostat import torques as _torques
 
 __all__ = ["Kind", "Run", "KINDS", "register", "default_kind", "title_fields", "outputs_field", "build",
            "make_body", "make_torques", "integration", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
-           "SPLITTING_FIELDS", "engine_option", "engine_rule"]
+           "SPLITTING_FIELDS", "engine_option", "engine_rule", "MAX_STEPS"]
 
 
 @dataclass
@@ -234,6 +234,8 @@ METHOD = Field(Choice(*_core.methods()), default="auto",
 RTOL = engine_option("rtol", float, "relative tolerance")
 ATOL = engine_option("atol", float, "absolute tolerance")
 N_OUT = engine_option("n_out", int, "number of evenly spaced output times (0: t0 and t1 only)")
+MAX_STEPS = engine_option("max_steps", int, "the most steps a run may take (one that needs more stops there, keeps "
+                                            "what it computed and says so): raise it for long horizons of the full model")
 T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=span_order)
 ACCURACY = Field(float, default=_ladder.ACCURACY, check=positive,
                  doc="model = 'auto': the largest relative error accepted on the quantities the outputs need; "
@@ -292,6 +294,8 @@ def integration(doc: dict, kind: Kind, **extra) -> dict:
     """The integrator options of a scene of ``kind`` from its [integration] table (and ``extra``)."""
     integ = doc["integration"]
     options = {"method": integ["method"], "rtol": integ["rtol"], "atol": integ["atol"], "n_out": integ["n_out"]}
+    if "max_steps" in integ:
+        options["max_steps"] = integ["max_steps"]
     if integ["method"] == "splitting":
         if not kind.splits:
             splits = ", ".join(name for name, k in KINDS.items() if k.splits)

@@ -5,9 +5,9 @@ and the orthogonal torque in :mod:`gyrostat.lagrange` and :mod:`gyrostat.orthogo
 module re-exports them from :mod:`gyrostat.modelbase` and the family modules."""
 
 from gyrostat.families.moving_mass import MovingMassModel
-from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel
+from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel, TriaxialAveragedModel
 from gyrostat.modelbase import ModelBase, check_body, check_torques, flag, floats, number, shown
 from gyrostat.torques import TORQUE_TYPES
 
-__all__ = ["ModelBase", "Model", "TorqueFreeModel", "AveragedModel", "MovingMassModel", "TORQUE_TYPES", "shown",
+__all__ = ["ModelBase", "Model", "TorqueFreeModel", "AveragedModel", "TriaxialAveragedModel", "MovingMassModel", "TORQUE_TYPES", "shown",
            "floats", "number", "flag", "check_torques", "check_body"]

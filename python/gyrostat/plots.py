@@ -74,13 +74,17 @@ def ladder(rows: list[dict], title: str, path: Path, accuracy: float) -> Path:
             ax.plot(row["seconds"], max(row["estimate"], floor), "_", ms=14, mew=2, color="tab:orange")
         if row["chosen"]:
             ax.loglog(row["seconds"], error, "o", ms=18, mfc="none", mec="tab:red", mew=2)
-    ax.axhline(accuracy, color="tab:red", ls="--", lw=1, label=f"requested accuracy {accuracy:g}")
+    seconds = [r["seconds"] for r in rows]
+    ax.plot([min(seconds) / 3.0, max(seconds) * 3.0], [accuracy] * 2, color="tab:red", ls="--", lw=1,
+            label=f"requested accuracy {accuracy:g}")
     ax.plot([], [], color="tab:orange", marker="_", lw=1.5, label="error estimate (probe)")
     ax.plot([], [], "o", ms=12, mfc="none", mec="tab:red", mew=2, label="chosen")
     ax.set_xscale("log"), ax.set_yscale("log")
-    ax.set_xlabel("cost: time for the whole span [s]" + "".join(
-        f"\nnot run: {r['rung']} ({r['skipped']})" for r in skipped))
-    ax.set_ylabel("error against the most complete model [1] (relative)")
+    ax.set_xlabel("cost: time for the whole span [s]")
+    if skipped:  # below the axis label, which keeps its unit last
+        ax.annotate("\n".join(f"not run: {r['rung']} ({r['skipped']})" for r in skipped), (0.0, 0.0),
+                    xycoords="axes fraction", xytext=(0, -42), textcoords="offset points", va="top", fontsize=8)
+    ax.set_ylabel("relative error against the most complete model [1]")
     ax.set_title(title)
     ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     ax.grid(True, which="both", alpha=0.3)

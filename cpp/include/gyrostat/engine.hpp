@@ -10,6 +10,7 @@
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/model/averaged.hpp"
+#include "gyrostat/model/averaged_triaxial.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/lagrange_averaged.hpp"
 #include "gyrostat/model/lagrange_top.hpp"
@@ -26,7 +27,7 @@ namespace gyrostat {
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
                               model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
-                              model::TorqueFreeAttitude>;
+                              model::TorqueFreeAttitude, model::AveragedTriaxial>;
 
 /// Every alternative of AnyModel as X(K, Model), K the part (src/solve_part<K>.cpp, K in 0..3)
 /// that compiles its integration; the parts share the work about evenly (parallel builds). A new
@@ -36,10 +37,10 @@ using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, mod
     X(0, model::Gyrostat<false>) X(1, model::Gyrostat<true>) X(2, model::AveragedSymmetric) \
     X(3, model::MovingMass) X(0, model::LagrangeTop) X(1, model::LagrangeAveraged)          \
     X(2, model::OrthogonalTorque<false>) X(3, model::OrthogonalTorque<true>)                \
-    X(0, model::TorqueFree) X(1, model::TorqueFreeAttitude)
+    X(0, model::TorqueFree) X(1, model::TorqueFreeAttitude) X(2, model::AveragedTriaxial)
 
-/// The family of a model: "gyrostat", "averaged_symmetric", "moving_mass", "lagrange_top",
-/// "lagrange_averaged", "orthogonal_torque", "torque_free".
+/// The family of a model: "gyrostat", "averaged_symmetric", "averaged_triaxial", "moving_mass",
+/// "lagrange_top", "lagrange_averaged", "orthogonal_torque", "torque_free".
 const char* family(const AnyModel& model);
 int dim(const AnyModel& model);
 std::vector<std::string> state_names(const AnyModel& model);

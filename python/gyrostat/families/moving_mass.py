@@ -23,7 +23,8 @@ import numpy as np
 from gyrostat import _core
 from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL, Assumption, check
-from gyrostat.families.rigid_body import Model, averaged_rung, draw, initial_assumptions, slow_columns
+from gyrostat.families.rigid_body import (Model, averaged_rung, draw, initial_assumptions, invariant_columns, slow_columns,
+                                          triaxial_rung)
 from gyrostat.figures import curves, unit_label
 from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, T_SPAN, Kind, Run, build, integration,
                            make_body, make_torques, outputs_field, register, title_fields)
@@ -169,9 +170,12 @@ class MovingMass(Kind):
                 "start": Field(Choice("quasi_static", "at_rest"), default="quasi_static",
                                doc="quasi_static: the mass on its forced motion; at_rest: u = v = 0"),
             }), required=True, doc="the initial state"),
-            "integration": Field(Table({"model": Field(Choice("auto", "explicit", "reduced", "averaged"), default="auto",
+            "integration": Field(Table({"model": Field(Choice("auto", "explicit", "reduced", "averaged",
+                                                              "averaged_triaxial"), default="auto",
                                                        doc="auto: the cheapest model that meets the accuracy; "
-                                                           "averaged: (a, r); reduced: the quasi-static damper torque; "
+                                                           "averaged: (a, r); averaged_triaxial: (|G|^2, p_b, s, phase) "
+                                                           "for a body far from symmetric; reduced: the quasi-static "
+                                                           "damper torque; "
                                                            "explicit: the mass, spring and damper"),
                                         "accuracy": ACCURACY, "phase": PHASE,
                                         "method": METHOD,
@@ -189,7 +193,9 @@ class MovingMass(Kind):
         y0 = model.quasi_static_state(omega) if doc["initial"]["start"] == "quasi_static" else \
             np.concatenate([omega, np.zeros(6)])
         plots = doc["outputs"]["plots"]
-        compare = _ladder.rates if "omega" in plots else slow_columns
+        triaxial = triaxial_rung(doc, body, [damper, *torques], omega)
+        # a body far from symmetric: compared in |G| and T (the triaxial rung's slow variables)
+        compare = _ladder.rates if "omega" in plots else invariant_columns if triaxial.model is not None else slow_columns
         explicit = _ladder.Rung("explicit", model, y0, "the carrier, the point mass, its spring and damper (9 states)",
                                 compare=compare)
         reduced_model = build("damper", Model, body, [damper, *torques])
@@ -205,7 +211,7 @@ class MovingMass(Kind):
             start_checks=lambda: checks, small=max(a.value for a in checks),
             basis="; ".join(f"{a.statement} = {a.value:.3g}" for a in checks))
         averaged = averaged_rung(doc, body, [damper, *torques], omega, ("invariants", "ladder"))
-        return [averaged, reduced, explicit]
+        return [averaged, triaxial, reduced, explicit]
 
     def runs(self, doc):
         choice = doc["integration"]["model"]
@@ -214,7 +220,8 @@ class MovingMass(Kind):
         if rung.blocked:
             raise SceneError(f"[integration] model = {choice!r}: {rung.blocked}")
         reason = {"explicit": "the explicit mass, spring and damper", "reduced": "the quasi-static damper torque",
-                  "averaged": "the averaged (a, r) system with the damper's torque"}[rung.name]
+                  "averaged": "the averaged (a, r) system with the damper's torque",
+                  "averaged_triaxial": "the system averaged over the triaxial motion with the damper's torque"}[rung.name]
         return ([Run(rung.run, rung.model, rung.y0, tuple(doc["integration"]["t_span"]), integration(doc, self))],
                 rung.name,
                 f"asked for by the scene: {reason}" if choice != "auto" else "the scene's own model (the ladder "

@@ -33,7 +33,7 @@ from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL, Assumption, check
 from gyrostat.events import Event
 from gyrostat.figures import LEGEND_SIZE, error, euler_angles, invariants, omega, plt
-from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, SPLITTING_FIELDS, T_SPAN, Kind, Run,
+from gyrostat.kind import (ACCURACY, ATOL, BODY, MAX_STEPS, METHOD, N_OUT, PHASE, RTOL, SPLITTING_FIELDS, T_SPAN, Kind, Run,
                            build, integration, make_body, make_torques, outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_body, check_torques, flag, floats, number, shown
 from gyrostat.schema import ArrayOf, Choice, Field, SceneError, Table, Vector, all_finite, finite, non_negative, nonzero_quaternion
@@ -301,6 +301,108 @@ class AveragedModel(ModelBase):
         return f"AveragedModel({self.body!r}, torques={list(self.torques)!r})"
 
 
+class TriaxialAveragedModel(ModelBase):
+    """The system averaged over the triaxial Euler–Poinsot motion, in (|G|², p_b, s, φ).
+
+    Any rigid body (no rotor; principal moments all different, or two equal) under small torques
+    fixed in the body. The generating motion is the torque-free body's on the level set of |G| and
+    T, in Jacobi elliptic functions; with the averaged power per axis P_i = ⟨ω_i M_i⟩ over one
+    period (closed forms in K and E for the constant and linear torques, the resistive medium and
+    the viscous cavity; the trapezoidal rule in the phase for every other torque, a
+    :class:`gyrostat.CustomTorque` included)::
+
+        d|G|²/dt = 2 Σ A_i P_i,   dp_b/dt = 2 Σ (A_i − A_b) P_i,   ds/dt = 0,   dφ/dt = πλ/(2K(k)).
+
+    p_b = |G|² − 2T A_b (A_b the middle moment) is the distance to the separatrix: > 0 while the
+    body rotates about the axis of the largest moment, < 0 about the smallest. s = ±1 says which
+    way; φ is the fast phase, so that ω(t) is given along the run (outputs ``p``, ``q``, ``r``:
+    the free motion at the carried phase; its phase error grows to O(1) by t ~ 1/ε). The initial
+    state may be given as ω (the full model's) or as (|G|², p_b, s, φ). The averaging fails next
+    to the separatrix (``slow_to_fast`` grows without bound there): a scene with ``model = "auto"``
+    switches to the full model before it and back after the crossing. Derivation:
+    ``docs/papers/triaxial_averaging.md``.
+
+    Parameters
+    ----------
+    body : gyrostat.Body
+        A rigid body (rotor k = 0), not spherical; moments (or inertia tensor) in kg m^2.
+    torques : sequence of torques, optional
+        Perturbation torques fixed in the body (none that needs the attitude).
+
+    Examples
+    --------
+    >>> import gyrostat
+    >>> body = gyrostat.Body([3.0, 2.0, 1.0])
+    >>> model = gyrostat.TriaxialAveragedModel(body, [gyrostat.LinearDamping(diagonal=[0.001, 0.002, 0.003])])
+    >>> model.state_names
+    ('G2', 'pb', 'branch', 'phase')
+    >>> sol = gyrostat.solve(model, [1.0, 0.2, 0.1], (0.0, 100.0), n_out=3)
+    >>> bool(sol["angular_momentum_norm"][-1] < sol["angular_momentum_norm"][0])  # damped
+    True
+    """
+
+    kind = "averaged_triaxial"
+
+    def __init__(self, body: _core.Body, torques: Sequence = ()):
+        self.body = check_body(body)
+        self.torques = check_torques(torques)
+        self._core = _core.averaged_triaxial_model(body, self.torques)
+
+    def omegas_of(self, states) -> np.ndarray:
+        """ω of the free motion at each state's phase (in the model's principal axes): the motion
+        the torques' own validity numbers are measured over.
+
+        Parameters
+        ----------
+        states : array_like, shape (n, 4)
+            Slow states (|G|², p_b, s, φ).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, 3)
+            ω in rad/s.
+
+        Examples
+        --------
+        >>> model.omegas_of([model.initial_state([1.0, 0.2, 0.1])]).round(12)
+        array([[1. , 0.2, 0.1]])
+        """
+        return np.array([self._core.full_state(y, 0.0) for y in np.atleast_2d(states)])
+
+    def check(self, solution) -> list:
+        return check(self, solution.y, solution.t, warn=False, outputs=solution.outputs)
+
+    def assumptions(self, states, times, outputs=None) -> list:
+        """The slow drift over one period against the distance to the separatrix and the slow
+        rates against the fast frequency (``slow_to_fast`` ≪ 1).
+
+        Parameters
+        ----------
+        states, times, outputs
+            As in :meth:`gyrostat.ModelBase.assumptions`: (n, 4) slow states, their times in s, what
+            a solve recorded at them (``slow_to_fast``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> y = model.initial_state([1.0, 0.2, 0.1])
+        >>> [a.holds for a in model.assumptions(np.array([y]), np.array([0.0]))]
+        [True]
+        """
+        if outputs is not None and "slow_to_fast" in outputs:
+            ratios = np.asarray(outputs["slow_to_fast"], float)
+        else:
+            names = list(self.output_names)
+            ratios = np.array([self._core.outputs_at(t, y)[names.index("slow_to_fast")] for t, y in zip(times, states)])
+        worst = int(np.argmax(ratios))
+        return [Assumption("averaged model", "slow rates / fast frequency ≪ 1 (far from the separatrix)",
+                           float(ratios[worst]), SMALL, bool(ratios[worst] <= SMALL),
+                           f"worst at t = {times[worst]:.4g}")]
+
+    def __repr__(self) -> str:
+        return f"TriaxialAveragedModel(body={self.body!r}, torques={list(self.torques)!r})"
+
+
 def torque_free(body: _core.Body, omega0, t_eval) -> Solution:
     """ω(t) of a torque-free rigid body in closed form (Jacobi elliptic functions): no
     integration. The same as ``solve(TorqueFreeModel(body), omega0, (t_eval[0], t_eval[-1]),
@@ -529,9 +631,46 @@ def initial_assumptions(run: Run, warn: bool) -> list:
 
 
 # ------------------------------------------------------------------------------------ analysis
+def first_reaching(solution: Solution, name: str, level: float) -> float | None:
+    """The first time the output ``name`` reaches ``level`` from below (linear interpolation
+    between output times), or None."""
+    values = np.asarray(solution[name], float)
+    above = np.nonzero(values >= level)[0]
+    if not len(above) or above[0] == 0:
+        return None
+    i = int(above[0])
+    t0, t1, v0, v1 = solution.t[i - 1], solution.t[i], values[i - 1], values[i]
+    return float(t0 + (level - v0) * (t1 - t0) / (v1 - v0))
+
+
+def separatrix_crossings(solution: Solution) -> list[float]:
+    """The times at which a triaxial averaged run (joined with its full-model pieces) crossed the
+    separatrix: where p_b changes sign between output times."""
+    pb = np.asarray(solution["pb"], float)
+    changes = np.nonzero(np.sign(pb[1:]) != np.sign(pb[:-1]))[0]
+    return [float(solution.t[i] - pb[i] * (solution.t[i + 1] - solution.t[i]) / (pb[i + 1] - pb[i])) for i in changes]
+
+
 def analyse(scene, solutions: dict, report: dict, derived: dict) -> None:
-    """Paper 002's averaged against the full model, and the error against the closed form."""
-    if "full" in solutions and "averaged" in solutions:
+    """Paper 002's averaged against the full model, the error against the closed form, and where
+    the runs record a nutation angle the first time it reaches 90° (a spin about the axis of least
+    inertia turned flat) and the triaxial averaged run's separatrix crossings."""
+    flat = {name: first_reaching(sol, "nutation_angle", 0.5 * math.pi) for name, sol in solutions.items()
+            if "nutation_angle" in sol.output_names and len(sol)}
+    if any(t is not None for t in flat.values()):
+        report["nutation_90_degrees_at"] = flat
+        if flat.get("full") and flat.get("averaged"):
+            report["nutation_90_degrees_relative_difference"] = abs(flat["averaged"] - flat["full"]) / flat["full"]
+    averaged = solutions.get("averaged")
+    if averaged is not None and "pb" in averaged.state_names and len(averaged):
+        report["separatrix_crossings"] = separatrix_crossings(averaged)
+    if "full" in solutions and "averaged" in solutions and "pb" in solutions["averaged"].state_names:
+        full, avg = solutions["full"], solutions["averaged"]
+        n = min(len(full), len(avg))
+        report["averaged_vs_full"] = {
+            f"max_relative_error_{name}": float(np.max(np.abs(avg[name][:n] - full[name][:n]) / np.abs(full[name][:n])))
+            for name in ("angular_momentum_norm", "kinetic_energy")}
+    elif "full" in solutions and "averaged" in solutions:
         a_full, r_full = slow_variables(solutions["full"])
         a_avg, r_avg = slow_variables(solutions["averaged"])
         n = min(len(a_full), len(a_avg))
@@ -610,6 +749,29 @@ def phase(solutions: dict[str, Solution], title: str, path: Path) -> Path:
     return figures.finish(fig, path)
 
 
+def nutation(solutions: dict[str, Solution], title: str, path: Path) -> Path:
+    """The nutation angle (body z to G, recorded by every rigid-body model) of each run, in
+    degrees, with 90° marked: where a spin about the axis of least inertia has turned into a flat
+    spin; a run the ladder switched shows where it ran on the full model."""
+    fig, ax = plt.subplots(figsize=(8, 3.8))
+    for name, style in (("full", FULL_STYLE), ("averaged", dict(AVERAGED_STYLE, color="tab:blue"))):
+        sol = solutions.get(name)
+        if sol is None or "nutation_angle" not in sol.output_names:
+            continue
+        ax.plot(sol.t, np.degrees(sol["nutation_angle"]), label=name, **style)
+        on_top = np.asarray(sol.rung) > 0 if sol.rung is not None else np.zeros(len(sol), bool)
+        if on_top.any():
+            ax.plot(sol.t[on_top], np.degrees(sol["nutation_angle"][on_top]), ".", ms=2, color="tab:red",
+                    label="switched to the full model")
+    ax.axhline(90.0, color="0.5", ls=":", lw=1)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("nutation angle [deg]")
+    ax.set_title(f"{title}: nutation angle")
+    ax.legend(fontsize=LEGEND_SIZE)
+    ax.grid(alpha=0.3)
+    return figures.finish(fig, path)
+
+
 def draw(scene, solutions: dict[str, Solution], derived: dict, folder: Path, own: dict | None = None) -> list[Path]:
     """The plots of a rigid-body scene; ``own``: plot name → f(main solution, title, path) of a
     family that draws these and some of its own (the moving mass)."""
@@ -622,6 +784,10 @@ def draw(scene, solutions: dict[str, Solution], derived: dict, folder: Path, own
             files.append(slow_curves(solutions, scene.title, path, plot))
         elif plot == "phase":
             files.append(phase(solutions, scene.title, path))
+        elif plot == "nutation":
+            files.append(nutation(solutions, scene.title, path))
+        elif plot == "invariants" and main is None and "averaged" in solutions:
+            files.append(invariants(solutions["averaged"], scene.title, path))
         elif main is None:
             continue
         elif plot == "omega":
@@ -675,12 +841,66 @@ def averaged_rung(doc: dict, body, torques, omega, drawable: tuple[str, ...], at
                         else "", run="averaged")
 
 
+def invariant_columns(solution) -> np.ndarray:
+    """(|G|, T) of a rigid-body solution of any model that records them (the full model, the
+    averaged ones, a run joined from both), each over its value at the start: (n, 2) (what the
+    ladder compares for the triaxial averaged rung)."""
+    G, T = solution["angular_momentum_norm"], solution["kinetic_energy"]
+    return np.column_stack([G / G[0], T / T[0]])
+
+
+def nearly_symmetric(body) -> float:
+    """|A2 − A1|/A1 of the principal moments: the asymmetry the (a, r) rung assumes small."""
+    J = np.asarray(body.moments, float)
+    return abs(J[1] - J[0]) / J[0]
+
+
+TRIAXIAL_PLOTS = ("invariants", "nutation", "ladder")
+"""Plots the triaxial averaged rung draws: functions of its slow variables and of ω at its phase."""
+
+
+def triaxial_rung(doc: dict, body, torques, omega, attitude: bool = False) -> _ladder.Rung:
+    """The triaxial averaged rung (|G|², p_b, s, φ) of a rigid body's or, with the damper's
+    quasi-static torque among ``torques``, of the moving-mass family's ladder. Blocked for a
+    nearly symmetric body (the (a, r) rung averages it), when the scene's outputs need ω(t)
+    exactly (plots not in :data:`TRIAXIAL_PLOTS`, the attitude, a closed-form reference) and when
+    the torques have no average (the model's own message). It compares |G| and T with the top and
+    watches ``slow_to_fast``: the run switches to the top before the separatrix and back after."""
+    description = "the system averaged over the triaxial Euler-Poinsot motion, in (|G|^2, p_b, s, phase)"
+    needs = [p for p in doc["outputs"]["plots"] if p not in TRIAXIAL_PLOTS]
+    asymmetry = nearly_symmetric(body)
+    blocked = (f"a nearly symmetric body (|A2 - A1|/A1 = {asymmetry:.3g} <= {SMALL:g}): the (a, r) rung averages it"
+               if asymmetry <= SMALL else
+               "the scene integrates the attitude: the averaged model has none" if attitude else
+               f"the plots {needs} need omega(t): the averaged model carries its phase only to O(1) at t ~ 1/eps"
+               if needs else "the closed-form reference is of omega(t)" if doc["outputs"].get("reference") else "")
+    model, y0 = None, np.asarray(omega, float)
+    if not blocked:
+        try:
+            model = TriaxialAveragedModel(body, torques)
+            y0 = np.asarray(model._core.initial_state(np.asarray(omega, float)))
+            model._core.outputs_at(0.0, y0)
+            model._core.full_state(y0, 0.0)  # refuses a start on the separatrix, naming it
+        except ValueError as error:
+            blocked, model = f"no triaxial averaged model: {error}", None
+    if blocked:
+        return _ladder.Rung("averaged_triaxial", None, y0, description, blocked=blocked, run="averaged")
+    names = list(model.output_names)
+    period = float(model._core.outputs_at(doc["integration"]["t_span"][0], y0)[names.index("period")])
+    watches = (_ladder.Watch("slow_to_fast", SMALL, 0.5 * SMALL,
+                             "slow rates / fast frequency << 1 (far from the separatrix)", scales_error=True),)
+    return _ladder.Rung("averaged_triaxial", model, y0, description, compare=invariant_columns, fast_period=period,
+                        watches=watches,
+                        start_checks=lambda: [a for a in check(model, y0, warn=False) if a.part == "averaged model"],
+                        run="averaged")
+
+
 class RigidBody(Kind):
     name = "rigid_body"
     doc = ("A rigid body or gyrostat under perturbation torques: the full model, its closed form when nothing "
            "perturbs it, or the system averaged over the symmetric Euler-Poinsot motion in (a, r).")
-    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase", "ladder")
-    models = ("auto", "full", "closed_form", "averaged", "compare")
+    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase", "nutation", "ladder")
+    models = ("auto", "full", "closed_form", "averaged", "averaged_triaxial", "compare")
     default = True
     splits = True
 
@@ -698,11 +918,13 @@ class RigidBody(Kind):
             }), required=True, doc="the initial state"),
             "integration": Field(Table({
                 "model": Field(Choice(*self.models), default="auto",
-                               doc="auto: the cheapest model that meets the accuracy (the model ladder); compare: "
-                                   "full and averaged side by side"),
+                               doc="auto: the cheapest model that meets the accuracy (the model ladder); averaged: over the "
+                                   "symmetric motion in (a, r); averaged_triaxial: over the triaxial motion in "
+                                   "(|G|^2, p_b, s, phase); compare: full and averaged side by side (the triaxial "
+                                   "averaged model for a body far from symmetric)"),
                 "accuracy": ACCURACY, "phase": PHASE,
                 "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
-                **SPLITTING_FIELDS,
+                "max_steps": MAX_STEPS, **SPLITTING_FIELDS,
             }), required=True, doc="the run"),
             "outputs": outputs_field(self.plots, ["omega", "invariants"],
                                 reference=Field(Choice("closed_form"), doc="draw and measure against the closed form")),
@@ -750,8 +972,10 @@ class RigidBody(Kind):
         full = _ladder.Rung("full", build("torques", Model, body, torques, attitude), y0,
                             "Euler's equations" + (" with the attitude" if attitude else ""),
                             compare=slow_columns)
-        rungs = [closed, averaged_rung(doc, body, torques, omega, self.slow_plots, attitude), full]
-        return rungs
+        triaxial = triaxial_rung(doc, body, torques, omega, attitude)
+        if triaxial.model is not None:  # a body far from symmetric: the top is compared in |G| and T
+            full.compare = invariant_columns
+        return [closed, averaged_rung(doc, body, torques, omega, self.slow_plots, attitude), triaxial, full]
 
     def runs(self, doc):
         body, torques = make_body(doc), make_torques(doc)
@@ -769,7 +993,11 @@ class RigidBody(Kind):
             model = build("torques", Model, body, torques, attitude)
             y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
             runs.append(Run("full", model, y0, t_span, options))
-        if choice in ("averaged", "compare"):
+        triaxial = choice == "averaged_triaxial" or (choice == "compare" and nearly_symmetric(body) > SMALL)
+        if triaxial:
+            model = build("torques", TriaxialAveragedModel, body, torques)
+            runs.append(Run("averaged", model, np.asarray(model._core.initial_state(omega)), t_span, options))
+        elif choice in ("averaged", "compare"):
             model = build("torques", AveragedModel, body, torques)
             runs.append(Run("averaged", model, np.array([math.hypot(omega[0], omega[1]), omega[2]]), t_span, options))
         return runs, choice, reason

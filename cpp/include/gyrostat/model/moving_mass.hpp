@@ -126,8 +126,9 @@ public:
     /// reports it like every other assumption).
     /// The nutation angle ϑ is that of the system's angular momentum K (carrier and mass) to the
     /// carrier's z axis (model/system.hpp: nutation_angle).
-    static constexpr std::array<OutputInfo, 4> outputs_info{
-        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}, nutation_angle_info}};
+    static constexpr std::array<OutputInfo, 5> outputs_info{
+        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}, nutation_angle_info,
+         {"kinetic_energy", "J", "T = omega . J omega / 2 with J the system's moments with the mass at rest: the rotation's energy the reduced and averaged models carry", false}}};
     void outputs(double, const State& y, double* out) const {
         const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
         const Vec3 d = Vec3(0, 0, rho_) + u;
@@ -137,6 +138,7 @@ public:
         out[1] = 0.5 * w.dot(carrier_.cwiseProduct(w)) + 0.5 * mu_ * s.squaredNorm() + 0.5 * mu_ * omega2_ * u.squaredNorm();
         out[2] = u.norm() / rho_;
         out[3] = nutation_angle(K);
+        out[4] = 0.5 * w.dot(body_.moments().cwiseProduct(w));
     }
     /// |K| is a first integral without external torques (the damper is internal).
     bool keeps(std::size_t /*output*/) const { return torques_.empty(); }

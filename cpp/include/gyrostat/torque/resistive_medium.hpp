@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/euler_poinsot.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
@@ -56,6 +57,13 @@ struct ResistiveMedium {
     Eigen::Vector2d averaged(double t, double a, double r, double A, double C) const {
         const Mat3 d = at(t);
         return {-(d(0, 0) + d(1, 1)) * a / (2.0 * A), -d(2, 2) * r / C};
+    }
+    /// Its averaged power per axis ⟨ω_i M_i⟩ over the triaxial Euler–Poinsot motion (TorqueSet::
+    /// averaged_power; docs/papers/triaxial_averaging.md §2(a)), D frozen at t:
+    ///   ⟨ω_i M_i⟩ = −Σ_j D_ij ⟨ω_i ω_j⟩ = −D_ii(t) ⟨ω_i²⟩   (⟨ω_i ω_j⟩ = 0 for i ≠ j: sn·cn, sn·dn and
+    ///   cn·dn average to zero over a period).
+    Vec3 averaged_power(double t, const EulerPoinsot& motion, const Vec3& /*moments*/) const {
+        return -at(t).diagonal().cwiseProduct(motion.mean_square());
     }
     /// Commutes with rotations about body z: every D_k diagonal with equal first two entries.
     bool axisymmetric() const {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/euler_poinsot.hpp"
 #include "gyrostat/torque/constant.hpp"
 #include "gyrostat/torque/custom.hpp"
 #include "gyrostat/torque/dipole_field.hpp"
@@ -83,6 +84,15 @@ struct has_averaged : std::false_type {};
 template <class T>
 struct has_averaged<T, std::void_t<decltype(std::declval<const T&>().averaged(0.0, 0.0, 0.0, 1.0, 1.0))>>
     : std::true_type {};
+
+/// A torque that gives its averaged power over the triaxial Euler–Poinsot motion in closed form
+/// (`Vec3 averaged_power(t, const EulerPoinsot&, J)`: ⟨ω_i M_i⟩ per axis); the others are averaged
+/// by quadrature (TorqueSet::averaged_power).
+template <class T, class = void>
+struct has_averaged_power : std::false_type {};
+template <class T>
+struct has_averaged_power<T, std::void_t<decltype(std::declval<const T&>().averaged_power(
+                                 0.0, std::declval<const EulerPoinsot&>(), Vec3()))>> : std::true_type {};
 
 template <class T, class = void>
 struct has_assumptions : std::false_type {};
@@ -232,18 +242,7 @@ public:
     /// refused them at construction with require_no_attitude).
     Vec3 total(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* attitude = nullptr) const {
         Vec3 m = has_damping_ ? Vec3(constant_ - damping_ * omega) : constant_;
-        for (const auto& part : others_)
-            m += std::visit([&](const auto& x) -> Vec3 {
-                using T = std::decay_t<decltype(x)>;
-                if constexpr (gyrostat::optional_attitude<T>::value) {
-                    return x(t, omega, moments, attitude);
-                } else if constexpr (gyrostat::needs_attitude<T>::value) {
-                    if (!attitude) throw std::logic_error(std::string(x.python_name) + ": evaluated without the attitude");
-                    return x(t, omega, moments, *attitude);
-                } else {
-                    return x(t, omega, moments);
-                }
-            }, part);
+        for (const auto& part : others_) m += evaluate(part, t, omega, moments, attitude);
         return m;
     }
     /// Σ ∂M_i/∂ω (at the attitude, for the torques that read it).
@@ -275,7 +274,58 @@ public:
         return rates;
     }
 
+    /// The averaged power per axis, P_i = ⟨ω_i M_i⟩ over one period of the triaxial Euler–Poinsot
+    /// motion (the triaxial averaged model: d|G|²/dt = 2 Σ A_i P_i, dT/dt = Σ P_i; model/
+    /// averaged_triaxial.hpp). Closed forms where they exist (docs/papers/triaxial_averaging.md §2):
+    /// the folded M0 − D ω gives P_i = M0_i ⟨ω_i⟩ − D_ii ⟨ω_i²⟩ (⟨ω_i ω_j⟩ = 0 for i ≠ j; only the
+    /// component of M0 along the axis circulated about acts), a torque with `averaged_power` its own;
+    /// every other torque (a user's included) by the trapezoidal rule in the phase,
+    ///   P_i ≈ (1/n) Σ_j ω_i(φ_j) M_i(t, ω(φ_j)),  φ_j = 2πj/n,  n = motion.nodes(tolerance),
+    /// which converges geometrically for these periodic analytic integrands. Torques that need the
+    /// attitude are refused by the model before (require_no_attitude).
+    Vec3 averaged_power(double t, const EulerPoinsot& motion, const Vec3& moments, double tolerance) const {
+        Vec3 power = Vec3::Zero();
+        if (constant_.squaredNorm() != 0.0) power += constant_.cwiseProduct(motion.mean_omega());
+        if (has_damping_) power -= damping_.diagonal().cwiseProduct(motion.mean_square());
+        bool quadrature = false;
+        for (const auto& part : others_)
+            std::visit([&](const auto& x) {
+                if constexpr (has_averaged_power<std::decay_t<decltype(x)>>::value)
+                    power += x.averaged_power(t, motion, moments);
+                else
+                    quadrature = true;
+            }, part);
+        if (!quadrature) return power;
+        const int n = motion.nodes(tolerance);
+        Vec3 sum = Vec3::Zero();
+        for (int j = 0; j < n; ++j) {
+            const Vec3 omega = motion.omega(2.0 * M_PI * j / n);
+            Vec3 m = Vec3::Zero();
+            for (const auto& part : others_)
+                if (!std::visit([](const auto& x) { return has_averaged_power<std::decay_t<decltype(x)>>::value; }, part))
+                    m += evaluate(part, t, omega, moments, nullptr);
+            sum += omega.cwiseProduct(m);
+        }
+        return power + sum / n;
+    }
+
 private:
+    /// One torque M_i(t, ω) (with the attitude for the torques that read it).
+    static Vec3 evaluate(const AnyTorque& part, double t, const Vec3& omega, const Vec3& moments,
+                         const Eigen::Vector4d* attitude) {
+        return std::visit([&](const auto& x) -> Vec3 {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (gyrostat::optional_attitude<T>::value) {
+                return x(t, omega, moments, attitude);
+            } else if constexpr (gyrostat::needs_attitude<T>::value) {
+                if (!attitude) throw std::logic_error(std::string(x.python_name) + ": evaluated without the attitude");
+                return x(t, omega, moments, *attitude);
+            } else {
+                return x(t, omega, moments);
+            }
+        }, part);
+    }
+
     void fold(const AnyTorque& part) {
         if (const auto* c = std::get_if<torque::Constant>(&part)) {
             constant_ += c->moment;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/euler_poinsot.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
@@ -82,6 +83,18 @@ struct ViscousCavity {
     Eigen::Vector2d averaged(double /*t*/, double a, double r, double A, double C) const {
         const double k = kappa();
         return {k * C * (A - C) * r * r * a / (A * A * A), k * (C - A) * a * a * r / (A * C)};
+    }
+    /// Its averaged power per axis ⟨ω_i M_i⟩ over the triaxial Euler–Poinsot motion (TorqueSet::
+    /// averaged_power; docs/papers/triaxial_averaging.md §2(c)): with Q_ij = ⟨ω_i² ω_j²⟩
+    /// (EulerPoinsot::mean_square_products, in K and E) and k = κ/(ABC),
+    ///   ⟨p M_p⟩ = k (c0 Q_pr + c1 Q_pq),  ⟨q M_q⟩ = k (c2 Q_qp + c3 Q_qr),  ⟨r M_r⟩ = k (c4 Q_rq + c5 Q_rp);
+    /// Σ J_i ⟨ω_i M_i⟩ = 0 (|G| kept) and Σ ⟨ω_i M_i⟩ ≤ 0.
+    Vec3 averaged_power(double /*t*/, const EulerPoinsot& motion, const Vec3& J) const {
+        const double k = kappa() / (J[0] * J[1] * J[2]);
+        const Coefficients c = coefficients(J);
+        const Mat3 Q = motion.mean_square_products();
+        return {k * (c[0] * Q(0, 2) + c[1] * Q(0, 1)), k * (c[2] * Q(1, 0) + c[3] * Q(1, 2)),
+                k * (c[4] * Q(2, 1) + c[5] * Q(2, 0))};
     }
     /// Commutes with rotations about body z (the cavity tensor is isotropic, P = P0 I).
     bool axisymmetric() const { return true; }
