@@ -1564,7 +1564,8 @@ class CustomTorque:
         numbers, or NULL), moment[i*n + l] its M_i (3n numbers to write); member l's M must depend on
         member l's numbers only. The SIMD batches of ``solve_ensemble`` (DOP853) call it once per
         stage for their lanes (n = ``gyrostat.simd_lanes``), every other path with n = 1; a scalar
-        function keeps its members out of the batches (one at a time). In numba::
+        function keeps its members out of the batches (one at a time), and so does a body given by
+        its inertia tensor (the batches do not rotate the user's frame). In numba::
     
             @numba.cfunc(numba.types.intc(numba.types.intc, *[numba.types.CPointer(numba.types.double)] * 4,
                                           numba.types.voidptr))
