@@ -309,7 +309,7 @@ def test_vector_torque_runs_in_simd_batches_and_equals_the_built_in_damping():
         assert np.abs(b.y - alone.y).max() <= 100 * 1e-10 * np.abs(alone.y).max()
 
 
-def test_a_member_is_the_same_whichever_members_share_its_batch():
+def test_a_vector_torque_member_is_the_same_whichever_members_share_its_batch():
     """Lanes whose user torques differ (another user_data, or none) are called one by one with
     n = 1; a member's result is its result in a batch of its own kind, bit for bit."""
     fast, slow = user.compiled_linear(0.07, vectorised=True), user.compiled_linear(0.03, vectorised=True)
@@ -445,3 +445,21 @@ def test_numba_cfunc_with_the_vector_signature(expected):
         alone = g.solve(lanes_model(), y0, (0.0, 10.0), n_out=11, method="dop853", rtol=1e-10, atol=1e-12)
         # numba's and C's sqrt, sin and products, and the batch's affine form: within 100 rtol
         assert np.abs(run.y - alone.y).max() <= 100 * 1e-10 * np.abs(alone.y).max()
+
+
+@pytest.mark.parametrize("isa", ["sse2", "avx2", "avx512"])
+def test_vector_torque_in_every_form_of_the_batches(isa):
+    """The vectorised tests above in a process that asked for each form of the batches (4 lanes
+    in SSE2 pairs, AVX2 + FMA, AVX-512: n = 4, 4, 8), as tests/test_batch.py does for its own."""
+    import os
+    import subprocess
+    import sys
+
+    from test_batch import _runs
+
+    if isa != "sse2" and not _runs(isa):
+        pytest.skip(f"this CPU does not run the {isa} batches, or their plugin is not installed")
+    result = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", __file__, "-k",
+                             "vector and not every_form"], env={**os.environ, "GYROSTAT_SIMD": isa},
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout[-3000:]
