@@ -228,3 +228,238 @@ def test_an_ensemble_with_a_python_torque_runs_on_one_thread():
     assert len(idents) == 1, idents
     for y0, run in zip(y0s, runs):
         assert np.array_equal(run.y, g.solve(model, y0, (0.0, 5.0), n_out=3).y)
+
+
+# --- The vectorised signature: n members at once, structure of arrays --------------------------
+# int f(int n, const double *t, const double *omega, const double *quaternion, double *moment,
+# void *user_data): the ensembles' SIMD batches call it once per stage for their lanes (n =
+# g.simd_lanes), every other path with n = 1. drag.c's *_lanes functions record the widest n.
+
+def lanes_model():
+    return g.Model(g.Body(J), [g.CustomTorque(user.compiled_drag_lanes())])
+
+
+def test_the_vectorised_signature_is_recognised():
+    assert g.CustomTorque(user.compiled_drag_lanes()).vectorised
+    assert not g.CustomTorque(user.compiled_drag()).vectorised
+    assert not g.CustomTorque(user.quadratic_drag).vectorised
+
+
+def test_vector_and_scalar_compiled_agree_in_solve_events_and_dense_output(expected):
+    user.reset_widest_call()
+    options = dict(t_eval=T, method="dop853", rtol=1e-12, atol=1e-14)
+    scalar = g.solve(compiled_model(), W0, (0.0, 20.0), **options)
+    vector = g.solve(lanes_model(), W0, (0.0, 20.0), **options)
+    assert user.widest_call() == 1  # a single solve calls the vectorised form with n = 1
+    # the same C operations on the same numbers (n = 1): equal to rounding (measured: bit for bit)
+    assert np.abs(vector.y - scalar.y).max() < 1e-15
+    # against SciPy on the test's own equations: as test_against_scipy
+    assert np.abs(vector.y - expected).max() < 2e-12
+    a = g.solve(compiled_model(), W0, (0.0, 20.0), events=[Event("q", 0.0)], dense_output=True, rtol=1e-12,
+                atol=1e-14)
+    b = g.solve(lanes_model(), W0, (0.0, 20.0), events=[Event("q", 0.0)], dense_output=True, rtol=1e-12,
+                atol=1e-14)
+    assert len(b.t_events[0]) >= 2
+    # the same steps (equal right-hand sides): the same crossings and continuous extension to rounding
+    assert np.abs(np.asarray(b.t_events[0]) - np.asarray(a.t_events[0])).max() < 1e-13
+    assert np.abs(np.asarray(b(T)) - np.asarray(a(T))).max() < 1e-15
+
+
+def test_vector_torque_in_stiff_integrators_with_and_without_its_jacobian(expected):
+    for jacobian in (None, user.compiled_drag_jacobian()):
+        model = g.Model(g.Body(J), [g.CustomTorque(user.compiled_drag_lanes(), jacobian)])
+        sol = g.solve(model, W0, (0.0, 20.0), t_eval=T, method="cvode_bdf", rtol=1e-10, atol=1e-12)
+        assert sol.success and sol.stats["jacobian_evals"] > 0, sol.message
+        # BDF at rtol 1e-10 over 20 s: as test_user_jacobian_and_difference_quotients (measured 5.2e-9)
+        assert np.abs(sol.y - expected).max() < 5e-8
+
+
+def _ensemble(model, y0s, batch, **options):
+    return g.solve_ensemble(model, y0s, (0.0, 10.0), n_out=11, threads=2, batch=batch, method="dop853", rtol=1e-10,
+                            atol=1e-12, **options)
+
+
+def test_vector_torque_runs_in_simd_batches_and_equals_the_built_in_damping():
+    """M = -c omega three ways on 13 members (a full batch and a partial one) on 2 threads:
+    LinearDamping, the scalar compiled torque, the vectorised one; batched and not."""
+    c = 0.07
+    y0s = np.random.default_rng(3).normal(size=(13, 3))
+    builtin = g.Model(g.Body(J), [g.LinearDamping(c * np.eye(3))])
+    scalar = g.Model(g.Body(J), [g.CustomTorque(user.compiled_linear(c))])
+    vector = g.Model(g.Body(J), [g.CustomTorque(user.compiled_linear(c, vectorised=True))])
+    user.reset_widest_call()
+    unbatched = _ensemble(vector, y0s, batch=False)
+    assert user.widest_call() == 1  # one member at a time: n = 1
+    batched = _ensemble(vector, y0s, batch=True)
+    assert user.widest_call() == g.simd_lanes  # the batches call once for their lanes
+    builtin_batched = _ensemble(builtin, y0s, batch=True)
+    for y0, b, u, s, bb in zip(y0s, batched, unbatched, _ensemble(scalar, y0s, batch=False),
+                               builtin_batched):
+        alone = g.solve(builtin, y0, (0.0, 10.0), n_out=11, method="dop853", rtol=1e-10, atol=1e-12)
+        assert b.success and u.success
+        # unbatched: one member, one code path, and -c omega = 0 - (c omega + 0 + 0) in IEEE
+        # arithmetic: the built-in's single run bit for bit, and the scalar signature's
+        assert np.array_equal(u.y, alone.y) and np.array_equal(s.y, alone.y)
+        # batched, against the built-in's batch: r + (0 + (-c w)) against r - (c w + 0 w + 0 w),
+        # equal up to the plugin's fused multiply-adds (measured: bit for bit)
+        assert np.abs(b.y - bb.y).max() <= 1e-14 * np.abs(bb.y).max()
+        # batched against the single run: the lanes evaluate Euler's equations in their affine form
+        # (another rounding), carried over 10 s at rtol 1e-10 (measured 4.4e-13 relative): within
+        # 100 rtol, as tests/test_batch.py
+        assert np.abs(b.y - alone.y).max() <= 100 * 1e-10 * np.abs(alone.y).max()
+
+
+def test_a_vector_torque_member_is_the_same_whichever_members_share_its_batch():
+    """Lanes whose user torques differ (another user_data, or none) are called one by one with
+    n = 1; a member's result is its result in a batch of its own kind, bit for bit."""
+    fast, slow = user.compiled_linear(0.07, vectorised=True), user.compiled_linear(0.03, vectorised=True)
+    body = g.Body(J)
+    same = g.Model(body, [g.CustomTorque(fast)])
+    others = [g.Model(body, [g.CustomTorque(slow)]), g.Model(body, [g.LinearDamping(0.03 * np.eye(3))])]
+    y0s = np.random.default_rng(4).normal(size=(2 * g.simd_lanes, 3))
+    uniform = _ensemble(same, y0s, batch=True)
+    mixed_models = [same if k % 2 == 0 else others[(k // 2) % 2] for k in range(len(y0s))]
+    user.reset_widest_call()
+    mixed = _ensemble(mixed_models, y0s, batch=True)
+    assert user.widest_call() == 1  # mixed batches call lane by lane
+    for k in range(0, len(y0s), 2):
+        assert np.array_equal(mixed[k].y, uniform[k].y)
+    for k in range(1, len(y0s), 2):
+        alone = g.solve(mixed_models[k], y0s[k], (0.0, 10.0), n_out=11, method="dop853", rtol=1e-10, atol=1e-12)
+        assert np.abs(mixed[k].y - alone.y).max() <= 100 * 1e-10 * np.abs(alone.y).max()  # as above
+
+
+def test_vector_attitude_torque_equals_the_inertial_torque_in_batches():
+    """R(q)^T M_I vectorised in C (the quaternion's 4n numbers, structure of arrays) against the
+    built-in InertialTorque, in solve and in a batched ensemble on 2 threads."""
+    mine = g.Model(g.Body(J), [g.CustomTorque(user.compiled("inertial_moment_lanes"), attitude=True)], attitude=True)
+    builtin = g.Model(g.Body(J), [g.InertialTorque([0.1, -0.2, 0.05])], attitude=True)
+    rng = np.random.default_rng(5)
+    q0s = rng.normal(size=(g.simd_lanes + 3, 4))
+    y0s = np.hstack([rng.normal(size=(len(q0s), 3)), q0s / np.linalg.norm(q0s, axis=1)[:, None]])
+    a = g.solve(mine, y0s[0], (0.0, 10.0), n_out=11, rtol=1e-11, atol=1e-13)
+    b = g.solve(builtin, y0s[0], (0.0, 10.0), n_out=11, rtol=1e-11, atol=1e-13)
+    # R(q)^T M_I in C and in C++: rounding of a 3x3 product, carried over 10 s by this faster
+    # tumbling start (measured 1.4e-13); the bound stays below the run's rtol 1e-11
+    assert np.abs(a.y - b.y).max() < 1e-12
+    user.reset_widest_call()
+    runs = _ensemble(mine, y0s, batch=True)
+    assert user.widest_call() == g.simd_lanes
+    for y0, run in zip(y0s, runs):
+        alone = g.solve(builtin, y0, (0.0, 10.0), n_out=11, method="dop853", rtol=1e-10, atol=1e-12)
+        # the batch's affine form and the C product against the scalar C++ path: within 100 rtol
+        assert np.abs(run.y - alone.y).max() <= 100 * 1e-10 * np.abs(alone.y).max()
+
+
+def test_a_body_given_by_its_inertia_tensor_runs_its_vector_torque_alone():
+    """The batches do not rotate the user's frame: such members run one at a time (n = 1), equal
+    to their single runs bit for bit, and to the built-in damping given in the same frame."""
+    tilted = g.Body(inertia=[[2.0, 0.1, 0.0], [0.1, 1.5, 0.0], [0.0, 0.0, 1.2]])
+    mine = g.Model(tilted, [g.CustomTorque(user.compiled_linear(0.07, vectorised=True))])
+    builtin = g.Model(tilted, [g.LinearDamping(0.07 * np.eye(3))])
+    y0s = np.random.default_rng(6).normal(size=(g.simd_lanes + 1, 3))
+    user.reset_widest_call()
+    runs = _ensemble(mine, y0s, batch=True)
+    assert user.widest_call() == 1
+    for y0, run in zip(y0s, runs):
+        options = dict(n_out=11, method="dop853", rtol=1e-10, atol=1e-12)
+        assert np.array_equal(run.y, g.solve(mine, y0, (0.0, 10.0), **options).y)
+        reference = g.solve(builtin, y0, (0.0, 10.0), **options).y
+        # R^T(-c R w) against (R^T c I R) w: rounding of the rotations, carried over 10 s at rtol
+        # 1e-10 (measured 8.3e-14 relative); the bound is 100 rtol
+        assert np.abs(run.y - reference).max() <= 100 * 1e-10 * np.abs(reference).max()
+
+
+def test_vector_torque_errors():
+    from scipy import LowLevelCallable
+    bad = user.library().quadratic_drag_lanes
+    bad.restype, bad.argtypes = ctypes.c_int, [ctypes.c_int, ctypes.POINTER(ctypes.c_double)]
+    # a wrong signature names both accepted ones
+    with pytest.raises(ValueError, match=r"signature is 'int \(int, double \*\)'; a compiled torque is int \(double t.*"
+                                         r"or vectorised over n members.*int \(int n, const double \*t"):
+        g.CustomTorque(LowLevelCallable(bad))
+    # the Jacobian keeps the scalar signature
+    with pytest.raises(ValueError, match=r"Jacobian: the LowLevelCallable's signature is 'int \(int, double \*, "
+                                         r"double \*, double \*, double \*, void \*\)'; a compiled Jacobian is int \(double t"):
+        g.CustomTorque(user.compiled_drag_lanes(), user.compiled_drag_lanes())
+    failing = g.Model(g.Body(J), [g.CustomTorque(user.compiled("failing_lanes"))])
+    with pytest.raises(RuntimeError, match="CustomTorque 'failing_lanes': the compiled function returned 3 at t = 1"):
+        g.solve(failing, W0, (0.0, 5.0), method="dop853")
+    runs = _ensemble(failing, np.array([W0] * 3), batch=True)
+    for run in runs:  # the batch's members end with the error, naming the torque
+        assert not run.success
+        assert "CustomTorque 'failing_lanes': the compiled function returned 3 at one of" in run.message, run.message
+
+
+VECTOR_SCENE = SCENE.replace('function = "user_torques:drag_factory"', 'function = "user_torques:compiled"').replace(
+    "parameters = {{ c = 0.05, a = 0.02 }}", 'parameters = {{ name = "quadratic_drag_lanes" }}')
+
+
+def test_scene_and_sweep_with_a_vector_torque(tmp_path, expected):
+    from gyrostat import runner
+    from gyrostat import scene as scenes
+    path = tmp_path / "lanes.toml"
+    path.write_text(VECTOR_SCENE.format(sweep=""))
+    loaded = scenes.load(path)
+    solutions, _, _ = runner.solve_scene(loaded, progress=False)
+    (main,) = solutions.values()
+    # drag.c's quadratic_drag_lanes is the reference's torque: as test_against_scipy
+    assert np.abs(main.y[:, :3] - expected).max() < 2e-11
+    user.reset_widest_call()
+    spins = [0.8, 1.0, 1.2]
+    ds = g.sweep(loaded, {"initial.omega[0]": spins}, progress=False, threads=2)
+    assert user.widest_call() == g.simd_lanes  # the sweep's ensemble ran the members in a batch
+    for k, p0 in enumerate(spins):
+        alone = g.solve(compiled_model(), [p0, 0.5, -0.3], (0.0, 20.0), n_out=41, method="dop853", rtol=1e-12,
+                        atol=1e-14)
+        member = ds.isel(member=k) if "member" in ds.dims else ds.sel({list(ds.sizes)[0]: p0})
+        values = np.column_stack([member[name].values for name in ("p", "q", "r")])
+        # the batch's affine form against the scalar compiled torque's single run: rounding
+        # carried over 20 s at rtol 1e-12, within 100 rtol (as tests/test_batch.py)
+        assert np.abs(values - alone.y).max() < 100 * 1e-12 * np.abs(alone.y).max()
+
+
+def test_numba_cfunc_with_the_vector_signature(expected):
+    """The docstring's recipe: a numba cfunc over carray (n, 3 rows of n) as the vectorised torque."""
+    numba = pytest.importorskip("numba")
+    from scipy import LowLevelCallable
+    double_p = numba.types.CPointer(numba.types.double)
+
+    @numba.cfunc(numba.types.intc(numba.types.intc, double_p, double_p, double_p, double_p, numba.types.voidptr))
+    def drag(n, t, omega, quaternion, moment, user_data):
+        w, m, times = numba.carray(omega, (3, n)), numba.carray(moment, (3, n)), numba.carray(t, (n,))
+        for l in range(n):
+            norm = np.sqrt(w[0, l] * w[0, l] + w[1, l] * w[1, l] + w[2, l] * w[2, l])
+            for i in range(3):
+                m[i, l] = -0.05 * norm * w[i, l]
+            m[2, l] += 0.02 * np.sin(times[l])
+        return 0
+
+    torque = g.CustomTorque(LowLevelCallable(drag.ctypes))
+    assert torque.vectorised
+    model = g.Model(g.Body(J), [torque])
+    sol = g.solve(model, W0, (0.0, 20.0), t_eval=T, method="dop853", rtol=1e-12, atol=1e-14)
+    assert np.abs(sol.y - expected).max() < 2e-12  # as test_against_scipy
+    y0s = W0 * np.linspace(0.8, 1.2, g.simd_lanes + 1)[:, None]
+    for y0, run in zip(y0s, _ensemble(model, y0s, batch=True)):
+        alone = g.solve(lanes_model(), y0, (0.0, 10.0), n_out=11, method="dop853", rtol=1e-10, atol=1e-12)
+        # numba's and C's sqrt, sin and products, and the batch's affine form: within 100 rtol
+        assert np.abs(run.y - alone.y).max() <= 100 * 1e-10 * np.abs(alone.y).max()
+
+
+@pytest.mark.parametrize("isa", ["sse2", "avx2", "avx512"])
+def test_vector_torque_in_every_form_of_the_batches(isa):
+    """The vectorised tests above in a process that asked for each form of the batches (4 lanes
+    in SSE2 pairs, AVX2 + FMA, AVX-512: n = 4, 4, 8), as tests/test_batch.py does for its own."""
+    import os
+    import subprocess
+    import sys
+
+    from test_batch import _runs
+
+    if isa != "sse2" and not _runs(isa):
+        pytest.skip(f"this CPU does not run the {isa} batches, or their plugin is not installed")
+    result = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", __file__, "-k",
+                             "vector and not every_form"], env={**os.environ, "GYROSTAT_SIMD": isa},
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout[-3000:]

@@ -75,31 +75,49 @@ private:
     mutable std::unique_ptr<py::error_already_set> error_;  // guarded by the GIL
 };
 
-/// "int (double, double *, double *, double *, void *)" with or without const: the accepted
-/// signature of a compiled torque (torque/custom.hpp), spaces and const removed.
-bool accepted_signature(std::string signature) {
-    for (const std::string word : {"const"}) {
-        for (auto at = signature.find(word); at != std::string::npos; at = signature.find(word)) signature.erase(at, word.size());
-    }
+/// The two signatures a compiled torque may have (torque/custom.hpp), as the LowLevelCallable
+/// names them with spaces and const removed.
+constexpr const char* scalar_signature = "int(double,double*,double*,double*,void*)";
+constexpr const char* vector_signature = "int(int,double*,double*,double*,double*,void*)";
+constexpr const char* signatures_text =
+    "int (double t, const double *omega, const double *quaternion, double *moment, void *user_data), or "
+    "vectorised over n members (structure of arrays: omega[i*n + l]) int (int n, const double *t, const double "
+    "*omega, const double *quaternion, double *moment, void *user_data)";
+
+/// The signature with spaces and const removed.
+std::string normalised(std::string signature) {
+    for (auto at = signature.find("const"); at != std::string::npos; at = signature.find("const")) signature.erase(at, 5);
     signature.erase(std::remove_if(signature.begin(), signature.end(), [](char c) { return c == ' '; }), signature.end());
-    return signature == "int(double,double*,double*,double*,void*)";
+    return signature;
 }
 
 bool is_low_level_callable(const py::handle& obj) {
     return PyTuple_Check(obj.ptr()) && std::string(py::str(py::type::of(obj).attr("__name__"))) == "LowLevelCallable";
 }
 
-/// The function pointer and user_data of a scipy.LowLevelCallable, its signature checked.
-std::pair<torque::TorqueFunctionPointer, void*> compiled(const py::handle& callable, const std::string& what) {
+/// A compiled function: its pointer, user_data and whether it has the vectorised signature.
+struct Compiled {
+    void* pointer;
+    void* user_data;
+    bool vectorised;
+};
+
+/// The function pointer and user_data of a scipy.LowLevelCallable, its signature checked
+/// (`vector`: the vectorised one is accepted too; the Jacobian has only the scalar one).
+Compiled compiled(const py::handle& callable, const std::string& what, bool vector) {
     PyObject* capsule = PyTuple_GET_ITEM(callable.ptr(), 0);
     const char* signature = PyCapsule_GetName(capsule);
-    if (!signature || !accepted_signature(signature))
+    const std::string given = signature ? normalised(signature) : "";
+    const bool vectorised = vector && given == vector_signature;
+    if (given != scalar_signature && !vectorised)
         throw py::value_error(what + ": the LowLevelCallable's signature is '" + std::string(signature ? signature : "") +
-                              "'; a compiled torque is int (double t, const double *omega, const double *quaternion, "
-                              "double *moment, void *user_data)");
+                              "'; a compiled " + (vector ? std::string("torque is ") + signatures_text
+                                                         : std::string("Jacobian is int (double t, const double *omega, "
+                                                                       "const double *quaternion, double *jacobian, "
+                                                                       "void *user_data)")));
     void* pointer = PyCapsule_GetPointer(capsule, signature);
     if (!pointer) throw py::error_already_set();
-    return {reinterpret_cast<torque::TorqueFunctionPointer>(pointer), PyCapsule_GetContext(capsule)};
+    return {pointer, PyCapsule_GetContext(capsule), vectorised};
 }
 
 std::string label_of(const py::handle& function, const py::object& name) {
@@ -127,11 +145,20 @@ torque::Custom make_custom(const py::object& function, const py::object& jacobia
         throw py::type_error(what + ": the Jacobian must be callable, got " + shown(jacobian));
     std::shared_ptr<const torque::TorqueFunction> core;
     if (low_level) {
-        const auto [f, data] = compiled(function, what);
+        const Compiled f = compiled(function, what, true);
         torque::JacobianFunctionPointer df = nullptr;
         void* jacobian_data = nullptr;
-        if (!jacobian.is_none()) std::tie(df, jacobian_data) = compiled(jacobian, what + " Jacobian");
-        core = std::make_shared<torque::CompiledTorqueFunction>(label, f, data, df, jacobian_data);
+        if (!jacobian.is_none()) {
+            const Compiled d = compiled(jacobian, what + " Jacobian", false);
+            df = reinterpret_cast<torque::JacobianFunctionPointer>(d.pointer), jacobian_data = d.user_data;
+        }
+        if (f.vectorised)
+            core = std::make_shared<torque::CompiledTorqueFunction>(
+                label, torque::VectorForm{reinterpret_cast<torque::VectorTorqueFunctionPointer>(f.pointer), f.user_data},
+                df, jacobian_data);
+        else
+            core = std::make_shared<torque::CompiledTorqueFunction>(
+                label, reinterpret_cast<torque::TorqueFunctionPointer>(f.pointer), f.user_data, df, jacobian_data);
     } else {
         core = std::make_shared<PythonTorqueFunction>(function, jacobian, label);
     }
@@ -176,15 +203,36 @@ function : callable or scipy.LowLevelCallable
     A Python callable (each call holds the GIL and costs about 1 us plus the function's own
     time: bench/custom_torque.py; an ensemble of such members runs on one thread, since more
     would only pass the GIL back and forth; its exception reaches the caller as raised), or a
-    ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of the C signature::
+    ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of one of the C signatures::
 
         int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)
+        int f(int n, const double *t, const double *omega, const double *quaternion, double *moment,
+              void *user_data)
 
     called from C++ without the GIL on every thread (quaternion is NULL without the attitude;
-    it returns 0, and a non-zero code stops the run with an error naming the torque).
+    it returns 0, and a non-zero code stops the run with an error naming the torque). The
+    second, vectorised, takes n members at once as structure of arrays: t[l] the time of member
+    l, omega[i*n + l] its omega_i (3n numbers), quaternion[i*n + l] its q_i, i = w, x, y, z (4n
+    numbers, or NULL), moment[i*n + l] its M_i (3n numbers to write); member l's M must depend on
+    member l's numbers only. The SIMD batches of ``solve_ensemble`` (DOP853) call it once per
+    stage for their lanes (n = ``gyrostat.simd_lanes``), every other path with n = 1; a scalar
+    function keeps its members out of the batches (one at a time), and so does a body given by
+    its inertia tensor (the batches do not rotate the user's frame). In numba::
+
+        @numba.cfunc(numba.types.intc(numba.types.intc, *[numba.types.CPointer(numba.types.double)] * 4,
+                                      numba.types.voidptr))
+        def drag(n, t, omega, quaternion, moment, user_data):
+            w, m = numba.carray(omega, (3, n)), numba.carray(moment, (3, n))
+            for i in range(3):
+                for l in range(n):
+                    m[i, l] = -0.1 * w[i, l]
+            return 0
+
+        g.CustomTorque(scipy.LowLevelCallable(drag.ctypes))
 jacobian : callable or scipy.LowLevelCallable, optional
     dM/domega, of the same kind and arguments as ``function`` (a 3x3 array; compiled: 9 numbers
-    row-major). None: central difference quotients (6 calls) for the implicit methods.
+    row-major, the scalar signature, also beside a vectorised function). None: central difference
+    quotients (6 calls) for the implicit methods.
 attitude : bool
     The function takes the quaternion; only models with the attitude take the torque.
 name : str, optional
@@ -250,6 +298,16 @@ Examples
 >>> import gyrostat as g
 >>> g.CustomTorque(lambda t, omega, q: -omega, attitude=True).attitude
 True
+)doc")
+        .def_property_readonly("vectorised", [](const Custom& x) { return x.function->vector_form().function != nullptr; },
+                               R"doc(Whether the function is compiled with the vectorised signature (bool): then the
+ensembles' SIMD batches take its members.
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega: -omega).vectorised
+False
 )doc")
         .def("assumptions", [](const Custom&, const py::object&) { return py::list(); }, py::arg("motion"),
              R"doc(A user's torque states no assumption.

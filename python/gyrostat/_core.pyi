@@ -1551,15 +1551,36 @@ class CustomTorque:
         A Python callable (each call holds the GIL and costs about 1 us plus the function's own
         time: bench/custom_torque.py; an ensemble of such members runs on one thread, since more
         would only pass the GIL back and forth; its exception reaches the caller as raised), or a
-        ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of the C signature::
+        ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of one of the C signatures::
     
             int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)
+            int f(int n, const double *t, const double *omega, const double *quaternion, double *moment,
+                  void *user_data)
     
         called from C++ without the GIL on every thread (quaternion is NULL without the attitude;
-        it returns 0, and a non-zero code stops the run with an error naming the torque).
+        it returns 0, and a non-zero code stops the run with an error naming the torque). The
+        second, vectorised, takes n members at once as structure of arrays: t[l] the time of member
+        l, omega[i*n + l] its omega_i (3n numbers), quaternion[i*n + l] its q_i, i = w, x, y, z (4n
+        numbers, or NULL), moment[i*n + l] its M_i (3n numbers to write); member l's M must depend on
+        member l's numbers only. The SIMD batches of ``solve_ensemble`` (DOP853) call it once per
+        stage for their lanes (n = ``gyrostat.simd_lanes``), every other path with n = 1; a scalar
+        function keeps its members out of the batches (one at a time), and so does a body given by
+        its inertia tensor (the batches do not rotate the user's frame). In numba::
+    
+            @numba.cfunc(numba.types.intc(numba.types.intc, *[numba.types.CPointer(numba.types.double)] * 4,
+                                          numba.types.voidptr))
+            def drag(n, t, omega, quaternion, moment, user_data):
+                w, m = numba.carray(omega, (3, n)), numba.carray(moment, (3, n))
+                for i in range(3):
+                    for l in range(n):
+                        m[i, l] = -0.1 * w[i, l]
+                return 0
+    
+            g.CustomTorque(scipy.LowLevelCallable(drag.ctypes))
     jacobian : callable or scipy.LowLevelCallable, optional
         dM/domega, of the same kind and arguments as ``function`` (a 3x3 array; compiled: 9 numbers
-        row-major). None: central difference quotients (6 calls) for the implicit methods.
+        row-major, the scalar signature, also beside a vectorised function). None: central difference
+        quotients (6 calls) for the implicit methods.
     attitude : bool
         The function takes the quaternion; only models with the attitude take the torque.
     name : str, optional
@@ -1648,6 +1669,18 @@ class CustomTorque:
         >>> import gyrostat as g
         >>> g.CustomTorque(lambda t, omega: -omega, name="drag").name
         'drag'
+        """
+    @property
+    def vectorised(self) -> bool:
+        """
+        Whether the function is compiled with the vectorised signature (bool): then the
+        ensembles' SIMD batches take its members.
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega: -omega).vectorised
+        False
         """
 class MagnitudeLaw:
     """

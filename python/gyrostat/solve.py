@@ -347,7 +347,9 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     With ``batch=True`` (the default), members that a SIMD batch covers run
     :data:`gyrostat.simd_lanes` at a time, one per lane, each lane with its own parameters,
     time, step size and status: the gyrostat :class:`Model` with constant and linear torques
-    (with or without attitude) under ``taylor`` or ``dop853``, and the averaged symmetric model
+    (with or without attitude) under ``taylor`` or ``dop853``, the same with user torques
+    compiled with the vectorised signature (:class:`gyrostat.CustomTorque`, called once per stage
+    for the batch's lanes) under ``dop853``, and the averaged symmetric model
     under ``dop853``, without events, dense output or ``every_step`` (and not ``taylor`` for ω
     alone with the SSE2 batches on a CPU with AVX2, where one body at a time is faster:
     :data:`gyrostat.taylor_kernel`). They equal single

@@ -1225,8 +1225,9 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
         the others have status ``"interrupted"`` (``attrs["interrupted"] = 1``) and a warning
         says how many. Results equal the members solved one by one with :func:`gyrostat.solve`
         bit for bit, except members that :func:`gyrostat.solve_ensemble` integrates in SIMD
-        batches (``taylor`` or ``dop853`` on the gyrostat with constant and linear torques, the
-        averaged model under ``dop853``), which equal them to the tolerance.
+        batches (``taylor`` or ``dop853`` on the gyrostat with constant and linear torques,
+        ``dop853`` with vectorised compiled user torques besides, the averaged model under
+        ``dop853``), which equal them to the tolerance.
 
     Examples
     --------

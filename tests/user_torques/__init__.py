@@ -71,14 +71,27 @@ def library() -> ctypes.CDLL:
 
 _ARGS = [ctypes.c_double, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
          ctypes.POINTER(ctypes.c_double), ctypes.c_void_p]
+# the vectorised signature: int f(int n, const double *t, const double *omega, const double *quaternion,
+# double *moment, void *user_data)
+_LANE_ARGS = [ctypes.c_int] + [ctypes.POINTER(ctypes.c_double)] * 4 + [ctypes.c_void_p]
 
 
-def compiled(name: str) -> LowLevelCallable:
-    """The C function `name` of drag.c as a scipy.LowLevelCallable."""
+def compiled(name: str, user_data=None) -> LowLevelCallable:
+    """The C function `name` of drag.c as a scipy.LowLevelCallable (the vectorised signature for
+    the *_lanes functions)."""
     function = getattr(library(), name)
     function.restype = ctypes.c_int
-    function.argtypes = _ARGS
-    return LowLevelCallable(function)
+    function.argtypes = _LANE_ARGS if name.endswith("_lanes") else _ARGS
+    return LowLevelCallable(function, user_data)
+
+
+def widest_call() -> int:
+    """The largest n drag.c's vectorised functions were called with since reset_widest_call()."""
+    return library().widest_call()
+
+
+def reset_widest_call() -> None:
+    library().reset_widest_call()
 
 
 def compiled_drag() -> LowLevelCallable:
@@ -89,14 +102,19 @@ def compiled_drag_jacobian() -> LowLevelCallable:
     return compiled("quadratic_drag_jacobian")
 
 
-def compiled_linear(c: float) -> LowLevelCallable:
-    """M = -c omega, c passed as the callable's user_data (a pointer to a double kept alive here)."""
+def compiled_drag_lanes() -> LowLevelCallable:
+    """quadratic_drag, vectorised."""
+    return compiled("quadratic_drag_lanes")
+
+
+def compiled_linear(c: float, vectorised: bool = False) -> LowLevelCallable:
+    """M = -c omega (linear_drag, or linear_drag_lanes when `vectorised`), c passed as the
+    callable's user_data (a pointer to a double kept alive here)."""
     value = ctypes.c_double(c)
     _KEEP.append(value)
-    function = library().linear_drag
-    function.restype = ctypes.c_int
-    function.argtypes = _ARGS
-    return LowLevelCallable(function, ctypes.cast(ctypes.pointer(value), ctypes.c_void_p))
+    return compiled("linear_drag_lanes" if vectorised else "linear_drag",
+                    ctypes.cast(ctypes.pointer(value), ctypes.c_void_p))
+
 
 
 _KEEP: list = []

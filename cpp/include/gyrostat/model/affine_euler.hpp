@@ -49,8 +49,10 @@ struct AffineEuler {
 /// ω̇ of the affine Euler equations above, and with the attitude q̇ = ½ q ⊗ (0, ω):
 ///   q̇_w = −½(q_x p + q_y q + q_z r),  q̇_x = ½(q_w p + q_y r − q_z q),
 ///   q̇_y = ½(q_w q + q_z p − q_x r),   q̇_z = ½(q_w r + q_x q − q_y p).
+/// `extra`: a further torque M_i added to M0_i (the user's vectorised torques, model/gyrostat.hpp),
+/// or nullptr.
 template <bool WithAttitude, class T>
-void affine_euler_rhs(const AffineEuler<T>& e, const T* y, T* dy) {
+void affine_euler_rhs(const AffineEuler<T>& e, const T* y, T* dy, const T* extra = nullptr) {
     T r[3] = {e.differences[0] * y[1] * y[2], e.differences[1] * y[2] * y[0], e.differences[2] * y[0] * y[1]};
     if (e.has_rotor) {
         r[0] -= y[1] * e.rotor[2] - y[2] * e.rotor[1];
@@ -59,7 +61,10 @@ void affine_euler_rhs(const AffineEuler<T>& e, const T* y, T* dy) {
     }
     if (e.damped)
         for (int i = 0; i < 3; ++i) r[i] -= e.damping[3 * i] * y[0] + e.damping[3 * i + 1] * y[1] + e.damping[3 * i + 2] * y[2];
-    for (int i = 0; i < 3; ++i) dy[i] = (r[i] + e.constant[i]) * e.inverse_moments[i];
+    if (extra)
+        for (int i = 0; i < 3; ++i) dy[i] = (r[i] + (e.constant[i] + extra[i])) * e.inverse_moments[i];
+    else
+        for (int i = 0; i < 3; ++i) dy[i] = (r[i] + e.constant[i]) * e.inverse_moments[i];
     if constexpr (WithAttitude) {
         const T &qw = y[3], &qx = y[4], &qy = y[5], &qz = y[6];
         dy[3] = -0.5 * (qx * y[0] + qy * y[1] + qz * y[2]);

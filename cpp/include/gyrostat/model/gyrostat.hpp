@@ -2,8 +2,11 @@
 // attitude quaternion integrated only when asked for.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <string>
+#include <variant>
+#include <vector>
 #include <utility>
 #include <cmath>
 #include <stdexcept>
@@ -177,10 +180,11 @@ private:
     AffineEuler<double> affine_;  // the constant and linear torques' part, for the Taylor recursion
 };
 
-/// W gyrostats with constant and linear torques side by side in SIMD lanes (numeric/lanes.hpp):
-/// Euler's affine equations (affine_euler.hpp), each lane with its member's moments, rotor and
-/// torques. A lane model (model/system.hpp) gives the right-hand side, the projection and the
-/// Taylor recursion of W members at once.
+/// W gyrostats side by side in SIMD lanes (numeric/lanes.hpp): Euler's affine equations
+/// (affine_euler.hpp), each lane with its member's moments, rotor and constant and linear torques,
+/// plus the user's compiled vectorised torques (torque/custom.hpp), called once per right-hand
+/// side for the W lanes. A lane model (model/system.hpp) gives the right-hand side, the projection
+/// and the Taylor recursion of W members at once.
 template <bool WithAttitude>
 struct GyrostatLanes {
     using System = Gyrostat<WithAttitude>;
@@ -190,8 +194,30 @@ struct GyrostatLanes {
     static constexpr int max_taylor_order = System::max_taylor_order;
     AffineEuler<Lanes> euler;
 
+    /// A user's torque as the lanes call it.
+    struct UserTorque {
+        torque::VectorForm form;
+        bool attitude;             ///< it takes the quaternion
+        const std::string* label;  ///< its name (the member's torque outlives the batch)
+        bool operator==(const UserTorque& o) const { return form == o.form && attitude == o.attitude; }
+    };
+    std::vector<UserTorque> user;                      ///< the same in every lane: one call each for the W lanes
+    std::array<std::vector<UserTorque>, W> lane_user;  ///< when the lanes' differ: each lane's, called with n = 1
+    bool mixed = false;                                ///< the lanes' user torques differ
+
+    /// Whether every torque of `torques` outside the affine part is a compiled vectorised user
+    /// torque (each appended to `found`).
+    static bool vectorised(const TorqueSet& torques, std::vector<UserTorque>* found = nullptr) {
+        for (const AnyTorque& part : torques.others()) {
+            const auto* custom = std::get_if<torque::Custom>(&part);
+            if (!custom || !custom->vector_form().function) return false;
+            if (found) found->push_back({custom->vector_form(), custom->attitude, &custom->label});
+        }
+        return true;
+    }
+
     /// Whether the batches take this member (else it runs alone): the Taylor recursion needs
-    /// constant and linear torques, and so do the lanes' right-hand side.
+    /// constant and linear torques; DOP853 takes the user's compiled vectorised torques besides.
     static bool accepts(const System& system, bool taylor) {
         if constexpr (!lanes::wide && !WithAttitude) {
             // The portable build's 4 lanes in SSE2 pairs lose to one body at a time where the
@@ -200,7 +226,7 @@ struct GyrostatLanes {
             // against 25.2 ms at 1e-12 (with the attitude the batch still wins: 31 against 42 ms).
             if (taylor && affine_euler_avx2_available()) return false;
         }
-        return system.supports_taylor();
+        return system.supports_taylor() || (!taylor && vectorised(system.torques()));
     }
 
     /// members[0..W): the lanes' models (lanes past the batch repeat a member).
@@ -222,8 +248,49 @@ struct GyrostatLanes {
             euler.has_rotor = euler.has_rotor || members[l]->affine_euler().has_rotor;
             euler.damped = euler.damped || members[l]->affine_euler().damped;
         }
+        std::array<std::vector<UserTorque>, W> own;
+        for (int l = 0; l < W; ++l) vectorised(members[l]->torques(), &own[l]);
+        for (int l = 1; l < W; ++l) mixed = mixed || own[l] != own[0];
+        if (mixed)
+            lane_user = std::move(own);
+        else
+            user = std::move(own[0]);
     }
-    void rhs(const Lanes& /*t*/, const Lanes* y, Lanes* dy) const { affine_euler_rhs<WithAttitude>(euler, y, dy); }
+    /// ω̇ (and q̇) of the W lanes; the user's torques added to M0 (affine_euler_rhs).
+    void rhs(const Lanes& t, const Lanes* y, Lanes* dy) const {
+        if (user.empty() && !mixed) return affine_euler_rhs<WithAttitude>(euler, y, dy);
+        Lanes m[3];
+        user_torque(t, y, m);
+        affine_euler_rhs<WithAttitude>(euler, y, dy, m);
+    }
+    /// Σ M of the user's torques in the W lanes: one call per torque with n = W on the lanes' own
+    /// arrays, which are the vectorised signature's structure of arrays (ω_i of lane l is
+    /// y[i][l] = (double*)y[0] [i W + l], q_i is y[3 + i][l]); when the lanes' torques differ, one
+    /// call per lane and torque with n = 1. Either way a lane's M is the sum of its torques in
+    /// order, the same numbers.
+    void user_torque(const Lanes& t, const Lanes* y, Lanes* m) const {
+        static_assert(sizeof(Lanes) == W * sizeof(double), "a lane vector is W contiguous doubles");
+        for (int i = 0; i < 3; ++i) m[i].setZero();
+        Lanes out[3];
+        if (!mixed) {
+            for (const UserTorque& u : user) {
+                for (int i = 0; i < 3; ++i) out[i].setZero();
+                call(u, W, t.data(), y[0].data(), attitude_of(u, y), out[0].data());
+                for (int i = 0; i < 3; ++i) m[i] += out[i];
+            }
+            return;
+        }
+        for (int l = 0; l < W; ++l) {
+            double w[3] = {y[0][l], y[1][l], y[2][l]}, q[4] = {1.0, 0.0, 0.0, 0.0};
+            if constexpr (WithAttitude)
+                for (int i = 0; i < 4; ++i) q[i] = y[3 + i][l];
+            for (const UserTorque& u : lane_user[l]) {
+                double moment[3] = {0.0, 0.0, 0.0};
+                call(u, 1, &t[l], w, WithAttitude && u.attitude ? q : nullptr, moment);
+                for (int i = 0; i < 3; ++i) m[i][l] += moment[i];
+            }
+        }
+    }
     template <int Order>
     void taylor(Lanes (*c)[dim]) const {
         euler_taylor_recursion<Order, WithAttitude>(euler, [c](int n, int i) -> Lanes& { return c[n][i]; });
@@ -233,6 +300,26 @@ struct GyrostatLanes {
             const Lanes norm = (y[3].square() + y[4].square() + y[5].square() + y[6].square()).sqrt();
             for (int i = 3; i < 7; ++i) y[i] /= norm;
         }
+    }
+
+private:
+    static const double* attitude_of(const UserTorque& u, const Lanes* y) {
+        if constexpr (WithAttitude)
+            return u.attitude ? y[3].data() : nullptr;
+        else
+            return (void)u, (void)y, nullptr;
+    }
+    /// The user's function on n members; throws naming the torque when it returns non-zero.
+    static void call(const UserTorque& u, int n, const double* t, const double* omega, const double* q, double* moment) {
+        const int status = u.form.function(n, t, omega, q, moment, u.form.user_data);
+        if (status == 0) return;
+        std::string where = "t = " + format_value(t[0]);
+        if (n > 1) {
+            const auto [low, high] = std::minmax_element(t, t + n);
+            where = "one of " + std::to_string(n) + " members at t from " + format_value(*low) + " to " +
+                    format_value(*high);
+        }
+        throw std::runtime_error(torque::compiled_failure(*u.label, "function", status, where));
     }
 };
 

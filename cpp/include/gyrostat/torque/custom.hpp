@@ -26,7 +26,34 @@ namespace gyrostat::torque {
 /// called from any thread at once (ensembles), so it must not keep state between calls.
 using TorqueFunctionPointer = int (*)(double, const double*, const double*, double*, void*);
 /// The optional Jacobian, same arguments: writes ∂M/∂ω, 9 numbers row-major (d[3 i + j] = ∂M_i/∂ω_j).
+/// A vectorised torque (below) keeps this scalar Jacobian.
 using JacobianFunctionPointer = TorqueFunctionPointer;
+
+/// The vectorised signature: n members at once, structure of arrays (member l = 0..n−1):
+///
+///   int torque(int n, const double* t, const double* omega, const double* quaternion, double* moment, void* user_data)
+///
+/// t[l]: member l's time (each member of a SIMD batch has its own); omega[i n + l]: ω_i of member l
+/// (3n numbers, body axes); quaternion[i n + l]: q_i of member l, i = w, x, y, z (4n numbers), or
+/// NULL without the attitude; moment[i n + l]: M_i of member l (3n numbers) to write. Same return
+/// code and thread rules as above; besides, member l's M must depend on member l's numbers only,
+/// computed the same whatever n (then a member's result does not depend on the batch it ran in).
+/// The SIMD batches of an ensemble (integrate/batch.hpp) call it once per DOP853 stage for their W
+/// lanes (n = W, the lanes' arrays passed as they are); every other path calls it with n = 1.
+using VectorTorqueFunctionPointer = int (*)(int, const double*, const double*, const double*, double*, void*);
+
+/// A compiled vectorised torque function and its user_data (null function: none).
+struct VectorForm {
+    VectorTorqueFunctionPointer function = nullptr;
+    void* user_data = nullptr;
+    bool operator==(const VectorForm& o) const { return function == o.function && user_data == o.user_data; }
+};
+
+/// "CustomTorque 'label': the compiled function returned <status> at t = <t>" (`where`: the time,
+/// or the times of a batch's members).
+inline std::string compiled_failure(const std::string& label, const char* what, int status, const std::string& where) {
+    return "CustomTorque '" + label + "': the compiled " + what + " returned " + std::to_string(status) + " at " + where;
+}
 
 /// What the core calls for a user's torque: a compiled function (below) or what the bindings make
 /// of a Python callable (which takes the GIL).
@@ -39,9 +66,13 @@ public:
     virtual bool jacobian(double t, const Vec3& omega, const Eigen::Vector4d* quaternion, Mat3& d) const = 0;
     /// One call at a time, whatever the threads (a Python callable: it holds the GIL).
     virtual bool serialised() const { return true; }
+    /// The compiled vectorised form, which the SIMD batches call for W members at once (none:
+    /// a scalar or Python function).
+    virtual VectorForm vector_form() const { return {}; }
 };
 
-/// A compiled torque function and its optional Jacobian (C signature above).
+/// A compiled torque function, scalar or vectorised (C signatures above; the vectorised one is
+/// called with n = 1 here), and its optional Jacobian.
 class CompiledTorqueFunction final : public TorqueFunction {
 public:
     CompiledTorqueFunction(std::string label, TorqueFunctionPointer torque, void* user_data,
@@ -49,22 +80,26 @@ public:
         : label_(std::move(label)), torque_(torque), data_(user_data), jacobian_(jacobian), jacobian_data_(jacobian_data) {
         if (!torque_) throw std::invalid_argument("CustomTorque '" + label_ + "': the function pointer is null");
     }
+    CompiledTorqueFunction(std::string label, VectorForm vector, JacobianFunctionPointer jacobian = nullptr,
+                           void* jacobian_data = nullptr)
+        : label_(std::move(label)), vector_(vector), jacobian_(jacobian), jacobian_data_(jacobian_data) {
+        if (!vector_.function) throw std::invalid_argument("CustomTorque '" + label_ + "': the function pointer is null");
+    }
     bool serialised() const override { return false; }  ///< called from every thread at once
+    VectorForm vector_form() const override { return vector_; }
     Vec3 torque(double t, const Vec3& omega, const Eigen::Vector4d* quaternion) const override {
         Vec3 m = Vec3::Zero();
-        const int status = torque_(t, omega.data(), quaternion ? quaternion->data() : nullptr, m.data(), data_);
-        if (status != 0)
-            throw std::runtime_error("CustomTorque '" + label_ + "': the compiled function returned " +
-                                     std::to_string(status) + " at t = " + format_value(t));
+        const double* q = quaternion ? quaternion->data() : nullptr;
+        const int status = vector_.function ? vector_.function(1, &t, omega.data(), q, m.data(), vector_.user_data)
+                                            : torque_(t, omega.data(), q, m.data(), data_);
+        if (status != 0) throw std::runtime_error(compiled_failure(label_, "function", status, "t = " + format_value(t)));
         return m;
     }
     bool jacobian(double t, const Vec3& omega, const Eigen::Vector4d* quaternion, Mat3& d) const override {
         if (!jacobian_) return false;
         double rows[9] = {};
         const int status = jacobian_(t, omega.data(), quaternion ? quaternion->data() : nullptr, rows, jacobian_data_);
-        if (status != 0)
-            throw std::runtime_error("CustomTorque '" + label_ + "': the compiled Jacobian returned " +
-                                     std::to_string(status) + " at t = " + format_value(t));
+        if (status != 0) throw std::runtime_error(compiled_failure(label_, "Jacobian", status, "t = " + format_value(t)));
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) d(i, j) = rows[3 * i + j];
         return true;
@@ -72,17 +107,20 @@ public:
 
 private:
     std::string label_;
-    TorqueFunctionPointer torque_;
-    void* data_;
-    JacobianFunctionPointer jacobian_;
-    void* jacobian_data_;
+    TorqueFunctionPointer torque_ = nullptr;
+    void* data_ = nullptr;
+    VectorForm vector_;
+    JacobianFunctionPointer jacobian_ = nullptr;
+    void* jacobian_data_ = nullptr;
 };
 
 /// A torque the user writes, M = f(t, ω) or f(t, ω, q) in body axes (`attitude`: f takes q; only
 /// models that carry the attitude take such a torque). Its Jacobian ∂M/∂ω is the user's, or
 /// central difference quotients with steps h_j = 1e-6 max(1, |ω_j|) (error O(h²) relative, ~1e-12;
 /// 6 calls). It has no averaged contribution and no Taylor coefficients (the models refuse it
-/// there), and is never folded into the affine part or batched in SIMD lanes.
+/// there), and is never folded into the affine part. A compiled vectorised function (above) runs
+/// in the SIMD batches of an ensemble (DOP853), called once per stage for the batch's W members
+/// (model/gyrostat.hpp: GyrostatLanes); any other runs its members one at a time.
 ///
 /// On a body given by its inertia tensor (Body::from_inertia) f still sees the user's frame: the
 /// model's principal-axes ω_p and q_p become ω = R ω_p and q = q_p ⊗ q_R* before the call, and
@@ -105,6 +143,9 @@ struct Custom {
     }
 
     bool uses_attitude() const { return attitude; }
+    /// The compiled vectorised function the SIMD batches call (none: a scalar or Python function,
+    /// or a body given by its inertia tensor, whose frame the batches do not rotate).
+    VectorForm vector_form() const { return rotated_ ? VectorForm{} : function->vector_form(); }
 
     /// The same function on the principal axes of `body` (the comment above the class).
     Custom in_principal_axes(const Body& body) const {

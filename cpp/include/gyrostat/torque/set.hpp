@@ -257,6 +257,8 @@ public:
             }, part);
         return d;
     }
+    /// The torques outside the folded affine part, evaluated one by one.
+    const std::vector<AnyTorque>& others() const { return others_; }
     /// The folded affine part: M = M0 − D ω (for the Taylor recursion).
     const Vec3& constant_part() const { return constant_; }
     const Mat3& damping_part() const { return damping_; }
