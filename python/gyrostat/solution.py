@@ -161,6 +161,7 @@ class Solution:
         """
         core = model._core
         dim, n_out = len(core.state_names), len(core.output_names)
+        quantities = core.quantities  # made by the core on each call: once
         last = pieces[-1][1]
         stats = {k: sum(sol.stats[k] for _, sol in pieces) for k in last.stats if k != "last_step"}
         result = SimpleNamespace(
@@ -168,8 +169,8 @@ class Solution:
             y=np.vstack([p[1] for p in parts]) if parts else np.zeros((0, dim)),
             outputs=np.vstack([p[2] for p in parts]) if parts else np.zeros((0, n_out)),
             state_names=tuple(core.state_names), output_names=tuple(core.output_names),
-            state_units=tuple(q["unit"] for q in core.quantities if q["role"] == "state"),
-            output_units=tuple(q["unit"] for q in core.quantities if q["role"] == "output"),
+            state_units=tuple(q["unit"] for q in quantities if q["role"] == "state"),
+            output_units=tuple(q["unit"] for q in quantities if q["role"] == "output"),
             output_conserved=(False,) * n_out, output_kept=(False,) * n_out, options=last._result.options,
             stats=SimpleNamespace(**stats, last_step=last.stats["last_step"]),
             t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status, message=last.message,
