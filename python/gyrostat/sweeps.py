@@ -340,6 +340,26 @@ def _assign(container, parts: tuple, value):
     return copied
 
 
+def _write_tree(paths: list[tuple]) -> dict:
+    """The paths as a tree, {key: subtree}, a leaf being the index of the path in ``paths``."""
+    tree: dict = {}
+    for n, parts in enumerate(paths):
+        node = tree
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = n
+    return tree
+
+
+def _assign_fields(container, tree: dict, values: list):
+    """A copy of ``container`` with the value of each leaf of ``tree`` (:func:`_write_tree`) set:
+    every container on the paths copied once, the others shared."""
+    copied = dict(container) if isinstance(container, dict) else list(container)
+    for key, node in tree.items():
+        copied[key] = values[node] if isinstance(node, int) else _assign_fields(container[key], node, values)
+    return copied
+
+
 # ------------------------------------------------------------------------------------ parameters
 _NAME = re.compile(r"[A-Za-z_][^\s/]*")
 
@@ -656,7 +676,7 @@ class Plan:
         return targets
 
     def __getstate__(self):
-        return {k: v for k, v in self.__dict__.items() if k not in ("_located", "_made_writes")}
+        return {k: v for k, v in self.__dict__.items() if k not in ("_located", "_made_writes", "_fields")}
 
     @property
     def located(self):
@@ -727,27 +747,32 @@ class Plan:
         >>> plan.document([0.2])["torques"][0]["diagonal"]
         [0.1, 0.1, 0.2]
         """
-        doc = self.base
-        assignments, fields = self._writes
-        for k, scale, parts in assignments:
-            doc = _assign(doc, parts, scale * values[k])
-        for field_parts, located in fields:
-            doc = _assign(doc, field_parts, located.revalidate(doc))
-        return doc
+        updates = []
+        for located, raw, writes in self._writes:  # each changed field: its numbers set, then validated
+            for k, scale, inner in writes:
+                raw = _assign(raw, inner, scale * values[k]) if inner else scale * values[k]
+            updates.append(located.validate(raw))
+        return _assign_fields(self.base, self._fields, updates)
 
     @property
-    def _writes(self) -> tuple[list, list]:
-        """What :meth:`document` writes, made once: (parameter index, scale, path) per path, and
-        each changed field once, (its parts, where it is located)."""
+    def _writes(self) -> list[tuple]:
+        """What :meth:`document` writes, made once: per changed field, where it is located, its
+        value in the scene and the numbers set inside it, (parameter index, scale, indices inside
+        the value), in the order of the paths."""
         try:
             return self._made_writes
         except AttributeError:
             index = {id(parameter): k for k, parameter in enumerate(self.parameters)}
-            assignments, fields = [], {}
+            fields: dict[tuple, tuple] = {}
             for parameter, parts, located in self.located:
-                assignments.append((index[id(parameter)], parameter.scale, parts))
-                fields[located.field_parts] = located
-            self._made_writes = (assignments, list(fields.items()))
+                if located.field_parts not in fields:
+                    value = self.base
+                    for part in located.field_parts:
+                        value = value[part]
+                    fields[located.field_parts] = (located, value, [])
+                fields[located.field_parts][2].append((index[id(parameter)], parameter.scale, located.inner))
+            self._fields = _write_tree(list(fields))
+            self._made_writes = list(fields.values())
             return self._made_writes
 
     def member(self, values: Sequence[float]):
