@@ -34,14 +34,15 @@ import dataclasses
 import json
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.events import Event
-from gyrostat.solution import Solution
+from gyrostat.events import Event, to_core
+from gyrostat.solution import AccuracyWarning, Solution
 from gyrostat.solve import make_options, solve
 from gyrostat.assumptions import Assumption
 
@@ -176,6 +177,15 @@ def _run_on_engine(rung: Rung, y0, span, opts) -> Solution:
                     rung.model)
 
 
+def _segment(rung: Rung, y0, span, opts) -> Solution:
+    """A piece of a switching run: the engine called with the rung's Options made once; the run's
+    doubts warned about as :func:`gyrostat.solve` warns them."""
+    solution = _run_on_engine(rung, y0, span, opts)
+    for doubt in solution.accuracy_warnings:
+        warnings.warn(doubt, AccuracyWarning, stacklevel=3)
+    return solution
+
+
 def probe(rung: Rung, top: Rung, span: tuple[float, float], options: dict) -> Estimate:
     """The rung's error against the top, measured at the start and extrapolated to the horizon.
 
@@ -269,7 +279,7 @@ def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy
     if key is not None:
         cached = _CHOICES.get(key)
         if cached is not None:
-            return dataclasses.replace(cached, entries=copy.deepcopy(cached.entries), reused=True)
+            return dataclasses.replace(cached, entries=_copied(cached.entries), reused=True)
         made = choose(rungs, span, options, accuracy)
         if len(_CHOICES) >= CACHE_SIZE:
             _CHOICES.pop(next(iter(_CHOICES)))
@@ -314,6 +324,16 @@ def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy
     entries.append({"rung": top.name, "model": top.description, "taken": True,
                     "reason": "the scene's most complete model (the reference of the rungs below)"})
     return Choice(rungs, top, accuracy, entries)
+
+
+def _copied(value):
+    """A deep copy of a choice's entries (dicts, lists and numbers, as :func:`choose` makes them),
+    without copy.deepcopy's bookkeeping."""
+    if isinstance(value, dict):
+        return {k: _copied(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_copied(v) for v in value]
+    return copy.deepcopy(value) if not isinstance(value, (str, int, float, bool, type(None), tuple)) else value
 
 
 def _fit_watches(rung: Rung, estimate: Estimate, accuracy: float) -> tuple[Rung, str]:
@@ -414,7 +434,7 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
     rung, top = choice.chosen, choice.rungs[-1]
     t0, t1 = span
     kept = {k: v for k, v in options.items() if k not in ("n_out", "t_eval", "events")}
-    n_out = int(options.get("n_out", _core.Options().n_out))
+    n_out = int(options.get("n_out", _DEFAULT.n_out))
     grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     extra_events = list(options.get("events", []))
     if rung is top or not rung.watches:  # one run, asked for as the scene asks for it (n_out: the same times)
@@ -422,21 +442,20 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
         return solve(rung.model, rung.y0, span, **kept, **timing, events=extra_events or None,
                      check_validity=False, progress=progress if progress is not None else False)
     fails = [Event(w.output, w.limit, 1, True, w.statement) for w in rung.watches]
-    back_down = _back_down(rung)
+    # each rung's options made once, its events included (each segment sets its output times)
+    opts = {False: make_options(**kept), True: make_options(**kept)}
+    for upper, events in ((False, fails), (True, [_back_down(rung)])):
+        core = (top if upper else rung).model._core
+        opts[upper].events = to_core(events, list(core.state_names), list(core.output_names))
     segments: list[tuple[str, Solution]] = []
     switches: list[tuple] = []
     t, state, on_top = t0, rung.y0, False
     while True:
         times = grid[(grid > t) | ((grid == t) & (not segments))]
-        times = times if len(times) else np.array([t1])
-        if on_top:
-            sol = solve(top.model, state, (t, t1), **kept, t_eval=times, events=[back_down], check_validity=False,
-                        progress=False)
-            segments.append((top.name, sol))
-        else:
-            sol = solve(rung.model, state, (t, t1), **kept, t_eval=times, events=fails, check_validity=False,
-                        progress=False)
-            segments.append((rung.name, sol))
+        opts[on_top].t_eval = times if len(times) else np.array([t1])
+        current = top if on_top else rung
+        sol = _segment(current, state, (t, t1), opts[on_top])
+        segments.append((current.name, sol))
         if not sol.success or sol.terminal_event is None or sol.t_last >= t1:
             break
         t = float(sol.t_last)
