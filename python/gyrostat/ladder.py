@@ -435,12 +435,12 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
     t0, t1 = span
     kept = {k: v for k, v in options.items() if k not in ("n_out", "t_eval", "events")}
     n_out = int(options.get("n_out", _DEFAULT.n_out))
-    grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     extra_events = list(options.get("events", []))
     if rung is top or not rung.watches:  # one run, asked for as the scene asks for it (n_out: the same times)
-        timing = {"t_eval": grid} if options.get("t_eval") is not None else {"n_out": n_out}
+        timing = {"t_eval": options["t_eval"]} if options.get("t_eval") is not None else {"n_out": n_out}
         return solve(rung.model, rung.y0, span, **kept, **timing, events=extra_events or None,
                      check_validity=False, progress=progress if progress is not None else False)
+    grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     fails = [Event(w.output, w.limit, 1, True, w.statement) for w in rung.watches]
     # each rung's options made once, its events included (each segment sets its output times)
     opts = {False: make_options(**kept), True: make_options(**kept)}
