@@ -426,7 +426,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     [0.3679, 0.3679, 0.3679]
     """
     check_validity = flag(check_validity, "check_validity")
-    models, results = _ensemble_results(models, y0s, t_span, threads=threads, method=method, rtol=rtol, atol=atol,
+    models, results = ensemble_results(models, y0s, t_span, threads=threads, method=method, rtol=rtol, atol=atol,
                                         t_eval=t_eval, n_out=n_out, every_step=every_step, max_steps=max_steps,
                                         first_step=first_step, max_step=max_step, step=step,
                                         splitting_order=splitting_order, options=options, events=events,
@@ -435,13 +435,35 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
 
 
-def _ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
+def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
                       n_out=None, every_step=None, max_steps=None, first_step=None, max_step=None, step=None,
                       splitting_order=None, options=None, events=None, dense_output=False, progress=None,
                       batch=True) -> tuple[list, list]:
-    """:func:`solve_ensemble` up to the engine's results: (the models, one or one per member; the
-    engine's ``Result`` of every member, in index order). For callers that summarise many members
-    at once (:func:`gyrostat.sweeps.solve_chunk`) without a :class:`Solution` per member."""
+    """:func:`solve_ensemble` up to the engine's results, without a :class:`Solution` per member:
+    for callers that summarise many members at once (:func:`gyrostat.sweeps.solve_chunk`).
+
+    Parameters
+    ----------
+    models, y0s, t_span, threads, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, \
+step, splitting_order, options, events, dense_output, progress, batch
+        As in :func:`solve_ensemble` (which checks them the same way).
+
+    Returns
+    -------
+    (list, list)
+        The models (one for every member, or one per member) and the engine's ``Result`` of
+        every member, in index order (``Solution(result, model)`` makes a member's Solution).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> from gyrostat.solve import ensemble_results
+    >>> model = gyrostat.Model(gyrostat.Body([2.0, 2.0, 1.0]), [gyrostat.LinearDamping(diagonal=[0.1, 0.1, 0.1])])
+    >>> _, results = ensemble_results(model, np.array([[0.1, 0.0, 1.0], [0.1, 0.0, 2.0]]), (0.0, 10.0), n_out=11)
+    >>> [r.status for r in results], [round(float(r.y[-1, 2] / r.y[0, 2]), 4) for r in results]
+    (['success', 'success'], [0.3679, 0.3679])
+    """
     if isinstance(models, ModelBase):
         models = [models]
     models = list(models)

@@ -1033,7 +1033,7 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
     """The second half of :func:`solve_chunk`: the groups solved (one solve_ensemble each, the
     engine's pool with the GIL released) and each member's summary recorded."""
     from gyrostat.modelbase import ModelBase
-    from gyrostat.solve import _ensemble_results
+    from gyrostat.solve import ensemble_results
 
     arrays, groups = members_of_chunk
     count = len(arrays["status"])
@@ -1047,7 +1047,7 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
         # the engine's results, not a Solution per member: the summaries are made in bulk (_record_results);
         # each member's doubts are recorded (accuracy_warning), not warned about
         models = [run.model for _, run in members]
-        _, results = _ensemble_results(models, [run.y0 for _, run in members], span, threads=threads,
+        _, results = ensemble_results(models, [run.y0 for _, run in members], span, threads=threads,
                                        events=list(events) or None,
                                        progress=report if progress is not None else False, **dict(options))
         _record_results(arrays, [j for j, _ in members], results, models, plan, trajectories, extrema)
