@@ -161,6 +161,59 @@ def test_switching_through_r_zero_matches_the_full_model():
     assert set(np.unique(solution.columns()["rung"])) == {0.0, 1.0}
 
 
+def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
+    """The event that brings a switched run back down the ladder is evaluated in C++ at every step
+    of the top's run (the lower model's watch_event: no call into Python). It is the g of the
+    Python callable it replaces (ladder._trouble): on a run of the top it falls through zero at
+    the same time to the last bit, and the switching run made with either is the same, number for
+    number, switch for switch."""
+    from gyrostat import ladder
+
+    doc = _switching_doc()
+    scene = Scene.from_dict(copy.deepcopy(doc), "switching")
+    run = scene.runs[0]
+    choice = ladder.choose(scene.ladder, run.t_span, run.options, doc["integration"]["accuracy"])
+    lower, top = choice.chosen, choice.rungs[-1]
+    assert lower.name == "averaged" and lower.watches
+    engine, python = ladder._back_down(lower), ladder._trouble(lower)
+    assert isinstance(engine, g._core.Event) and engine.terminal == 1 and engine.direction == -1
+    # from the state where the averaging fails (r near zero) the top's run comes back down at one time
+    lifted = lower.model._core.full_state(np.array([0.95, 0.02]), 0.0)
+    runs = [g.solve(top.model, lifted, (0.0, 400.0), events=[e], rtol=1e-10, atol=1e-12) for e in (engine, python)]
+    assert runs[0].terminal_event == runs[1].terminal_event == 0
+    assert runs[0].t_events[0][0] == runs[1].t_events[0][0] and runs[0].t_last < 400.0
+    values = lower.model._core.outputs_at(runs[0].t_last, runs[0].y_last)
+    ratio = lower.watches[0].ratio(values[list(lower.model.output_names).index(lower.watches[0].output)])
+    assert abs(ratio) < 1e-6  # back at the watch's `back`: g = 0 there
+    _, cpp_run, cpp_report = _solve(doc)
+    monkeypatch.setattr(ladder, "_back_down", ladder._trouble)
+    ladder._CHOICES.clear()
+    _, python_run, python_report = _solve(doc)
+    assert cpp_report["ladder"]["switches"] == python_report["ladder"]["switches"]
+    assert len(cpp_report["ladder"]["switches"]) >= 2
+    assert np.array_equal(cpp_run.y, python_run.y) and np.array_equal(cpp_run.rung, python_run.rung)
+
+
+def test_an_engine_event_is_passed_as_it_is():
+    """gyrostat.solve takes an engine event made already (the ladder's watch_event) beside
+    Event and callables, reported under its own name."""
+    averaged = g.AveragedModel(g.Body([8.0, 8.0, 4.0]), [g.ViscousCavity(1260.0, 1e4, 0.48),
+                                                           g.ConstantTorque([0.0, 0.0, -0.1])])
+    names = list(averaged.output_names)
+    # slow/fast rises as r falls towards zero: g = (slow_to_fast - 0.05) / (0.1 - 0.05) rises through 0 at 0.05
+    rises = averaged._core.watch_event([names.index("slow_to_fast")], [0.05], [0.1], "slow/fast reaches 0.05", 1, 1)
+    solution = g.solve(averaged, [1.0, 2.0], (0.0, 200.0), events=[g.events.Event("r", 1.0), rises])
+    assert solution.event_names == ("r = 1", "slow/fast reaches 0.05") and solution.terminal_event == 1
+    t_stop = solution.t_events[1][0]
+    assert solution.t_last == t_stop and len(solution.t_events[0]) == 0  # before r reaches 1
+    at_stop = dict(zip(names, averaged._core.outputs_at(t_stop, solution.y_events[1][0])))
+    assert at_stop["slow_to_fast"] == pytest.approx(0.05, rel=1e-9)
+    with pytest.raises(ValueError, match="output 99 does not exist"):
+        averaged._core.watch_event([99], [0.0], [1.0], "bad")
+    with pytest.raises(ValueError, match="back and limit must be finite and differ"):
+        averaged._core.watch_event([0], [1.0], [1.0], "bad")
+
+
 def test_moving_mass_ladder_on_the_explorer_like_body():
     """Explorer-1-like prolate body with the explicit moving-mass damper (moments (10, 10, 2),
     m = 0.1, ρ = 1, Ω = 5, λ = 1, ω0 = (0.05, 0, 2)): λ|ν|/Ω² = 0.064, |G|²/(A²Ω²) = 0.0064, so the

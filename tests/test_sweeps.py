@@ -151,6 +151,61 @@ def test_summaries_alone_equal_the_summaries_kept_with_trajectories():
         xr.testing.assert_identical(summaries[name].drop_attrs(), full[name].drop_attrs())
 
 
+def test_summaries_in_bulk_equal_each_members_own_run():
+    """The bulk summaries (final values, extrema, t_final: one stack per number of output times)
+    of members whose output counts differ equal each member solved alone, number for number."""
+    doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=11)
+    vary = {"integration.n_out": [5, 11], "torques[0].moment[2]": [0.0, 0.05]}
+    ds = g.sweep(doc, vary, progress=False, trajectories=False)
+    plan = sweeps.Plan(doc, vary)
+    for i in range(plan.size):
+        index = dict(zip(vary, np.unravel_index(i, plan.shape)))
+        member, solution = ds.isel(index), single(plan, i)
+        assert len(solution) == vary["integration.n_out"][index["integration.n_out"]]
+        assert float(member["t_final"]) == solution.t[-1] == 5.0
+        assert int(member["steps"]) == solution.stats["steps"] and str(member["status"].values) == "success"
+        for name in plan.names:
+            assert member[f"final_{name}"].values == solution[name][-1], name
+        for name in plan.output_names:
+            assert member[f"min_{name}"].values == solution[name].min(), name
+            assert member[f"max_{name}"].values == solution[name].max(), name
+
+
+def test_bulk_records_equal_member_by_member_records():
+    """sweeps._record_results over members of different lengths (a failed member keeps a shorter
+    trajectory) and one member with other names writes what _record writes member by member."""
+    from types import SimpleNamespace
+
+    doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=4)
+    plan = sweeps.Plan(doc, {"torques[0].moment[2]": [0.0, 0.05, 0.1]})
+    model = plan.member(plan.values(0)).model
+    rng = np.random.default_rng(5)
+    states, outputs = len(plan.state_names), len(plan.output_names)
+
+    def result(n, status="success", names=None):
+        stats = SimpleNamespace(steps=n, rhs_evals=12 * n, rejected_steps=1, jacobian_evals=0,
+                                nonlinear_conv_failures=0, last_step=0.25)
+        return SimpleNamespace(
+            t=np.linspace(0.0, n - 1.0, n), y=rng.normal(size=(n, states)), outputs=rng.normal(size=(n, outputs)),
+            state_names=names or plan.state_names, output_names=plan.output_names, status=status,
+            message="" if status == "success" else "stopped", stats=stats, terminal_event=-1, warnings=(), notes=(),
+            t_events=[], y_events=[], event_names=(), output_conserved=(False,) * outputs,
+            output_kept=(False,) * outputs)
+
+    results = [result(4), result(2, "max_steps_reached"), result(4), result(0, "invalid_input"),
+               result(4, names=("a", "b", "r", *plan.state_names[3:]))]
+    extrema = plan.output_names[:2]
+    bulk, one = sweeps._blank(plan, 5, False, extrema), sweeps._blank(plan, 5, False, extrema)
+    sweeps._record_results(bulk, list(range(5)), results, [model], plan, False, extrema)
+    for j, r in enumerate(results):
+        sweeps._record(one, j, g.Solution(r, model), plan, False, extrema)
+    assert set(bulk) == set(one)
+    for name in one:
+        assert np.array_equal(bulk[name], one[name], equal_nan=bulk[name].dtype != object), name
+    assert bulk["final_p"][0] == results[0].y[-1, 0] and bulk["final_p"][1] == results[1].y[-1, 0]
+    assert np.isnan(bulk["final_p"][3]) and np.isnan(bulk["final_p"][4]) and bulk["final_r"][4] == results[4].y[-1, 2]
+
+
 def test_dispersion_statistics():
     doc = scene("torque_free_integrated", t_span=[0.0, 0.1], n_out=2)
     vary = {"initial.omega[0]": g.Normal(2.0, 0.5), "initial.omega[1]": g.LogUniform(1e-2, 1e2)}

@@ -1,5 +1,10 @@
 // Bindings of the model of every family as one class `Model` (the engine's AnyModel), with one
 // constructor function per family and the few family-specific queries. Translation only.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include "convert.hpp"
 #include "expose.hpp"
 #include "gyrostat/engine.hpp"
@@ -82,6 +87,45 @@ void expose_models(py::module_& m) {
                  return out;
              },
              py::arg("t"), py::arg("y"), "outputs_at at every time t[i] (n,) and state y[i] (n, dim): (n, outputs).")
+        // the model ladder: on the top rung, whether this (lower) model's watched assumptions hold again
+        .def("watch_event",
+             [](const BoundModel& b, const std::vector<int>& outputs, const std::vector<double>& back,
+                const std::vector<double>& limit, std::string name, int direction, int terminal) {
+                 const auto n = static_cast<int>(output_names(b.model).size());
+                 if (outputs.empty() || back.size() != outputs.size() || limit.size() != outputs.size())
+                     throw py::value_error("watch_event: give one back and one limit per watched output (at least one)");
+                 for (std::size_t i = 0; i < outputs.size(); ++i) {
+                     if (outputs[i] < 0 || outputs[i] >= n)
+                         throw py::value_error("watch_event: output " + std::to_string(outputs[i]) +
+                                               " does not exist (the model records " + std::to_string(n) + ")");
+                     if (!(limit[i] != back[i]) || !std::isfinite(limit[i]) || !std::isfinite(back[i]))
+                         throw py::value_error("watch_event: output " + std::to_string(outputs[i]) +
+                                               ": back and limit must be finite and differ");
+                 }
+                 integrate::Event e;
+                 e.quantity = integrate::Event::Quantity::Function;
+                 e.direction = direction, e.terminal = terminal, e.name = std::move(name);
+                 // g(t, y) = max_i (o_i - back_i) / (limit_i - back_i), o the outputs of this model at the
+                 // top's state y mapped down (outputs_at projects it, as initial_state does): 0 where every watched output is back below its
+                 // `back`, 1 at a limit; 1 where an output is not finite (no margin to come back down on)
+                 e.function = [model = b.model, outputs, back, limit](double t, const double* y, int dim) {
+                     const Eigen::VectorXd values = outputs_at(model, t, Eigen::Map<const Eigen::VectorXd>(y, dim));
+                     double worst = -std::numeric_limits<double>::infinity();
+                     for (std::size_t i = 0; i < outputs.size(); ++i) {
+                         const double ratio = (values[outputs[i]] - back[i]) / (limit[i] - back[i]);
+                         if (!std::isfinite(ratio)) return 1.0;
+                         worst = std::max(worst, ratio);
+                     }
+                     return worst;
+                 };
+                 return e;
+             },
+             py::arg("outputs"), py::arg("back"), py::arg("limit"), py::arg("name"), py::arg("direction") = -1,
+             py::arg("terminal") = 1,
+             "An engine event for a run of a model above this one on the ladder, evaluated in C++ at every step: "
+             "g(t, y) = the largest (o_i - back_i) / (limit_i - back_i) of this model's outputs o = outputs_at(t, y) "
+             "(y mapped down as initial_state maps it) at the indices ``outputs`` (1 where one is not finite). It falls through 0 where every "
+             "watched output is back below its ``back``.")
         // averaged symmetric system
         .def("fast_frequency",
              [](const BoundModel& b, double r) {

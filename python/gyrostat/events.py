@@ -102,7 +102,7 @@ def _check_signature(function: Callable, i: int, name: str) -> None:
 def _listed(events) -> list:
     if events is None:
         return []
-    return [events] if callable(events) or isinstance(events, Event) else list(events)
+    return [events] if callable(events) or isinstance(events, (Event, _core.Event)) else list(events)
 
 
 def labels(events) -> list[str]:
@@ -111,7 +111,8 @@ def labels(events) -> list[str]:
     " (2)", " (3)", ... (so that ``t_events`` by name and the report keep every event)."""
     names: list[str] = []
     for i, event in enumerate(_listed(events)):
-        base = event.label if isinstance(event, Event) else getattr(event, "__name__", f"event {i}")
+        base = (event.label if isinstance(event, Event) else event.name if isinstance(event, _core.Event)
+                else getattr(event, "__name__", f"event {i}"))
         name, count = base, 1
         while name in names:
             count += 1
@@ -121,7 +122,8 @@ def labels(events) -> list[str]:
 
 
 def to_core(events, state_names, output_names) -> list:
-    """The engine's events for a model with these state and output names."""
+    """The engine's events for a model with these state and output names (an engine event made
+    already, ``_core.Event``, such as a model's ``watch_event``, is passed as it is)."""
     events = _listed(events)
     names = labels(events)
     core = []
@@ -136,6 +138,8 @@ def to_core(events, state_names, output_names) -> list:
                                  f"({', '.join(state_names)}) nor an output ({', '.join(output_names)}) of this model")
             core.append(_core.Event(kind, index, float(event.value), event.direction,
                                     _terminal_count(event.terminal, event.quantity), names[i]))
+        elif isinstance(event, _core.Event):  # an engine event made already (the ladder's watch_event)
+            core.append(event)
         elif callable(event):
             name = names[i]
             direction = _direction(getattr(event, "direction", 0), f"event {i} ({name})")

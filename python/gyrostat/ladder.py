@@ -34,15 +34,16 @@ import dataclasses
 import json
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.events import Event
-from gyrostat.solution import Solution
-from gyrostat.solve import solve
+from gyrostat.events import Event, to_core
+from gyrostat.solution import AccuracyWarning, Solution
+from gyrostat.solve import make_options, solve
 from gyrostat.assumptions import Assumption
 
 ACCURACY = 1e-3
@@ -158,9 +159,31 @@ def rates(solution) -> np.ndarray:
 
 
 # ------------------------------------------------------------------------------------ the probe
+PROBE_SAMPLES = 201
+"""The probe compares the rungs at this many evenly spaced times of its window."""
+_PROBED = ("method", "rtol", "atol", "max_steps")
+_DEFAULT = _core.Options()
+
+
 def _solve(rung: Rung, y0, span, options: dict, t_eval=None, events=None) -> Solution:
-    kept = {k: v for k, v in options.items() if k in ("method", "rtol", "atol", "max_steps")}
+    kept = {k: v for k, v in options.items() if k in _PROBED}
     return solve(rung.model, y0, span, **kept, t_eval=t_eval, events=events, check_validity=False, progress=False)
+
+
+def _run_on_engine(rung: Rung, y0, span, opts) -> Solution:
+    """A probe's run: the engine called once with Options made beforehand (the checks of
+    :func:`gyrostat.solve` were made on the scene's own runs)."""
+    return Solution(_core.solve(rung.model._core, np.asarray(y0, float), float(span[0]), float(span[1]), opts, None),
+                    rung.model)
+
+
+def _segment(rung: Rung, y0, span, opts) -> Solution:
+    """A piece of a switching run: the engine called with the rung's Options made once; the run's
+    doubts warned about as :func:`gyrostat.solve` warns them."""
+    solution = _run_on_engine(rung, y0, span, opts)
+    for doubt in solution.accuracy_warnings:
+        warnings.warn(doubt, AccuracyWarning, stacklevel=3)
+    return solution
 
 
 def probe(rung: Rung, top: Rung, span: tuple[float, float], options: dict) -> Estimate:
@@ -175,28 +198,38 @@ def probe(rung: Rung, top: Rung, span: tuple[float, float], options: dict) -> Es
     up like a random walk), which the comparison with the top cannot resolve below."""
     t0, t1 = span
     window = min(PROBE_PERIODS * rung.fast_period, PROBE_FRACTION * (t1 - t0))
-    times = np.linspace(t0, t0 + window, 201)
+    times = np.linspace(t0, t0 + window, PROBE_SAMPLES)
+    opts = make_options(**{k: v for k, v in options.items() if k in _PROBED}, t_eval=times)
     started = time.perf_counter()
-    upper = _solve(top, top.y0, (t0, t0 + window), options, t_eval=times)
+    upper = _run_on_engine(top, top.y0, (t0, t0 + window), opts)
     middle = time.perf_counter()
-    lower = _solve(rung, rung.y0, (t0, t0 + window), options, t_eval=times)
+    lower = _run_on_engine(rung, rung.y0, (t0, t0 + window), opts)
     ended = time.perf_counter()
-    seconds = {top.name: middle - started, rung.name: ended - middle}
-    if not (upper.success and lower.success) or len(upper) != len(times) or len(lower) != len(times):
+    return _estimate(rung, top, span, options, window, upper, lower, {top.name: middle - started,
+                                                                       rung.name: ended - middle})
+
+
+def _estimate(rung: Rung, top: Rung, span, options: dict, window: float, upper: Solution, lower: Solution,
+              seconds: dict) -> Estimate:
+    """The estimate from the two runs of a probe over [t0, t0 + window] at PROBE_SAMPLES times."""
+    t0, t1 = span
+    samples = PROBE_SAMPLES
+    if not (upper.success and lower.success) or len(upper) != samples or len(lower) != samples:
         failed = upper if not upper.success else lower
         return Estimate(math.inf, math.inf, math.inf, (t0, t0 + window), seconds,
                         f"the probe failed ({failed.status}: {failed.message})")
-    reference = top.compare(upper)
-    scale = float(np.max(np.linalg.norm(reference, axis=1))) or 1.0
-    difference = np.linalg.norm(reference - rung.compare(lower), axis=1) / scale
-    measured = float(np.max(difference))
-    half = len(times) // 2
-    growth = max(0.0, float(np.max(difference[half:]) - np.max(difference[:half]))) / (0.5 * window)
+    reference = np.asarray(top.compare(upper), float)
+    apart = reference - rung.compare(lower)
+    scale = float(np.sqrt((reference * reference).sum(axis=1)).max()) or 1.0  # the rows' norms, as np.linalg.norm
+    difference = np.sqrt((apart * apart).sum(axis=1)) / scale
+    measured = float(difference.max())
+    half = samples // 2
+    growth = max(0.0, float(difference[half:].max() - difference[:half].max())) / (0.5 * window)
     rest = max(0.0, t1 - t0 - window)
     # d = c t²: the halves' maxima differ by (3/4) c T², so growth = 1.5 c T and c = growth / (1.5 T)
     # the integrators' own error as a floor: per-period local errors ~ rtol adding up like a random walk
     periods = (t1 - t0) / rung.fast_period
-    floor = float(options.get("rtol", _core.Options().rtol)) * math.sqrt(max(periods, 1.0))
+    floor = float(options.get("rtol", _DEFAULT.rtol)) * math.sqrt(max(periods, 1.0))
     value = SAFETY * (max(measured, floor) + (growth * (rest + rest**2 / (1.5 * window)) if rung.phase_compared
                                              else growth * rest))
     law = ("quadratically (the fast phase is compared)" if rung.phase_compared else
@@ -246,7 +279,7 @@ def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy
     if key is not None:
         cached = _CHOICES.get(key)
         if cached is not None:
-            return dataclasses.replace(cached, entries=copy.deepcopy(cached.entries), reused=True)
+            return dataclasses.replace(cached, entries=_copied(cached.entries), reused=True)
         made = choose(rungs, span, options, accuracy)
         if len(_CHOICES) >= CACHE_SIZE:
             _CHOICES.pop(next(iter(_CHOICES)))
@@ -291,6 +324,16 @@ def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy
     entries.append({"rung": top.name, "model": top.description, "taken": True,
                     "reason": "the scene's most complete model (the reference of the rungs below)"})
     return Choice(rungs, top, accuracy, entries)
+
+
+def _copied(value):
+    """A deep copy of a choice's entries (dicts, lists and numbers, as :func:`choose` makes them),
+    without copy.deepcopy's bookkeeping."""
+    if isinstance(value, dict):
+        return {k: _copied(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_copied(v) for v in value]
+    return copy.deepcopy(value) if not isinstance(value, (str, int, float, bool, type(None), tuple)) else value
 
 
 def _fit_watches(rung: Rung, estimate: Estimate, accuracy: float) -> tuple[Rung, str]:
@@ -351,6 +394,20 @@ def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tupl
     return Solution.join(lower.model, segments, parts, switches, y_last)
 
 
+def _back_down(lower: Rung):
+    """The terminal event of a run on the top rung: every watched assumption of ``lower`` holds
+    again with margin. An engine event evaluated in C++ at every step (the lower model's
+    ``watch_event``: the largest :meth:`Watch.ratio` of its outputs at the state mapped down, no
+    call into Python), or :func:`_trouble`, the same g in Python, for watches whose ``ratio`` is
+    their own."""
+    core = lower.model._core
+    if all(type(w).ratio is Watch.ratio for w in lower.watches) and hasattr(core, "watch_event"):
+        names = list(core.output_names)
+        return core.watch_event([names.index(w.output) for w in lower.watches], [w.back for w in lower.watches],
+                                [w.limit for w in lower.watches], "assumptions hold again", -1, 1)
+    return _trouble(lower)
+
+
 def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
     """g(t, y) on the top rung: the largest Watch.ratio of the lower model's outputs at the
     projected state, minus 0 (so g falls through 0 where every assumption holds with margin)."""
@@ -361,8 +418,8 @@ def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
 
     def back_down(t, y):  # called at every step of the top's run (y: the engine's float array)
         values = outputs_at(t, y)
-        worst = max([ratio(float(values[i])) for i, ratio in watched])
-        return worst if math.isfinite(worst) else 1.0
+        ratios = [ratio(float(values[i])) for i, ratio in watched]
+        return max(ratios) if all(map(math.isfinite, ratios)) else 1.0  # as watch_event: no margin on a NaN
 
     back_down.direction = -1
     back_down.terminal = True
@@ -377,28 +434,28 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
     rung, top = choice.chosen, choice.rungs[-1]
     t0, t1 = span
     kept = {k: v for k, v in options.items() if k not in ("n_out", "t_eval", "events")}
-    n_out = int(options.get("n_out", _core.Options().n_out))
-    grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
+    n_out = int(options.get("n_out", _DEFAULT.n_out))
     extra_events = list(options.get("events", []))
-    if rung is top or not rung.watches:
-        return solve(rung.model, rung.y0, span, **kept, t_eval=grid, events=extra_events or None,
+    if rung is top or not rung.watches:  # one run, asked for as the scene asks for it (n_out: the same times)
+        timing = {"t_eval": options["t_eval"]} if options.get("t_eval") is not None else {"n_out": n_out}
+        return solve(rung.model, rung.y0, span, **kept, **timing, events=extra_events or None,
                      check_validity=False, progress=progress if progress is not None else False)
+    grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     fails = [Event(w.output, w.limit, 1, True, w.statement) for w in rung.watches]
-    back_down = _trouble(rung)
+    # each rung's options made once, its events included (each segment sets its output times)
+    opts = {False: make_options(**kept), True: make_options(**kept)}
+    for upper, events in ((False, fails), (True, [_back_down(rung)])):
+        core = (top if upper else rung).model._core
+        opts[upper].events = to_core(events, list(core.state_names), list(core.output_names))
     segments: list[tuple[str, Solution]] = []
     switches: list[tuple] = []
     t, state, on_top = t0, rung.y0, False
     while True:
         times = grid[(grid > t) | ((grid == t) & (not segments))]
-        times = times if len(times) else np.array([t1])
-        if on_top:
-            sol = solve(top.model, state, (t, t1), **kept, t_eval=times, events=[back_down], check_validity=False,
-                        progress=False)
-            segments.append((top.name, sol))
-        else:
-            sol = solve(rung.model, state, (t, t1), **kept, t_eval=times, events=fails, check_validity=False,
-                        progress=False)
-            segments.append((rung.name, sol))
+        opts[on_top].t_eval = times if len(times) else np.array([t1])
+        current = top if on_top else rung
+        sol = _segment(current, state, (t, t1), opts[on_top])
+        segments.append((current.name, sol))
         if not sol.success or sol.terminal_event is None or sol.t_last >= t1:
             break
         t = float(sol.t_last)

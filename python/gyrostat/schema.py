@@ -337,7 +337,12 @@ def _as_type(spec: Any) -> _Type:
     raise TypeError(f"not a schema type: {spec!r} (use float, int, bool, str or a gyrostat.schema type)")
 
 
+_FLOATS = frozenset({float})
+
+
 def _numbers(value: Any, size: int | None) -> bool:
+    if type(value) is list and (size is None or len(value) == size) and set(map(type, value)) <= _FLOATS:
+        return True  # a list of floats (what a scene or a sweep member mostly holds): no check per item
     return (isinstance(value, (list, tuple)) and (size is None or len(value) == size)
             and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in value))
 
@@ -619,6 +624,10 @@ class Located:
         value = document
         for part in self.field_parts:
             value = value[part]
+        return self.validate(value)
+
+    def validate(self, value: Any) -> Any:
+        """Validates a value of the field as :func:`validate` would (a sweep member's)."""
         return self.field.validate(value, _Path(self.root, self.field_parts))
 
 
@@ -695,9 +704,23 @@ def finite(value: Any, _: Any = None) -> None:
         raise ValueError("must be finite")
 
 
+def _flat_floats(values: Any) -> Any:
+    """A float, a list of floats or a list of lists of floats as one iterable of them; None for
+    anything else."""
+    if type(values) is float:
+        return (values,)
+    if type(values) is list:
+        if set(map(type, values)) <= _FLOATS:
+            return values
+        if all(type(row) is list and set(map(type, row)) <= _FLOATS for row in values):
+            return [x for row in values for x in row]
+    return None
+
+
 def all_finite(values: Any) -> None:
     """Every number is finite."""
-    if not np.all(np.isfinite(np.asarray(values, float))):
+    flat = _flat_floats(values)  # validated values are floats: checked without NumPy
+    if not (all(map(math.isfinite, flat)) if flat is not None else np.all(np.isfinite(np.asarray(values, float)))):
         raise ValueError("must be finite numbers")
 
 

@@ -161,17 +161,19 @@ class Solution:
         """
         core = model._core
         dim, n_out = len(core.state_names), len(core.output_names)
+        quantities = core.quantities  # made by the core on each call: once
         last = pieces[-1][1]
-        stats = {k: sum(sol.stats[k] for _, sol in pieces) for k in last.stats if k != "last_step"}
+        each = [sol.stats for _, sol in pieces]  # a dict made on each call: once per piece
+        stats = {k: sum(piece[k] for piece in each) for k in each[-1] if k != "last_step"}
         result = SimpleNamespace(
             t=np.concatenate([p[0] for p in parts]) if parts else np.zeros(0),
             y=np.vstack([p[1] for p in parts]) if parts else np.zeros((0, dim)),
             outputs=np.vstack([p[2] for p in parts]) if parts else np.zeros((0, n_out)),
             state_names=tuple(core.state_names), output_names=tuple(core.output_names),
-            state_units=tuple(q["unit"] for q in core.quantities if q["role"] == "state"),
-            output_units=tuple(q["unit"] for q in core.quantities if q["role"] == "output"),
+            state_units=tuple(q["unit"] for q in quantities if q["role"] == "state"),
+            output_units=tuple(q["unit"] for q in quantities if q["role"] == "output"),
             output_conserved=(False,) * n_out, output_kept=(False,) * n_out, options=last._result.options,
-            stats=SimpleNamespace(**stats, last_step=last.stats["last_step"]),
+            stats=SimpleNamespace(**stats, last_step=each[-1]["last_step"]),
             t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status, message=last.message,
             success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
             methods_used=(), switches=[], warnings=(), notes=(), t_events=[], y_events=[], event_names=(),

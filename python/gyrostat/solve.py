@@ -427,6 +427,45 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     >>> [round(float(sol["r"][-1] / sol["r"][0]), 4) for sol in sols]
     [0.3679, 0.3679, 0.3679]
     """
+    check_validity = flag(check_validity, "check_validity")
+    models, results = ensemble_results(models, y0s, t_span, threads=threads, method=method, rtol=rtol, atol=atol,
+                                        t_eval=t_eval, n_out=n_out, every_step=every_step, max_steps=max_steps,
+                                        first_step=first_step, max_step=max_step, step=step,
+                                        splitting_order=splitting_order, options=options, events=events,
+                                        dense_output=dense_output, progress=progress, batch=batch)
+    solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
+    return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
+
+
+def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
+                      n_out=None, every_step=None, max_steps=None, first_step=None, max_step=None, step=None,
+                      splitting_order=None, options=None, events=None, dense_output=False, progress=None,
+                      batch=True) -> tuple[list, list]:
+    """:func:`solve_ensemble` up to the engine's results, without a :class:`Solution` per member:
+    for callers that summarise many members at once (:func:`gyrostat.sweeps.solve_chunk`).
+
+    Parameters
+    ----------
+    models, y0s, t_span, threads, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, \
+step, splitting_order, options, events, dense_output, progress, batch
+        As in :func:`solve_ensemble` (which checks them the same way).
+
+    Returns
+    -------
+    (list, list)
+        The models (one for every member, or one per member) and the engine's ``Result`` of
+        every member, in index order (``Solution(result, model)`` makes a member's Solution).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import gyrostat
+    >>> from gyrostat.solve import ensemble_results
+    >>> model = gyrostat.Model(gyrostat.Body([2.0, 2.0, 1.0]), [gyrostat.LinearDamping(diagonal=[0.1, 0.1, 0.1])])
+    >>> _, results = ensemble_results(model, np.array([[0.1, 0.0, 1.0], [0.1, 0.0, 2.0]]), (0.0, 10.0), n_out=11)
+    >>> [r.status for r in results], [round(float(r.y[-1, 2] / r.y[0, 2]), 4) for r in results]
+    (['success', 'success'], [0.3679, 0.3679])
+    """
     if isinstance(models, ModelBase):
         models = [models]
     models = list(models)
@@ -459,7 +498,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         _warn_loose_atol(atol, np.abs(np.asarray(y0s[0] if isinstance(y0s, list) else y0s, float)).max(axis=0))
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or abs(threads) > 4096:
         raise ValueError(f"threads = {threads!r} must be a whole number of at most 4096 (<= 0: one per core)")
-    batch, check_validity = flag(batch, "batch"), flag(check_validity, "check_validity")
+    batch = flag(batch, "batch")
     outputs = len(opts.t_eval) or opts.n_out
     check_output_memory(cores, count, outputs, f"{count} members x {outputs} output times")
     report = _bars.resolve(progress, total=count, unit="member")
@@ -467,8 +506,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report, batch=batch)
     finally:
         _bars.close(report)
-    solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
-    return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
+    return models, results
 
 
 RUN_MEMORY_LIMIT = _core.max_output_bytes

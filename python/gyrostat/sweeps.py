@@ -39,6 +39,7 @@ NetCDF file as it finishes, so that memory stays bounded for any number of membe
 from __future__ import annotations
 
 import copy
+import gc
 import itertools
 import json
 import math
@@ -55,7 +56,7 @@ from gyrostat import _core, output
 from gyrostat import progress as _bars
 from gyrostat.events import labels, variable_name
 from gyrostat.modelbase import shown
-from gyrostat.solution import AccuracyWarning
+from gyrostat.solution import Solution
 from gyrostat.schema import SceneError, locate
 
 __all__ = ["Uniform", "Normal", "LogUniform", "Parameter", "Plan", "sweep", "open_sweep", "summary",
@@ -337,6 +338,26 @@ def _assign(container, parts: tuple, value):
             copied[k] = value
     else:
         copied[head] = value
+    return copied
+
+
+def _write_tree(paths: list[tuple]) -> dict:
+    """The paths as a tree, {key: subtree}, a leaf being the index of the path in ``paths``."""
+    tree: dict = {}
+    for n, parts in enumerate(paths):
+        node = tree
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = n
+    return tree
+
+
+def _assign_fields(container, tree: dict, values: list):
+    """A copy of ``container`` with the value of each leaf of ``tree`` (:func:`_write_tree`) set:
+    every container on the paths copied once, the others shared."""
+    copied = dict(container) if isinstance(container, dict) else list(container)
+    for key, node in tree.items():
+        copied[key] = values[node] if isinstance(node, int) else _assign_fields(container[key], node, values)
     return copied
 
 
@@ -656,7 +677,7 @@ class Plan:
         return targets
 
     def __getstate__(self):
-        return {k: v for k, v in self.__dict__.items() if k != "_located"}
+        return {k: v for k, v in self.__dict__.items() if k not in ("_located", "_made_writes", "_fields")}
 
     @property
     def located(self):
@@ -727,15 +748,33 @@ class Plan:
         >>> plan.document([0.2])["torques"][0]["diagonal"]
         [0.1, 0.1, 0.2]
         """
-        doc = self.base
-        changed = {}
-        index = {id(parameter): k for k, parameter in enumerate(self.parameters)}
-        for parameter, parts, located in self.located:
-            doc = _assign(doc, parts, parameter.scale * values[index[id(parameter)]])
-            changed[located.field_parts] = located
-        for field_parts, located in changed.items():
-            doc = _assign(doc, field_parts, located.revalidate(doc))
-        return doc
+        updates = []
+        for located, raw, writes in self._writes:  # each changed field: its numbers set, then validated
+            for k, scale, inner in writes:
+                raw = _assign(raw, inner, scale * values[k]) if inner else scale * values[k]
+            updates.append(located.validate(raw))
+        return _assign_fields(self.base, self._fields, updates)
+
+    @property
+    def _writes(self) -> list[tuple]:
+        """What :meth:`document` writes, made once: per changed field, where it is located, its
+        value in the scene and the numbers set inside it, (parameter index, scale, indices inside
+        the value), in the order of the paths."""
+        try:
+            return self._made_writes
+        except AttributeError:
+            index = {id(parameter): k for k, parameter in enumerate(self.parameters)}
+            fields: dict[tuple, tuple] = {}
+            for parameter, parts, located in self.located:
+                if located.field_parts not in fields:
+                    value = self.base
+                    for part in located.field_parts:
+                        value = value[part]
+                    fields[located.field_parts] = (located, value, [])
+                fields[located.field_parts][2].append((index[id(parameter)], parameter.scale, located.inner))
+            self._fields = _write_tree(list(fields))
+            self._made_writes = list(fields.values())
+            return self._made_writes
 
     def member(self, values: Sequence[float]):
         """The run (model, initial state, span, options) of the member with these values; raises
@@ -873,39 +912,45 @@ def _record(arrays: dict, j: int, solution, plan: Plan, trajectories: bool, extr
         arrays["terminal_event"][j] = solution.event_names[solution.terminal_event]
 
 
-def _record_many(arrays: dict, rows: list[int], solutions: list, plan: Plan, trajectories: bool,
-                 extrema: tuple[str, ...]) -> None:
-    """:func:`_record` for the members of one solve_ensemble call (chunk rows ``rows``): status,
-    message, statistics and, for a summaries-only sweep without events, the final values of the
-    members with the plan's names, one column at a time; every other member by :func:`_record`."""
-    if trajectories or extrema or plan.event_labels:
-        for j, solution in zip(rows, solutions):
-            _record(arrays, j, solution, plan, trajectories, extrema)
+def _record_results(arrays: dict, rows: list[int], results: list, models: list, plan: Plan, trajectories: bool,
+                    extrema: tuple[str, ...]) -> None:
+    """:func:`_record` for the members of one ensemble call (chunk rows ``rows``, the engine's
+    ``Result`` of each and its model, one or one per member), in bulk: status, message and
+    statistics one column at a time; for a summaries-only sweep without events, the final values
+    and the extrema of the members with the plan's names as arrays over the members (one stack of
+    their tables per number of output times). Any other member is recorded by :func:`_record`."""
+    model_of = (lambda k: models[0]) if len(models) == 1 else models.__getitem__
+    if trajectories or plan.event_labels:
+        for k, (j, r) in enumerate(zip(rows, results)):
+            _record(arrays, j, Solution(r, model_of(k)), plan, trajectories, extrema)
         return
-    results = [s._result for s in solutions]
-    arrays["status"][rows] = [s.status for s in solutions]
+    arrays["status"][rows] = [r.status for r in results]
     arrays["message"][rows] = [r.message for r in results]
     stats = [r.stats for r in results]
     for name in STATS + ("last_step",):
         arrays[name][rows] = [getattr(s, name) for s in stats]
-    kept, last_t, last_y, last_outputs = [], [], [], []
-    for j, solution, r in zip(rows, solutions, results):
+    tables: dict[int, list] = {}  # number of output times: [(row, t, y, outputs)]
+    states, outputs = list(plan.state_names), list(plan.output_names)
+    for k, (j, r) in enumerate(zip(rows, results)):
         t = r.t
         if not len(t):
             continue
-        if r.terminal_event >= 0 or tuple(r.state_names) != plan.state_names or \
-                tuple(r.output_names) != plan.output_names:
-            _record(arrays, j, solution, plan, trajectories, extrema)
+        if r.terminal_event >= 0 or list(r.state_names) != states or list(r.output_names) != outputs:
+            _record(arrays, j, Solution(r, model_of(k)), plan, trajectories, extrema)
             continue
-        kept.append(j)
-        last_t.append(t[-1])
-        last_y.append(r.y[-1])
-        last_outputs.append(r.outputs[-1])
-    if kept:
-        arrays["t_final"][kept] = last_t
-        finals = np.hstack([np.array(last_y), np.array(last_outputs).reshape(len(kept), len(plan.output_names))])
-        for k, name in enumerate(plan.names):
-            arrays[f"final_{name}"][kept] = finals[:, k]
+        tables.setdefault(len(t), []).append((j, t, r.y, r.outputs))
+    for n, members in tables.items():
+        chosen = [m[0] for m in members]
+        table = np.stack([m[2] for m in members])  # (members, n, dim)
+        if plan.output_names:
+            table = np.concatenate([table, np.stack([m[3] for m in members]).reshape(len(members), n, -1)], axis=2)
+        arrays["t_final"][chosen] = [m[1][-1] for m in members]
+        finals = table[:, -1, :]
+        low, high = (table.min(axis=1), table.max(axis=1)) if extrema else (None, None)
+        for c, name in enumerate(plan.names):
+            arrays[f"final_{name}"][chosen] = finals[:, c]
+            if name in extrema:
+                arrays[f"min_{name}"][chosen], arrays[f"max_{name}"][chosen] = low[:, c], high[:, c]
 
 
 def _put_values(arrays: dict, plan: Plan, drawn: list[tuple[float, ...]]) -> None:
@@ -963,15 +1008,23 @@ def _members(plan: Plan, start: int, stop: int, trajectories: bool, extrema: tup
     groups: dict[tuple, list] = {}
     drawn = plan.values_range(start, stop)
     _put_values(arrays, plan, drawn)
-    for j, values in enumerate(drawn):
-        try:
-            run = plan.member(values)
-        except (SceneError, ValueError) as error:
-            arrays["status"][j], arrays["message"][j] = "invalid_input", " ".join(str(error).split())
-            continue
-        options = tuple(sorted((k, v) for k, v in run.options.items() if k != "events"))
-        key = (run.t_span, options, tuple(run.options.get("events", ())))
-        groups.setdefault(key, []).append((j, run))
+    # the members' documents, models and runs are many small containers kept to the chunk's end: the cyclic
+    # collector, paused while they are made, would otherwise pass over them again and again (~15% of the time)
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        for j, values in enumerate(drawn):
+            try:
+                run = plan.member(values)
+            except (SceneError, ValueError) as error:
+                arrays["status"][j], arrays["message"][j] = "invalid_input", " ".join(str(error).split())
+                continue
+            options = tuple(sorted((k, v) for k, v in run.options.items() if k != "events"))
+            key = (run.t_span, options, tuple(run.options.get("events", ())))
+            groups.setdefault(key, []).append((j, run))
+    finally:
+        if collecting:
+            gc.enable()
     return arrays, groups
 
 
@@ -980,7 +1033,7 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
     """The second half of :func:`solve_chunk`: the groups solved (one solve_ensemble each, the
     engine's pool with the GIL released) and each member's summary recorded."""
     from gyrostat.modelbase import ModelBase
-    from gyrostat.solve import solve_ensemble
+    from gyrostat.solve import ensemble_results
 
     arrays, groups = members_of_chunk
     count = len(arrays["status"])
@@ -991,20 +1044,23 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
         def report(fraction, before=done / count, share=share):
             progress(before + share * fraction)
 
-        with warnings.catch_warnings():  # each member's doubts are recorded (accuracy_warning), not printed
-            warnings.simplefilter("ignore", AccuracyWarning)
-            solutions = solve_ensemble([run.model for _, run in members], [run.y0 for _, run in members], span,
-                                       threads=threads, events=list(events) or None, check_validity=False,
+        # the engine's results, not a Solution per member: the summaries are made in bulk (_record_results);
+        # each member's doubts are recorded (accuracy_warning), not warned about
+        models = [run.model for _, run in members]
+        _, results = ensemble_results(models, [run.y0 for _, run in members], span, threads=threads,
+                                       events=list(events) or None,
                                        progress=report if progress is not None else False, **dict(options))
-        _record_many(arrays, [j for j, _ in members], solutions, plan, trajectories, extrema)
-        for (j, run), solution in zip(members, solutions):
-            arrays["accuracy_warning"][j] = solution.accuracy_warnings[0] if solution.accuracy_warnings else ""
-            if check_validity and len(solution) and type(run.model).check is not ModelBase.check:
-                broken = [str(a) for a in run.model.check(solution) if not a.holds]  # the averaging's assumptions
+        _record_results(arrays, [j for j, _ in members], results, models, plan, trajectories, extrema)
+        for (j, run), result in zip(members, results):
+            doubts = result.warnings
+            if len(doubts):
+                arrays["accuracy_warning"][j] = doubts[0]
+            if check_validity and len(result.t) and type(run.model).check is not ModelBase.check:
+                broken = [str(a) for a in run.model.check(Solution(result, run.model)) if not a.holds]  # the averaging's
                 arrays["broken_assumptions"][j] = len(broken)
                 arrays["first_broken_assumption"][j] = broken[0] if broken else ""
         done += len(members)
-        if any(s.status == "interrupted" for s in solutions):
+        if any(r.status == "interrupted" for r in results):
             arrays["interrupted"][0] = True
             break
     return arrays

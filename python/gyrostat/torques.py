@@ -17,7 +17,8 @@ import importlib
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.schema import Field, ListOf, Matrix, NamedValues, Table, Variants, Vector, non_negative, positive
+from gyrostat.schema import (Field, ListOf, Matrix, NamedValues, Table, Variants, Vector, all_finite, non_negative,
+                             positive)
 
 __all__ = ["TORQUE_TYPES", "BY_KIND", "TORQUE", "build", "names", "schema", "importable"]
 
@@ -34,8 +35,7 @@ def names() -> str:
 
 
 def _finite(values) -> None:
-    if not np.all(np.isfinite(np.asarray(values, float))):
-        raise ValueError("must be finite numbers")
+    all_finite(values)
 
 
 _SHAPES = {"scalar": lambda: float, "vector3": lambda: Vector(3), "matrix3": lambda: Matrix(3, 3),
