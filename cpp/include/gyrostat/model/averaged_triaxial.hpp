@@ -115,19 +115,19 @@ public:
     }
 
     /// The free motion at its phase plus `phase`: ω (the full model's state where the averaging
-    /// stops holding; the model ladder's switch up).
+    /// stops holding; the model ladder's switch up). `y` is a state of a run: at |G|² ≤ 0 the body
+    /// is at rest (ω = 0, as the right-hand side takes it), and a T rounded past the permanent
+    /// rotation is that rotation; the separatrix, a bad branch or phase are refused by name.
     Eigen::VectorXd full_state(const State& y, double phase) const {
-        check_state(y);
+        check_branch_and_phase(y);
+        if (!(y[0] > 0.0) && std::isfinite(y[0]) && std::isfinite(y[1])) return Eigen::VectorXd::Zero(3);
         return motion(y).omega(y[3] + phase);
     }
 
     /// Refuses a state no motion of this body has, naming it: |G|² ≤ 0, p_b = 0 (the separatrix),
     /// a branch other than ±1, (|G|², p_b) outside the body's level sets, a non-finite phase.
     void check_state(const State& y) const {
-        if (y[2] != 1.0 && y[2] != -1.0)
-            throw std::invalid_argument("AveragedTriaxial: the branch must be +1 or -1; got " + format_value(y[2]));
-        if (!std::isfinite(y[3]))
-            throw std::invalid_argument("AveragedTriaxial: the phase must be finite; got " + format_value(y[3]));
+        check_branch_and_phase(y);
         (void)motion(y, false);
     }
 
@@ -169,6 +169,13 @@ public:
     bool keeps(std::size_t /*output*/) const { return torques_.empty(); }
 
 private:
+    static void check_branch_and_phase(const State& y) {
+        if (y[2] != 1.0 && y[2] != -1.0)
+            throw std::invalid_argument("AveragedTriaxial: the branch must be +1 or -1; got " + format_value(y[2]));
+        if (!std::isfinite(y[3]))
+            throw std::invalid_argument("AveragedTriaxial: the phase must be finite; got " + format_value(y[3]));
+    }
+
     Body body_;
     TorqueSet torques_;
     double middle_ = 0.0;
