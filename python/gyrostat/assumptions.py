@@ -82,11 +82,12 @@ class Assumption:
         return text + (f"; {self.note}" if self.note else "")
 
 
-def _omegas(model, states: np.ndarray) -> np.ndarray:
+def _omegas(model, states: np.ndarray, outputs: dict | None = None) -> np.ndarray:
     """(n, 3) angular velocities: for an averaged model ω = (a, 0, r) stands for the motion, or the
-    model's own ``omegas_of`` (the free motion at the carried phase)."""
+    model's own ``omegas_of`` (the free motion at the carried phase, from the outputs recorded at
+    those states where the model has them)."""
     if hasattr(model, "omegas_of"):
-        return model.omegas_of(states)
+        return model.omegas_of(states, outputs)
     if states.shape[1] == 2:
         return np.column_stack([states[:, 0], np.zeros(len(states)), states[:, 1]])
     return states[:, :3]
@@ -122,7 +123,7 @@ def check(model, states, times=None, warn: bool = True, outputs: dict | None = N
     times = np.zeros(len(states)) if times is None else np.asarray(times, float)
     if states.shape[1] == model.dim:  # the checks look at the motion in principal axes (a body given by a tensor)
         states = np.asarray(model._core.principal_states(states))
-    omegas = _omegas(model, states)
+    omegas = _omegas(model, states, outputs)
     # each torque's own numbers, as its C++ header declares them (torque.assumptions)
     motion = _core.Motion(model.body.moments, omegas)
     results: list[Assumption] = [Assumption(a.part, a.statement, a.value, a.limit, a.holds, a.note)

@@ -108,6 +108,11 @@ class Rung:
     run: str = "full"
     """The name of the scene run this rung's solution stands for (the name its kind's analysis
     and plots look for)."""
+    fast_compare: Callable[[Solution], np.ndarray] | None = None
+    """ω(t) as this rung gives it (an averaged rung carrying the fast phase: the free motion at
+    that phase), (n, 3): the probe compares it with the top's ω (:func:`rates`) and extrapolates
+    its error quadratically (the phase's error integrates the frequency's); reported beside the
+    estimate (``fast_motion``), not used for the choice, which rests on ``compare``."""
 
 
 @dataclass
@@ -120,10 +125,15 @@ class Estimate:
     probe: tuple[float, float]
     seconds: dict[str, float]
     basis: str
+    fast: Estimate | None = None
+    """The error of ω(t) at the phase the rung carries (:attr:`Rung.fast_compare`), when it carries one."""
 
     def as_dict(self) -> dict:
-        return {"value": self.value, "measured_in_probe": self.measured, "growth_per_unit_time": self.growth,
-                "probe": list(self.probe), "probe_seconds": self.seconds, "basis": self.basis}
+        entry = {"value": self.value, "measured_in_probe": self.measured, "growth_per_unit_time": self.growth,
+                 "probe": list(self.probe), "probe_seconds": self.seconds, "basis": self.basis}
+        if self.fast is not None:
+            entry["fast_motion"] = self.fast.as_dict()
+        return entry
 
 
 @dataclass
@@ -218,28 +228,38 @@ def _estimate(rung: Rung, top: Rung, span, options: dict, window: float, upper: 
         failed = upper if not upper.success else lower
         return Estimate(math.inf, math.inf, math.inf, (t0, t0 + window), seconds,
                         f"the probe failed ({failed.status}: {failed.message})")
-    reference = np.asarray(top.compare(upper), float)
-    apart = reference - rung.compare(lower)
-    scale = float(np.sqrt((reference * reference).sum(axis=1)).max()) or 1.0  # the rows' norms, as np.linalg.norm
-    difference = np.sqrt((apart * apart).sum(axis=1)) / scale
-    measured = float(difference.max())
-    half = samples // 2
-    growth = max(0.0, float(difference[half:].max() - difference[:half].max())) / (0.5 * window)
-    rest = max(0.0, t1 - t0 - window)
-    # d = c t²: the halves' maxima differ by (3/4) c T², so growth = 1.5 c T and c = growth / (1.5 T)
-    # the integrators' own error as a floor: per-period local errors ~ rtol adding up like a random walk
-    periods = (t1 - t0) / rung.fast_period
-    floor = float(options.get("rtol", _DEFAULT.rtol)) * math.sqrt(max(periods, 1.0))
-    value = SAFETY * (max(measured, floor) + (growth * (rest + rest**2 / (1.5 * window)) if rung.phase_compared
-                                             else growth * rest))
+
+    def extrapolated(reference, values, quadratic: bool, law: str, basis: str, small: float | None = None) -> Estimate:
+        reference = np.asarray(reference, float)
+        apart = reference - values
+        scale = float(np.sqrt((reference * reference).sum(axis=1)).max()) or 1.0  # the rows' norms, as np.linalg.norm
+        difference = np.sqrt((apart * apart).sum(axis=1)) / scale
+        measured = float(difference.max())
+        half = samples // 2
+        growth = max(0.0, float(difference[half:].max() - difference[:half].max())) / (0.5 * window)
+        rest = max(0.0, t1 - t0 - window)
+        # d = c t²: the halves' maxima differ by (3/4) c T², so growth = 1.5 c T and c = growth / (1.5 T)
+        # the integrators' own error as a floor: per-period local errors ~ rtol adding up like a random walk
+        periods = (t1 - t0) / rung.fast_period
+        floor = float(options.get("rtol", _DEFAULT.rtol)) * math.sqrt(max(periods, 1.0))
+        value = SAFETY * (max(measured, floor) + (growth * (rest + rest**2 / (1.5 * window)) if quadratic
+                                                 else growth * rest))
+        text = (f"probe over [{t0:g}, {t0 + window:g}] ({window / rung.fast_period:.3g} fast periods): largest relative "
+                f"difference {measured:.3g} (at least rtol x sqrt(fast periods) = {floor:.3g}, the integrators' own), "
+                f"growth {growth:.3g} per unit time, extrapolated {law} to t = {t1:g}, times {SAFETY:g}" + basis
+                + (f"; constant of the O(small) error: {measured / small:.3g}" if small else ""))
+        return Estimate(value, measured, growth, (t0, t0 + window), seconds, text)
+
     law = ("quadratically (the fast phase is compared)" if rung.phase_compared else
            "linearly (an exact reduction: the difference is the integrators' own, and grows as theirs)" if rung.exact
            else "linearly")
-    basis = (f"probe over [{t0:g}, {t0 + window:g}] ({window / rung.fast_period:.3g} fast periods): largest relative "
-             f"difference {measured:.3g} (at least rtol x sqrt(fast periods) = {floor:.3g}, the integrators' own), "
-             f"growth {growth:.3g} per unit time, extrapolated {law} to t = {t1:g}, times {SAFETY:g}" + (f"; {rung.basis}" if rung.basis else "")
-             + (f"; constant of the O(small) error: {measured / rung.small:.3g}" if rung.small else ""))
-    return Estimate(value, measured, growth, (t0, t0 + window), seconds, basis)
+    estimate = extrapolated(top.compare(upper), rung.compare(lower), rung.phase_compared, law,
+                            f"; {rung.basis}" if rung.basis else "", rung.small)
+    if rung.fast_compare is not None:
+        estimate.fast = extrapolated(rates(upper), rung.fast_compare(lower), True,
+                                     "quadratically (the phase's error integrates the frequency's)",
+                                     "; omega at the carried phase against the top's: reported, not used for the choice")
+    return estimate
 
 
 CACHE_SIZE = 64
