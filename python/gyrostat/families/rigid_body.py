@@ -372,11 +372,12 @@ class TriaxialAveragedModel(ModelBase):
         array([[1. , 0.2, 0.1]])
         """
         states = np.atleast_2d(np.asarray(states, float))
-        if outputs is not None and all(name in outputs for name in ("p", "q", "r")):
-            omegas = np.column_stack([outputs["p"], outputs["q"], outputs["r"]]).astype(float)
+        if outputs is not None and "p" in outputs and "q" in outputs and "r" in outputs:
+            omegas = np.array((outputs["p"], outputs["q"], outputs["r"]), float).T
             if len(omegas) == len(states):
-                for i in np.flatnonzero(np.isnan(omegas).any(axis=1)):
-                    omegas[i] = self._lifted(states[i])
+                if np.isnan(omegas).any():
+                    for i in np.flatnonzero(np.isnan(omegas).any(axis=1)):
+                        omegas[i] = self._lifted(states[i])
                 return omegas
         return np.array([self._lifted(y) for y in states])
 
