@@ -108,6 +108,10 @@ class Rung:
     run: str = "full"
     """The name of the scene run this rung's solution stands for (the name its kind's analysis
     and plots look for)."""
+    complete: Callable[[np.ndarray], np.ndarray] | None = None
+    """(The top rung) its full state from the ω a lower rung lifts to where the run switches up,
+    when the top carries more (a moving mass's displacement and velocity). None: the model's
+    ``initial_state`` (the identity attitude, say)."""
     fast_compare: Callable[[Solution], np.ndarray] | None = None
     """ω(t) as this rung gives it (an averaged rung carrying the fast phase: the free motion at
     that phase), (n, 3): the probe compares it with the top's ω (:func:`rates`) and extrapolates
@@ -447,6 +451,15 @@ def _trouble(lower: Rung) -> Callable[[float, np.ndarray], float]:
     return back_down
 
 
+def _lifted(rung: Rung, top: Rung, y, phase: float) -> np.ndarray:
+    """The top's state from the lower rung's state y: its lift at the fast phase (C++
+    ``full_state``), completed where the top carries more (:attr:`Rung.complete`)."""
+    state = np.asarray(rung.model._core.full_state(np.asarray(y, float), float(phase)))
+    if len(state) < top.model.dim:
+        state = np.asarray(top.complete(state) if top.complete else top.model.initial_state(state))
+    return state
+
+
 def run(choice: Choice, span: tuple[float, float], options: dict, phase: float = 0.0, progress=None):
     """Solves the chosen rung over the span; a lower rung with watched assumptions switches up to
     the top where one stops holding and back down where all hold again. Returns a Solution (one
@@ -484,13 +497,11 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
             switches.append((t, top.name, rung.name, "every watched assumption holds again with margin"))
         else:
             watch = rung.watches[sol.terminal_event]
-            state = np.asarray(rung.model._core.full_state(np.asarray(sol.y_last), float(phase)))
-            if top.model.attitude and len(state) < top.model.dim:
-                state = top.model.initial_state(state)
+            state = _lifted(rung, top, sol.y_last, phase)
             switches.append((t, rung.name, top.name, f"{watch.statement}: {watch.output} reached {watch.limit:g}"))
         on_top = not on_top
         if len(switches) > MAX_SWITCHES:
-            rest = solve(top.model, state if on_top else rung.model._core.full_state(state, float(phase)), (t, t1),
+            rest = solve(top.model, state if on_top else _lifted(rung, top, state, phase), (t, t1),
                          **kept, t_eval=grid[grid > t], check_validity=False, progress=False)
             segments.append((top.name, rest))
             switches.append((t, rung.name, top.name, f"more than {MAX_SWITCHES} switches: stays on the top"))

@@ -196,8 +196,10 @@ class MovingMass(Kind):
         triaxial = triaxial_rung(doc, body, [damper, *torques], omega)
         # a body far from symmetric: compared in |G| and T (the triaxial rung's slow variables)
         compare = _ladder.rates if "omega" in plots else invariant_columns if triaxial.model is not None else slow_columns
+        # switched up from a lower rung (which assumes the mass follows quasi-statically): the mass
+        # starts at its quasi-static displacement for the lifted ω
         explicit = _ladder.Rung("explicit", model, y0, "the carrier, the point mass, its spring and damper (9 states)",
-                                compare=compare)
+                                compare=compare, complete=model.quasi_static_state)
         reduced_model = build("damper", Model, body, [damper, *torques])
         checks = [a for a in check(reduced_model, omega, warn=False)
                   if a.part == "moving-mass damper" and "condition (4)" not in a.statement]

@@ -82,12 +82,12 @@ public:
     /// W members in SIMD lanes (below), for the ensembles' DOP853 batches (integrate/batch.hpp).
     using LaneModel = AveragedLanes;
 
-    /// (a, r) of a full state: a = √(p² + q²), r = ω3 (ω alone, or ω followed by the quaternion).
+    /// (a, r) of a full state: a = √(p² + q²), r = ω3 (ω alone, or followed by the quaternion or the moving mass's u, v).
     State initial_state(const Eigen::VectorXd& given) const {
-        if (given.size() != 3 && given.size() != 7)
+        if (given.size() != 3 && given.size() != 7 && given.size() != 9)
             throw std::invalid_argument("initial state has " + std::to_string(given.size()) +
-                                        " components; AveragedSymmetric needs (a, r), or ω = (p, q, r) (optionally "
-                                        "followed by the attitude quaternion) of the full model");
+                                        " components; AveragedSymmetric needs (a, r), or ω = (p, q, r) of the full model "
+                                        "(optionally followed by the attitude quaternion, or by the moving mass's u and v)");
         return {std::hypot(given[0], given[1]), given[2]};
     }
 

@@ -94,14 +94,15 @@ public:
         dy[3] = free.phase_rate();
     }
 
-    /// (|G|², p_b, s, φ) of a full state (ω alone, or ω followed by the attitude quaternion):
+    /// (|G|², p_b, s, φ) of a full state (ω alone, or followed by the quaternion or the moving mass's u, v):
     /// |G|² = Σ A_i² ω_i², p_b = Σ A_i (A_i − A_b) ω_i², s the sign of ω about the axis circulated
     /// about, φ where the free motion passes through ω.
     State initial_state(const Eigen::VectorXd& given) const {
-        if (given.size() != 3 && given.size() != 7)
+        if (given.size() != 3 && given.size() != 7 && given.size() != 9)
             throw std::invalid_argument("initial state has " + std::to_string(given.size()) +
                                         " components; AveragedTriaxial needs (G2, pb, branch, phase), or omega = (p, q, r) "
-                                        "(optionally followed by the attitude quaternion) of the full model");
+                                        "of the full model (optionally followed by the attitude quaternion, or by the "
+                                        "moving mass's u and v)");
         const Vec3 w = given.head<3>();
         const Vec3& J = body_.moments();
         const double G2 = (J.cwiseProduct(w)).squaredNorm();
