@@ -16,6 +16,7 @@
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recording.hpp"
 #include "gyrostat/integrate/stiffness.hpp"
+#include "gyrostat/model/system.hpp"
 #include "gyrostat/integrate/trajectories.hpp"
 
 namespace gyrostat::integrate {
@@ -147,13 +148,24 @@ template <class Run, class WeightedSquares>
     Value h_abs;
     Vector scale, y1, f1, df;
     for (int i = 0; i < parts; ++i) scale[i] = atol + y[i].array().abs() * rtol;
-    const Value d0 = lanes::sqrt(weighted_squares(y, scale) / static_cast<double>(n));
-    const Value d1 = lanes::sqrt(weighted_squares(f, scale) / static_cast<double>(n));
+    // A quadrature (the averaged models' phase: a rate of O(1) on a value that starts near 0) says
+    // nothing of the dynamics' time scale, yet would set h0 ~ 0.01 (atol + rtol |φ0|)/|φ̇| and cost
+    // ~log10 of the ramp in steps: an infinite scale leaves it out of d0, d1, d2 (v / ∞ = 0).
+    constexpr auto quadratures = model::system::quadratures<typename Run::System>();
+    for (const int q : quadratures) {
+        if constexpr (parts == 1)
+            scale[0][q] = std::numeric_limits<double>::infinity();
+        else
+            scale[q] = lanes::splat<Value>(std::numeric_limits<double>::infinity());
+    }
+    constexpr double counted = std::max(1, n - static_cast<int>(quadratures.size()));
+    const Value d0 = lanes::sqrt(weighted_squares(y, scale) / counted);
+    const Value d1 = lanes::sqrt(weighted_squares(f, scale) / counted);
     const Value h0 = lanes::min(lanes::select(d0 < 1e-5 || d1 < 1e-5, 1e-6, 0.01 * d0 / d1), span);
     for (int i = 0; i < parts; ++i) y1[i] = y[i] + h0 * direction * f[i];
     run.rhs(t + h0 * direction, y1, f1);
     for (int i = 0; i < parts; ++i) df[i] = f1[i] - f[i];
-    const Value d2 = lanes::sqrt(weighted_squares(df, scale) / static_cast<double>(n)) / h0;
+    const Value d2 = lanes::sqrt(weighted_squares(df, scale) / counted) / h0;
     for (int l = 0; l < W; ++l) {  // (lanes past `count` too: they repeat a member)
         if (l < count) ++run.stats(l).rhs_evals;
         const double h1 = (lane(d1, l) <= 1e-15 && lane(d2, l) <= 1e-15)

@@ -51,6 +51,8 @@ public:
     /// (|G|², p_b, s, φ) do not depend on the body frame (model/frame.hpp); the ω they are lifted
     /// from and to does.
     static constexpr std::array<int, 0> body_vectors{};
+    /// φ̇ is a function of the slow variables and feeds back into none of them (system.hpp).
+    static constexpr std::array<int, 1> quadratures{{3}};
     /// The relative accuracy of the averages taken by quadrature (EulerPoinsot::nodes).
     static constexpr double quadrature_tolerance = 1e-13;
 

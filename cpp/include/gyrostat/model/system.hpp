@@ -72,6 +72,13 @@ struct OutputInfo {
 ///                                                                model it averages with these slow
 ///                                                                variables, at the fast phase given
 ///                                                                (the model ladder's switch up)
+///   static constexpr std::array<int, n> quadratures;             components whose rate depends on the
+///                                                                others and that feed back into none
+///                                                                (a fast phase carried along): the
+///                                                                first step's heuristic leaves them
+///                                                                out, as CVODES's quadrature variables
+///                                                                (their error is still controlled;
+///                                                                default: none)
 ///   static constexpr std::array<int, n> body_vectors;            the state's vectors in body axes
 ///                                                                (model/frame.hpp: a body given by
 ///                                                                its inertia tensor; default: only
@@ -170,6 +177,20 @@ template <class S>
 struct has_perturbation_rate<S, std::void_t<decltype(std::declval<const S&>().perturbation_rate(
                                     0.0, std::declval<const S&>().perturbed_part(std::declval<const typename S::State&>())))>>
     : std::true_type {};
+
+template <class S, class = void>
+struct has_quadratures : std::false_type {};
+template <class S>
+struct has_quadratures<S, std::void_t<decltype(S::quadratures)>> : std::true_type {};
+
+/// The model's quadrature components (none by default).
+template <class S>
+constexpr auto quadratures() {
+    if constexpr (has_quadratures<S>::value)
+        return S::quadratures;
+    else
+        return std::array<int, 0>{};
+}
 
 template <class S, class = void>
 struct carries_attitude : std::false_type {};
