@@ -286,15 +286,16 @@ class AveragedModel(ModelBase):
                                       "not needed: the (a, r) reduction is exact for this symmetric scene"))
         else:
             if outputs is not None and "slow_to_fast" in outputs:
-                ratios = list(outputs["slow_to_fast"])
+                ratios = np.asarray(outputs["slow_to_fast"], float)
             else:
                 ratios = []
                 for t, y in zip(times, states):
                     fast = self.fast_frequency(y[1])
                     ratios.append(math.inf if fast == 0 else self.slow_rate(t, y) / fast)
+                ratios = np.asarray(ratios, float)
             worst = int(np.argmax(ratios))
-            results.append(Assumption("averaged model", "slow rate / fast frequency |(C−A)r/A| ≪ 1", ratios[worst],
-                                      SMALL, ratios[worst] <= SMALL,
+            results.append(Assumption("averaged model", "slow rate / fast frequency |(C−A)r/A| ≪ 1", float(ratios[worst]),
+                                      SMALL, bool(ratios[worst] <= SMALL),
                                       f"worst at t = {times[worst]:.4g}, r = {states[worst][1]:.3g}"))
         return results
     def __repr__(self) -> str:
