@@ -35,6 +35,29 @@ def test_damper_torque_symmetric_and_triaxial():
     assert damper.S(1.5, 1.0) == pytest.approx(0.3 * 1.7**2 * 7.0 / 50.0**2 * (1.5 - 1.0) / 1.5**4, rel=1e-14)
 
 
+def test_damper_in_a_model_uses_the_coefficients_made_for_its_body():
+    # A model prepares the damper's monomial coefficients once for its body's principal moments
+    # (TorqueSet::in_principal_axes); evaluated at other moments the torque makes them on the call.
+    # Both against the independent series of the reduction, on a triaxial body and on the same body
+    # given by a rotated inertia tensor (the model runs in its principal axes: ω' = Rᵀω).
+    damper = g.MovingMassDamper(0.3, 1.7, np.sqrt(50.0), 7.0)
+    J = np.array([1.3, 2.1, 2.9])
+    model = g.Model(g.Body(list(J)), [damper])
+    angle = 0.7
+    R = np.array([[np.cos(angle), -np.sin(angle), 0.0], [np.sin(angle), np.cos(angle), 0.0], [0.0, 0.0, 1.0]])
+    tensor_model = g.Model(g.Body(inertia=R @ np.diag(J) @ R.T), [damper])
+    for _ in range(5):
+        w = RNG.normal(size=3)
+        torque = damper_torque_series(w, J, 1.7, 0.3, 50.0, 7.0)
+        euler = (torque - np.cross(w, J * w)) / J  # Euler's equations with the series' torque
+        scale = np.abs(euler).max()
+        np.testing.assert_allclose(model.rhs(0.0, w), euler, rtol=1e-10, atol=1e-12 * scale)  # (the series' truncation)
+        np.testing.assert_allclose(damper(0.0, w, 1.01 * J), damper_torque_series(w, 1.01 * J, 1.7, 0.3, 50.0, 7.0),
+                                   rtol=1e-10, atol=1e-12 * np.abs(torque).max())
+        # the tensor's model: the same motion written in the user's frame (ω_user = R ω_principal)
+        np.testing.assert_allclose(tensor_model.rhs(0.0, R @ w), R @ euler, rtol=1e-10, atol=1e-12 * scale)
+
+
 def test_resistive_medium_polynomial_in_time():
     D0, D1 = np.diag([0.1, 0.1, 0.2]), np.array([[0.01, 0.002, 0], [0, 0.01, 0], [0, 0, 0.03]])
     medium = g.ResistiveMedium([D0, D1])

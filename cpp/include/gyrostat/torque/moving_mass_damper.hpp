@@ -70,51 +70,64 @@ struct MovingMassDamper {
         return mass * arm * arm * damping / (omega2 * omega2) * C * C * C * (A - C) / (A * A * A * A);
     }
 
-    Vec3 operator()(double /*t*/, const Vec3& w, const Vec3& J) const {
+    /// The coefficients of the torque's monomials in (p, q, r) for the moments J = (A, B, C) (kL and
+    /// kS included): M_x = q r (l0·(p², q², r²)) + p s0·(q²r², p²q², p²r², r⁴, q⁴),
+    /// M_y = p r (l1·(p², q², r²)) + q s1·(p²r², p²q², q²r², r⁴, p⁴), M_z = r s2·(p²r², q²r²).
+    struct Coefficients {
+        Vec3 moments{0.0, 0.0, 0.0};  ///< the J they are for (0: none)
+        std::array<double, 3> l0{}, l1{};
+        std::array<double, 5> s0{}, s1{};
+        std::array<double, 2> s2{};
+    };
+    Coefficients coefficients(const Vec3& J) const {
         const double A = J[0], B = J[1], C = J[2];
         const double A2 = A * A, A3 = A2 * A, A4 = A3 * A, B2 = B * B, B3 = B2 * B, B4 = B3 * B;
         const double C2 = C * C, C3 = C2 * C, C4 = C3 * C;
-        const double p = w[0], q = w[1], r = w[2];
         const double mass_arm2 = mass * arm * arm, omega2 = frequency * frequency;
         auto sq = [](double x) { return x * x; };
-        const double p2 = p * p, q2 = q * q, r2 = r * r;
         const double kL = mass_arm2 / omega2;
         const double kS = mass_arm2 * damping / (omega2 * omega2);
-        const double TL0 = kL * q * r * (
-            p2 * (7*A3 - 14*A2*B + 2*A2*C + 7*A*B2 + 8*A*B*C - 9*A*C2
-                  - 10*B2*C + 10*B*C2) / (A*B*C)
-            - (q2 * (A2*B2 - 2*A2*B*C - 2*A*B3 + 4*A*B2*C - 2*A*B*C2
-                     + B4 - 2*B3*C + B2*C2)
-               + r2 * (-4*A2*B*C + 3*A2*C2 + 4*A*B2*C - 2*A*B*C2
-                       - 2*A*C3 - B2*C2 + 2*B*C3 - C4)) / (A2*B*C));
-        const double TL1 = kL * p * r * (
-            -q2 * (7*A2*B - 10*A2*C - 14*A*B2 + 8*A*B*C + 10*A*C2 + 7*B3
-                   + 2*B2*C - 9*B*C2) / (A*B*C)
-            + (p2 * (A4 - 2*A3*B - 2*A3*C + A2*B2 + 4*A2*B*C + A2*C2
-                     - 2*A*B2*C - 2*A*B*C2)
-               + r2 * (4*A2*B*C - A2*C2 - 4*A*B2*C - 2*A*B*C2 + 2*A*C3
-                       + 3*B2*C2 - 2*B*C3 - C4)) / (A*B2*C));
-        const double TS0 = kS * p * (
-            -2*q2*r2*(A - B)*(12*A2*B - 13*A2*C - 12*A*B2 + 10*A*B*C + 2*A*C2
-                              + 11*B2*C - 22*B*C2 + 11*C3) / (A2*B*C)
-            - p2*q2*(A - B)*(5*A3 - 10*A2*B + 4*A2*C + 5*A*B2 + 4*A*B*C
-                             - 9*A*C2 - 8*B2*C + 8*B*C2) / (A*B*C2)
-            + 2*p2*r2*(A - B)*(A - C)*(3*A2 - 3*A*B + A*C + 4*B*C - 4*C2) / (A*B2*C)
-            + r2*r2*(A - C)*(4*A2*B - 3*A2*C - 4*A*B2 + 2*A*B*C + 2*A*C2
-                             + B2*C - 2*B*C2 + C3) / (A2*B2)
-            + q2*q2*B*(A - B)*sq(A - B + C) / (A2*C2));
-        const double TS1 = kS * q * (
-            -2*p2*r2*(A - B)*(12*A2*B - 11*A2*C - 12*A*B2 - 10*A*B*C + 22*A*C2
-                              + 13*B2*C - 2*B*C2 - 11*C3) / (A*B2*C)
-            + p2*q2*(A - B)*(5*A2*B - 8*A2*C - 10*A*B2 + 4*A*B*C + 8*A*C2
-                             + 5*B3 + 4*B2*C - 9*B*C2) / (A*B*C2)
-            + 2*q2*r2*(A - B)*(B - C)*(3*A*B - 4*A*C - 3*B2 - B*C + 4*C2) / (A2*B*C)
-            - r2*r2*(B - C)*(4*A2*B - A2*C - 4*A*B2 - 2*A*B*C + 2*A*C2
-                             + 3*B2*C - 2*B*C2 - C3) / (A2*B2)
-            - p2*p2*A*(A - B)*sq(A - B - C) / (B2*C2));
-        const double TS2 = kS * r * (A - B - C) * (A - B + C) * (
-            p2 * r2 * (A - C) / (A*B2) + q2 * r2 * (B - C) / (A2*B));
-        return {TL0 + TS0, TL1 + TS1, TS2};
+        Coefficients c;
+        c.moments = J;
+        // T_L,x = kL q r (p² (…)/(ABC) − (q² (…) + r² (…))/(A²BC))
+        c.l0 = {kL * (7*A3 - 14*A2*B + 2*A2*C + 7*A*B2 + 8*A*B*C - 9*A*C2 - 10*B2*C + 10*B*C2) / (A*B*C),
+                -kL * (A2*B2 - 2*A2*B*C - 2*A*B3 + 4*A*B2*C - 2*A*B*C2 + B4 - 2*B3*C + B2*C2) / (A2*B*C),
+                -kL * (-4*A2*B*C + 3*A2*C2 + 4*A*B2*C - 2*A*B*C2 - 2*A*C3 - B2*C2 + 2*B*C3 - C4) / (A2*B*C)};
+        // T_L,y = kL p r (−q² (…)/(ABC) + (p² (…) + r² (…))/(AB²C))
+        c.l1 = {kL * (A4 - 2*A3*B - 2*A3*C + A2*B2 + 4*A2*B*C + A2*C2 - 2*A*B2*C - 2*A*B*C2) / (A*B2*C),
+                -kL * (7*A2*B - 10*A2*C - 14*A*B2 + 8*A*B*C + 10*A*C2 + 7*B3 + 2*B2*C - 9*B*C2) / (A*B*C),
+                kL * (4*A2*B*C - A2*C2 - 4*A*B2*C - 2*A*B*C2 + 2*A*C3 + 3*B2*C2 - 2*B*C3 - C4) / (A*B2*C)};
+        // T_S,x = kS p (−2q²r²(A−B)(…)/(A²BC) − p²q²(A−B)(…)/(ABC²) + 2p²r²(A−B)(A−C)(…)/(AB²C)
+        //              + r⁴(A−C)(…)/(A²B²) + q⁴B(A−B)(A−B+C)²/(A²C²))
+        c.s0 = {-kS * 2*(A - B)*(12*A2*B - 13*A2*C - 12*A*B2 + 10*A*B*C + 2*A*C2 + 11*B2*C - 22*B*C2 + 11*C3) / (A2*B*C),
+                -kS * (A - B)*(5*A3 - 10*A2*B + 4*A2*C + 5*A*B2 + 4*A*B*C - 9*A*C2 - 8*B2*C + 8*B*C2) / (A*B*C2),
+                kS * 2*(A - B)*(A - C)*(3*A2 - 3*A*B + A*C + 4*B*C - 4*C2) / (A*B2*C),
+                kS * (A - C)*(4*A2*B - 3*A2*C - 4*A*B2 + 2*A*B*C + 2*A*C2 + B2*C - 2*B*C2 + C3) / (A2*B2),
+                kS * B*(A - B)*sq(A - B + C) / (A2*C2)};
+        // T_S,y = kS q (−2p²r²(A−B)(…)/(AB²C) + p²q²(A−B)(…)/(ABC²) + 2q²r²(A−B)(B−C)(…)/(A²BC)
+        //              − r⁴(B−C)(…)/(A²B²) − p⁴A(A−B)(A−B−C)²/(B²C²))
+        c.s1 = {-kS * 2*(A - B)*(12*A2*B - 11*A2*C - 12*A*B2 - 10*A*B*C + 22*A*C2 + 13*B2*C - 2*B*C2 - 11*C3) / (A*B2*C),
+                kS * (A - B)*(5*A2*B - 8*A2*C - 10*A*B2 + 4*A*B*C + 8*A*C2 + 5*B3 + 4*B2*C - 9*B*C2) / (A*B*C2),
+                kS * 2*(A - B)*(B - C)*(3*A*B - 4*A*C - 3*B2 - B*C + 4*C2) / (A2*B*C),
+                -kS * (B - C)*(4*A2*B - A2*C - 4*A*B2 - 2*A*B*C + 2*A*C2 + 3*B2*C - 2*B*C2 - C3) / (A2*B2),
+                -kS * A*(A - B)*sq(A - B - C) / (B2*C2)};
+        // T_S,z = kS r (A−B−C)(A−B+C) (p²r²(A−C)/(AB²) + q²r²(B−C)/(A²B))
+        const double common = kS * (A - B - C) * (A - B + C);
+        c.s2 = {common * (A - C) / (A*B2), common * (B - C) / (A2*B)};
+        return c;
+    }
+    /// The coefficients for the moments of the model it acts in, made once (TorqueSet::in_principal_axes:
+    /// a torque with `prepared` is given the body's moments there); the torque is evaluated at
+    /// other moments too (from Python, say), then from coefficients made on the call.
+    MovingMassDamper prepared(const Vec3& J) const {
+        MovingMassDamper ready = *this;
+        ready.prepared_ = coefficients(J);
+        return ready;
+    }
+
+    Vec3 operator()(double /*t*/, const Vec3& w, const Vec3& J) const {
+        if (J == prepared_.moments) return torque(w, prepared_);
+        return torque(w, coefficients(J));
     }
     /// ∂M/∂ω by central differences (the polynomial is long; the step is relative, ~1e-6·|ω|).
     void add_jacobian(double t, const Vec3& w, const Vec3& J, Mat3& d) const {
@@ -148,6 +161,21 @@ struct MovingMassDamper {
                 {"moving-mass damper", "paper 001 condition (4): Ω²/(λ|ω|) ≫ 1", first, kLarge, first >= kLarge, printed},
                 {"moving-mass damper", "paper 001 condition (4): λ|ω|/|ω|² ≫ 1", second, kLarge, second >= kLarge, printed}};
     }
+
+private:
+    static Vec3 torque(const Vec3& w, const Coefficients& c) {
+        const double p = w[0], q = w[1], r = w[2];
+        const double p2 = p * p, q2 = q * q, r2 = r * r;
+        const double q2r2 = q2 * r2, p2q2 = p2 * q2, p2r2 = p2 * r2;
+        const double TL0 = q * r * (c.l0[0] * p2 + c.l0[1] * q2 + c.l0[2] * r2);
+        const double TL1 = p * r * (c.l1[0] * p2 + c.l1[1] * q2 + c.l1[2] * r2);
+        const double TS0 = p * (c.s0[0] * q2r2 + c.s0[1] * p2q2 + c.s0[2] * p2r2 + c.s0[3] * r2 * r2 + c.s0[4] * q2 * q2);
+        const double TS1 = q * (c.s1[0] * p2r2 + c.s1[1] * p2q2 + c.s1[2] * q2r2 + c.s1[3] * r2 * r2 + c.s1[4] * p2 * p2);
+        const double TS2 = r * (c.s2[0] * p2r2 + c.s2[1] * q2r2);
+        return {TL0 + TS0, TL1 + TS1, TS2};
+    }
+
+    Coefficients prepared_;  ///< for prepared_.moments (none: 0)
 };
 
 }  // namespace gyrostat::torque

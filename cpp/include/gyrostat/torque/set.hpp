@@ -1,6 +1,7 @@
 // A set of perturbation torques acting on one body: composition without virtual calls.
 #pragma once
 
+#include <algorithm>
 #include <Eigen/Core>
 #include <stdexcept>
 #include <type_traits>
@@ -117,6 +118,14 @@ template <class T>
 struct rotates_itself<T, std::void_t<decltype(std::declval<const T&>().in_principal_axes(std::declval<const Body&>()))>>
     : std::true_type {};
 
+/// A torque that computes something once for the moments of the body it acts on
+/// (`T prepared(const Vec3& moments) const`: TorqueSet::in_principal_axes).
+template <class T, class = void>
+struct has_prepared : std::false_type {};
+template <class T>
+struct has_prepared<T, std::void_t<decltype(std::declval<const T&>().prepared(std::declval<const Vec3&>()))>>
+    : std::true_type {};
+
 /// x with its body-axes parameters (torque/parameter.hpp: Axes::Body) written in the principal
 /// axes of `body`: v_p = Rᵀ v, D_p = Rᵀ D R (R = body.principal_axes(): v = R v_p); scalars and
 /// inertial-axes parameters as they are. Rebuilt with T::from, so its checks run again.
@@ -172,13 +181,24 @@ public:
     }
 
     const std::vector<AnyTorque>& parts() const { return parts_; }
-    /// The same torques on the principal axes of `body` (in_principal_axes above); itself when the
-    /// body was given in its principal axes. Every model applies it to the torques it is given.
+    /// The same torques on the principal axes of `body` (in_principal_axes above), each with
+    /// `T prepared(const Vec3& moments) const` given the body's principal moments (what it can
+    /// compute once for the body it acts on: the moving-mass damper's coefficients). Every model
+    /// applies it to the torques it is given.
     TorqueSet in_principal_axes(const Body& body) const {
-        if (body.principal()) return *this;
+        const bool any_prepared = std::any_of(parts_.begin(), parts_.end(), [](const AnyTorque& part) {
+            return std::visit([](const auto& x) { return has_prepared<std::decay_t<decltype(x)>>::value; }, part);
+        });
+        if (body.principal() && !any_prepared) return *this;
         std::vector<AnyTorque> rotated;
         for (const auto& part : parts_)
-            rotated.push_back(std::visit([&](const auto& x) -> AnyTorque { return gyrostat::in_principal_axes(x, body); }, part));
+            rotated.push_back(std::visit([&](const auto& x) -> AnyTorque {
+                using T = std::decay_t<decltype(x)>;
+                if constexpr (has_prepared<T>::value)
+                    return gyrostat::in_principal_axes(x, body).prepared(body.moments());
+                else
+                    return gyrostat::in_principal_axes(x, body);
+            }, part));
         return TorqueSet(std::move(rotated));
     }
     bool empty() const { return parts_.empty(); }
