@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 import subprocess
 import sys
 import tomllib
@@ -162,11 +163,13 @@ def test_switching_through_r_zero_matches_the_full_model():
 
 
 def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
-    """The event that brings a switched run back down the ladder is evaluated in C++ at every step
-    of the top's run (the lower model's watch_event: no call into Python). It is the g of the
-    Python callable it replaces (ladder._trouble): on a run of the top it falls through zero at
-    the same time to the last bit, and the switching run made with either is the same, number for
-    number, switch for switch."""
+    """The event that brings a switched run back down the ladder is evaluated in C++ (the lower
+    model's watch_event: no call into Python). Unsampled, it is the g of the Python callable it
+    replaces (ladder._trouble): on a run of the top it falls through zero at the same time to the
+    last bit. The ladder samples it once per fast period of the lower rung (its ratios change on the
+    slow time scale): the switching run then comes back down at the first sample past the exact
+    crossing, never before it and at most one period (and one step) after it, and agrees with the
+    run that located the crossing exactly within the scene's accuracy."""
     from gyrostat import ladder
 
     doc = _switching_doc()
@@ -175,23 +178,37 @@ def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
     choice = ladder.choose(scene.ladder, run.t_span, run.options, doc["integration"]["accuracy"])
     lower, top = choice.chosen, choice.rungs[-1]
     assert lower.name == "averaged" and lower.watches
-    engine, python = ladder._back_down(lower), ladder._trouble(lower)
-    assert isinstance(engine, g._core.Event) and engine.terminal == 1 and engine.direction == -1
+    sampled, python = ladder._back_down(lower), ladder._trouble(lower)
+    assert isinstance(sampled, g._core.Event) and sampled.terminal == 1 and sampled.direction == -1
+    assert sampled.sample_interval == lower.fast_period > 0
+    names = list(lower.model._core.output_names)
+    engine = lower.model._core.watch_event([names.index(w.output) for w in lower.watches], [w.back for w in lower.watches],
+                                           [w.limit for w in lower.watches], "assumptions hold again", -1, 1)
+    assert engine.sample_interval == 0.0
     # from the state where the averaging fails (r near zero) the top's run comes back down at one time
     lifted = lower.model._core.full_state(np.array([0.95, 0.02]), 0.0)
-    runs = [g.solve(top.model, lifted, (0.0, 400.0), events=[e], rtol=1e-10, atol=1e-12) for e in (engine, python)]
-    assert runs[0].terminal_event == runs[1].terminal_event == 0
+    runs = [g.solve(top.model, lifted, (0.0, 400.0), events=[e], rtol=1e-10, atol=1e-12) for e in (engine, python, sampled)]
+    assert runs[0].terminal_event == runs[1].terminal_event == runs[2].terminal_event == 0
     assert runs[0].t_events[0][0] == runs[1].t_events[0][0] and runs[0].t_last < 400.0
     values = lower.model._core.outputs_at(runs[0].t_last, runs[0].y_last)
-    ratio = lower.watches[0].ratio(values[list(lower.model.output_names).index(lower.watches[0].output)])
+    ratio = lower.watches[0].ratio(values[names.index(lower.watches[0].output)])
     assert abs(ratio) < 1e-6  # back at the watch's `back`: g = 0 there
+    exact, seen = runs[0].t_events[0][0], runs[2].t_events[0][0]
+    assert exact <= seen <= exact + lower.fast_period + runs[2].stats["last_step"] + 1e-9, (exact, seen)
+    assert seen == runs[2].t_last  # (placed at a step end)
     _, cpp_run, cpp_report = _solve(doc)
     monkeypatch.setattr(ladder, "_back_down", ladder._trouble)
     ladder._CHOICES.clear()
     _, python_run, python_report = _solve(doc)
-    assert cpp_report["ladder"]["switches"] == python_report["ladder"]["switches"]
-    assert len(cpp_report["ladder"]["switches"]) >= 2
-    assert np.array_equal(cpp_run.y, python_run.y) and np.array_equal(cpp_run.rung, python_run.rung)
+    cpp_switches, python_switches = cpp_report["ladder"]["switches"], python_report["ladder"]["switches"]
+    assert len(cpp_switches) == len(python_switches) >= 2
+    for a, b in zip(cpp_switches, python_switches):
+        assert (a["from"], a["to"]) == (b["from"], b["to"])
+        assert b["t"] <= a["t"] <= b["t"] + 2.0 * lower.fast_period, (a, b)  # (up: the same; down: the sample past it)
+    # the same motion within the scene's accuracy (the top ran up to a period longer)
+    for name in ("a", "r"):
+        scale = np.max(np.abs(python_run[name]))
+        assert np.max(np.abs(cpp_run[name] - python_run[name])) <= doc["integration"]["accuracy"] * scale, name
 
 
 def test_an_engine_event_is_passed_as_it_is():
@@ -212,6 +229,9 @@ def test_an_engine_event_is_passed_as_it_is():
         averaged._core.watch_event([99], [0.0], [1.0], "bad")
     with pytest.raises(ValueError, match="back and limit must be finite and differ"):
         averaged._core.watch_event([0], [1.0], [1.0], "bad")
+    for interval in (-1.0, math.inf, math.nan):
+        with pytest.raises(ValueError, match="sample_interval must be finite and >= 0"):
+            averaged._core.watch_event([0], [0.0], [1.0], "bad", -1, 1, interval)
 
 
 def test_moving_mass_ladder_on_the_explorer_like_body():

@@ -128,7 +128,10 @@ void expose_integrate(py::module_& m) {
         .def_readonly("value", &Event::value)
         .def_readonly("direction", &Event::direction)
         .def_readonly("terminal", &Event::terminal)
-        .def_readonly("name", &Event::name);
+        .def_readonly("name", &Event::name)
+        .def_readonly("sample_interval", &Event::sample_interval,
+                      "> 0: g evaluated only at step ends this far apart, a crossing placed where it is seen "
+                      "(a costly watch; 0: every step, crossings located on the step's continuous extension).");
 
     using integrate::Options;
     py::class_<Options>(m, "Options", R"doc(Every integrator option with its default (the one place where defaults live).

@@ -90,7 +90,7 @@ void expose_models(py::module_& m) {
         // the model ladder: on the top rung, whether this (lower) model's watched assumptions hold again
         .def("watch_event",
              [](const BoundModel& b, const std::vector<int>& outputs, const std::vector<double>& back,
-                const std::vector<double>& limit, std::string name, int direction, int terminal) {
+                const std::vector<double>& limit, std::string name, int direction, int terminal, double sample_interval) {
                  const auto n = static_cast<int>(output_names(b.model).size());
                  if (outputs.empty() || back.size() != outputs.size() || limit.size() != outputs.size())
                      throw py::value_error("watch_event: give one back and one limit per watched output (at least one)");
@@ -102,9 +102,13 @@ void expose_models(py::module_& m) {
                          throw py::value_error("watch_event: output " + std::to_string(outputs[i]) +
                                                ": back and limit must be finite and differ");
                  }
+                 if (!(sample_interval >= 0.0) || !std::isfinite(sample_interval))
+                     throw py::value_error("watch_event: sample_interval must be finite and >= 0, got " +
+                                           format_value(sample_interval));
                  integrate::Event e;
                  e.quantity = integrate::Event::Quantity::Function;
                  e.direction = direction, e.terminal = terminal, e.name = std::move(name);
+                 e.sample_interval = sample_interval;
                  // g(t, y) = max_i (o_i - back_i) / (limit_i - back_i), o the outputs of this model at the
                  // top's state y mapped down (outputs_at projects it, as initial_state does): 0 where every watched output is back below its
                  // `back`, 1 at a limit; 1 where an output is not finite (no margin to come back down on)
@@ -121,8 +125,10 @@ void expose_models(py::module_& m) {
                  return e;
              },
              py::arg("outputs"), py::arg("back"), py::arg("limit"), py::arg("name"), py::arg("direction") = -1,
-             py::arg("terminal") = 1,
-             "An engine event for a run of a model above this one on the ladder, evaluated in C++ at every step: "
+             py::arg("terminal") = 1, py::arg("sample_interval") = 0.0,
+             "An engine event for a run of a model above this one on the ladder, evaluated in C++ at every step "
+             "(or, with ``sample_interval`` > 0, at step ends that far apart in t, the crossing placed at the step end "
+             "where it is seen): "
              "g(t, y) = the largest (o_i - back_i) / (limit_i - back_i) of this model's outputs o = outputs_at(t, y) "
              "(y mapped down as initial_state maps it) at the indices ``outputs`` (1 where one is not finite). It falls through 0 where every "
              "watched output is back below its ``back``.")

@@ -433,15 +433,18 @@ def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tupl
 
 def _back_down(lower: Rung):
     """The terminal event of a run on the top rung: every watched assumption of ``lower`` holds
-    again with margin. An engine event evaluated in C++ at every step (the lower model's
-    ``watch_event``: the largest :meth:`Watch.ratio` of its outputs at the state mapped down, no
-    call into Python), or :func:`_trouble`, the same g in Python, for watches whose ``ratio`` is
-    their own."""
+    again with margin. An engine event evaluated in C++ (the lower model's ``watch_event``: the
+    largest :meth:`Watch.ratio` of its outputs at the state mapped down, no call into Python) once
+    per fast period of the lower rung: the watched ratios change on the slow time scale, and each
+    evaluation maps the state down and evaluates the averaged rates (for the triaxial rung with a
+    torque averaged by quadrature, ~10 µs: at every step it made the top's run ~15× slower). Or
+    :func:`_trouble`, the same g in Python at every step, for watches whose ``ratio`` is their own."""
     core = lower.model._core
     if all(type(w).ratio is Watch.ratio for w in lower.watches) and hasattr(core, "watch_event"):
         names = list(core.output_names)
+        interval = lower.fast_period if math.isfinite(lower.fast_period) else 0.0
         return core.watch_event([names.index(w.output) for w in lower.watches], [w.back for w in lower.watches],
-                                [w.limit for w in lower.watches], "assumptions hold again", -1, 1)
+                                [w.limit for w in lower.watches], "assumptions hold again", -1, 1, interval)
     return _trouble(lower)
 
 

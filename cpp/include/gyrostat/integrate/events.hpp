@@ -25,7 +25,8 @@ public:
     static constexpr int n_outputs = model::system::n_outputs<System>();
 
     EventLocator(const System& system, const std::vector<Event>& events, Result& result)
-        : system_(system), events_(events), result_(result), previous_(events.size()), count_(events.size(), 0) {
+        : system_(system), events_(events), result_(result), previous_(events.size()), current_(events.size()),
+          sampled_at_(events.size()), due_(events.size(), 1), count_(events.size(), 0) {
         for (const Event& e : events_) {
             if (e.quantity == Event::Quantity::State && (e.index < 0 || e.index >= System::dim))
                 throw std::invalid_argument("event '" + e.name + "': state component " + std::to_string(e.index) +
@@ -37,6 +38,8 @@ public:
                 throw std::invalid_argument("event '" + e.name + "' has no function");
             if (e.direction < -1 || e.direction > 1 || e.terminal < 0)
                 throw std::invalid_argument("event '" + e.name + "': direction must be -1, 0 or 1 and terminal >= 0");
+            if (!(e.sample_interval >= 0.0) || !std::isfinite(e.sample_interval))
+                throw std::invalid_argument("event '" + e.name + "': sample_interval must be finite and >= 0");
         }
         result_.event_names.clear();
         for (const Event& e : events_) result_.event_names.push_back(e.name);
@@ -48,7 +51,9 @@ public:
 
     /// g of every event at the start of the run.
     void start(double t, const State& y) {
-        if (active()) values(t, y, previous_);
+        if (!active()) return;
+        std::fill(sampled_at_.begin(), sampled_at_.end(), t);
+        values(t, y, previous_, true);
     }
 
     /// After an accepted step from t0 to (t1, y1), with `dense(t)` the step's continuous
@@ -57,17 +62,16 @@ public:
     template <class Dense>
     double step(double t0, double t1, const State& y1, Dense&& dense) {
         if (!active()) return std::numeric_limits<double>::quiet_NaN();
-        std::vector<double> current(events_.size());
-        values(t1, y1, current);
+        values(t1, y1, current_, false);
         std::vector<std::pair<double, std::size_t>> roots;
         for (std::size_t i = 0; i < events_.size(); ++i) {
-            const double a = previous_[i], b = current[i];
+            const double a = previous_[i], b = current_[i];
             const bool up = a < 0.0 && b >= 0.0, down = a > 0.0 && b <= 0.0;
             const int direction = events_[i].direction;
             if (!((up && direction >= 0) || (down && direction <= 0))) continue;
-            roots.emplace_back(root(i, t0, a, t1, b, dense), i);
+            roots.emplace_back(events_[i].sample_interval > 0.0 ? t1 : root(i, t0, a, t1, b, dense), i);
         }
-        previous_ = std::move(current);
+        std::swap(previous_, current_);
         const double direction = t1 >= t0 ? 1.0 : -1.0;
         std::sort(roots.begin(), roots.end(),
                   [&](const auto& x, const auto& y) { return direction * x.first < direction * y.first; });
@@ -94,10 +98,21 @@ private:
         }
     }
 
-    void values(double t, const State& y, std::vector<double>& out) const {
+    /// g of every event at (t, y) into `out`; a sampled event (Event::sample_interval) keeps its
+    /// last value (previous_) until t is that far from its last evaluation (`all`: every event).
+    void values(double t, const State& y, std::vector<double>& out, bool all) {
+        bool need_outputs = false;
+        for (std::size_t i = 0; i < events_.size(); ++i) {
+            const double interval = events_[i].sample_interval;
+            due_[i] = all || interval == 0.0 || std::abs(t - sampled_at_[i]) >= interval;
+            if (due_[i] && interval > 0.0) sampled_at_[i] = t;
+            need_outputs |= due_[i] && events_[i].quantity == Event::Quantity::Output;
+        }
         double outputs[n_outputs > 0 ? n_outputs : 1];
-        if constexpr (n_outputs > 0) model::system::outputs(system_, t, y, outputs);
-        for (std::size_t i = 0; i < events_.size(); ++i) out[i] = g(i, t, y, outputs);
+        if constexpr (n_outputs > 0) {
+            if (need_outputs) model::system::outputs(system_, t, y, outputs);
+        }
+        for (std::size_t i = 0; i < events_.size(); ++i) out[i] = due_[i] ? g(i, t, y, outputs) : previous_[i];
     }
 
     double value_at(std::size_t i, double t, const State& y) const {
@@ -137,7 +152,9 @@ private:
     const System& system_;
     const std::vector<Event>& events_;
     Result& result_;
-    std::vector<double> previous_;
+    std::vector<double> previous_, current_;
+    std::vector<double> sampled_at_;  ///< the time each event's g was last evaluated (sampled events)
+    std::vector<char> due_;           ///< whether each event's g is evaluated at this step end
     std::vector<int> count_;
 };
 

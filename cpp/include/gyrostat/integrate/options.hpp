@@ -40,6 +40,11 @@ struct Event {
     int terminal = 0;     ///< 0: record and go on; n ≥ 1: stop the run at the n-th crossing
     std::string name;
     std::function<double(double t, const double* y, int dim)> function;  ///< Quantity::Function
+    /// > 0: g is evaluated only at step ends at least this far in t from its last evaluation, and
+    /// a crossing is placed at the step end where it is seen (no refinement): for a watch whose g
+    /// is costly and changes slowly against the steps (the model ladder's way back down, whose g is
+    /// an averaged model's outputs, evaluated once per fast period instead of at every step).
+    double sample_interval = 0.0;
 };
 
 /// The most memory one run's outputs may take (times, states and named outputs, 8 bytes each):
