@@ -431,6 +431,27 @@ def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tupl
     return Solution.join(lower.model, segments, parts, switches, y_last)
 
 
+_SWITCH_EVENTS: dict[int, tuple] = {}
+
+
+def _switch_events(lower: Rung, top: Rung) -> tuple[list, list]:
+    """The engine events of a switching run, as made for the rungs of a choice (kept with it: a
+    choice reused solves its scene again with the same events; they are read-only): on the lower
+    rung, a watch reaching its limit; on the top, :func:`_back_down`."""
+    kept = _SWITCH_EVENTS.get(id(lower))
+    if kept is not None and kept[0] is lower and kept[1] is top:
+        return kept[2], kept[3]
+    fails = [Event(w.output, w.limit, 1, True, w.statement) for w in lower.watches]
+    made = []
+    for rung, events in ((lower, fails), (top, [_back_down(lower)])):
+        core = rung.model._core
+        made.append(to_core(events, list(core.state_names), list(core.output_names)))
+    if len(_SWITCH_EVENTS) >= 2 * CACHE_SIZE:
+        _SWITCH_EVENTS.pop(next(iter(_SWITCH_EVENTS)))
+    _SWITCH_EVENTS[id(lower)] = (lower, top, made[0], made[1])  # (the rungs held: their ids stay theirs)
+    return made[0], made[1]
+
+
 def _back_down(lower: Rung):
     """The terminal event of a run on the top rung: every watched assumption of ``lower`` holds
     again with margin. An engine event evaluated in C++ (the lower model's ``watch_event``: the
@@ -490,12 +511,9 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
         return solve(rung.model, rung.y0, span, **kept, **timing, events=extra_events or None,
                      check_validity=False, progress=progress if progress is not None else False)
     grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
-    fails = [Event(w.output, w.limit, 1, True, w.statement) for w in rung.watches]
-    # each rung's options made once, its events included (each segment sets its output times)
+    # each rung's options made once per run, its events included (each segment sets its output times)
     opts = {False: make_options(**kept), True: make_options(**kept)}
-    for upper, events in ((False, fails), (True, [_back_down(rung)])):
-        core = (top if upper else rung).model._core
-        opts[upper].events = to_core(events, list(core.state_names), list(core.output_names))
+    opts[False].events, opts[True].events = _switch_events(rung, top)
     segments: list[tuple[str, Solution]] = []
     switches: list[tuple] = []
     t, state, on_top = t0, rung.y0, False
