@@ -211,6 +211,47 @@ def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
         assert np.max(np.abs(cpp_run[name] - python_run[name])) <= doc["integration"]["accuracy"] * scale, name
 
 
+def test_a_switching_run_locates_the_scenes_events_on_every_piece():
+    """The scene's [[events]] over a run that switches models (they were dropped: a switching or
+    watched auto run reported no event at all). An event on r (a quantity of both models) is
+    located on every piece; against the full model alone, r = 0 is crossed once, at a time within
+    the averaging's error: |Δr| ≤ accuracy·max|r| = 0.1 over |dr/dt| ≈ 2/239 near the crossing
+    gives 12 s (measured 0.15 s). An event on p (the full model's only) is located on the top's
+    pieces and the notes name the averaged ones. A terminal event ends the whole joined run."""
+    from gyrostat import ladder
+
+    doc = _switching_doc()
+    doc["events"] = [{"quantity": "r", "value": 0.0, "direction": 0, "terminal": 0},
+                     {"quantity": "p", "value": 0.0, "direction": 1, "terminal": 0}]
+    ladder._CHOICES.clear()
+    _, run, report = _solve(doc)
+    full_doc = copy.deepcopy(doc)
+    full_doc["integration"]["model"] = "full"
+    _, full, _ = _solve(full_doc)
+    assert report["model"] == "averaged" and len(report["ladder"]["switches"]) >= 2
+    assert run.event_names == full.event_names == ("r = 0", "p rises through 0")
+    (t_auto,), (t_full,) = run.t_events[0], full.t_events[0]
+    assert abs(t_auto - t_full) <= 12.0, (t_auto, t_full)
+    r = list(run.state_names).index("r")
+    assert abs(run.y_events[0][0][r]) <= 1e-9  # the crossing's state, in the averaged model's (a, r)
+    # p's crossings: only where the top ran (rung 1), and as many there as the full model's
+    on_top = [(t, u) for (t, a, b, _) in run.switches if b == "full" for u in
+              [next((v for (v, c, d, _) in run.switches if v > t and c == "full"), 4000.0)]]
+    assert len(run.t_events[1]) > 0
+    assert all(any(t <= x <= u for t, u in on_top) for x in run.t_events[1]), (on_top, run.t_events[1][:5])
+    expected = sum(int(np.sum((full.t_events[1] > t) & (full.t_events[1] <= u))) for t, u in on_top)
+    assert abs(len(run.t_events[1]) - expected) <= 2 * len(on_top), (len(run.t_events[1]), expected)
+    notes = report["runs"][next(iter(report["runs"]))]["notes"]
+    assert any("'p' is not a quantity of the averaged model" in note for note in notes), notes
+    # terminal: the joined run ends at r = 0
+    doc["events"] = [{"quantity": "r", "value": 0.0, "direction": 0, "terminal": 1}]
+    ladder._CHOICES.clear()
+    _, stopped, stopped_report = _solve(doc)
+    assert stopped.terminal_event == 0 and stopped.t_last == stopped.t_events[0][0] < 4000.0
+    assert stopped.t_events[0][0] == pytest.approx(t_auto, abs=1e-6)
+    assert stopped_report["runs"][next(iter(stopped_report["runs"]))]["terminal_event"] == "r = 0"
+
+
 def test_an_engine_event_is_passed_as_it_is():
     """gyrostat.solve takes an engine event made already (the ladder's watch_event) beside
     Event and callables, reported under its own name."""

@@ -47,7 +47,7 @@ class Event:
         _direction(self.direction, f"event {self.quantity!r}")
         if isinstance(self.value, bool) or not isinstance(self.value, (int, float)) or not math.isfinite(self.value):
             raise ValueError(f"event value = {self.value!r} must be a finite number")
-        _terminal_count(self.terminal, self.quantity)
+        terminal_count(self.terminal, self.quantity)
 
     @property
     def label(self) -> str:
@@ -67,7 +67,8 @@ def _direction(direction, what: str) -> int:
     return int(direction)
 
 
-def _terminal_count(terminal, what) -> int:
+def terminal_count(terminal, what) -> int:
+    """The count of crossings after which the event stops the run (0: never), or a ValueError naming it."""
     if terminal is True:
         return 1
     if terminal is False or terminal is None:
@@ -137,7 +138,7 @@ def to_core(events, state_names, output_names) -> list:
                 raise ValueError(f"event {i}: {event.quantity!r} is neither a state component "
                                  f"({', '.join(state_names)}) nor an output ({', '.join(output_names)}) of this model")
             core.append(_core.Event(kind, index, float(event.value), event.direction,
-                                    _terminal_count(event.terminal, event.quantity), names[i]))
+                                    terminal_count(event.terminal, event.quantity), names[i]))
         elif isinstance(event, _core.Event):  # an engine event made already (the ladder's watch_event)
             core.append(event)
         elif callable(event):
@@ -146,7 +147,7 @@ def to_core(events, state_names, output_names) -> list:
             _check_signature(event, i, name)
             function: Callable = event
             core.append(_core.Event("function", i, 0.0, direction,
-                                    _terminal_count(getattr(event, "terminal", False), name), name, function))
+                                    terminal_count(getattr(event, "terminal", False), name), name, function))
         else:
             raise TypeError(f"event {i} must be a gyrostat.events.Event or a callable f(t, y), "
                             f"not {type(event).__name__}")

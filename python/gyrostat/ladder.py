@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.events import Event, to_core
+from gyrostat.events import Event, labels, terminal_count, to_core
 from gyrostat.solution import AccuracyWarning, Solution
 from gyrostat.solve import make_options, solve
 from gyrostat.assumptions import Assumption
@@ -411,7 +411,89 @@ def _rest(rungs: list[Rung], chosen: Rung) -> list[dict]:
 
 
 # ------------------------------------------------------------------------------------ switching
-def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tuple]) -> Solution:
+class _PieceEvents:
+    """The caller's events (the scene's [[events]]) over a run that switches models: each one given
+    by quantity (gyrostat.events.Event) is located on every piece whose model has that quantity
+    (the lower rung's and the top's name theirs alike: r, a, ...); the crossings are kept in the
+    lower rung's variables (a top's state mapped down), a terminal one's count runs across the
+    pieces and ends the whole run. A piece whose model lacks the quantity is named in the run's
+    notes. An event that reads one model's state (a callable, an engine event) cannot be carried
+    across models: refused by name."""
+
+    def __init__(self, events: list, lower: Rung):
+        for k, event in enumerate(events):
+            if not isinstance(event, Event):
+                raise ValueError(f"event {k} ({type(event).__name__}): a run that may switch models locates events "
+                                 "given by quantity (gyrostat.events.Event) on each model's pieces; this one reads one "
+                                 "model's state: give it as an Event, or set the scene's model to one rung")
+        self.events, self.lower = list(events), lower
+        self.names = labels(self.events)
+        self.counts = [terminal_count(e.terminal, e.quantity) for e in self.events]
+        self.seen = [0] * len(self.events)
+        self.times: list[list] = [[] for _ in self.events]
+        self.states: list[list] = [[] for _ in self.events]
+        self.notes: list[str] = []
+        self.terminal: int | None = None
+        self._which: list[int] = []
+
+    def __bool__(self) -> bool:
+        return bool(self.events)
+
+    def on(self, rung: Rung) -> list:
+        """The engine events of this piece (on ``rung``'s model), terminal counts net of the
+        crossings seen on the pieces before."""
+        if not self.events:
+            return []
+        core = rung.model._core
+        states, outputs = list(core.state_names), list(core.output_names)
+        made, self._which = [], []
+        for k, event in enumerate(self.events):
+            if event.quantity in states:
+                kind, index = "state", states.index(event.quantity)
+            elif event.quantity in outputs:
+                kind, index = "output", outputs.index(event.quantity)
+            else:
+                continue
+            left = self.counts[k] - self.seen[k] if self.counts[k] else 0
+            made.append(_core.Event(kind, index, float(event.value), event.direction, left, self.names[k]))
+            self._which.append(k)
+        return made
+
+    def record(self, rung: Rung, solution: Solution, first: int) -> bool:
+        """The crossings of the piece just run (its events from index ``first`` on are the
+        caller's, in the order :meth:`on` made them); True when a terminal one ended the run."""
+        if not self.events:
+            return False
+        for k, event in enumerate(self.events):
+            if k not in self._which and len(solution):
+                self.notes.append(f"event {self.names[k]!r}: {event.quantity!r} is not a quantity of the {rung.name} "
+                                  f"model: not located over t in [{solution.t[0]:.6g}, {solution.t_last:.6g}]")
+        for j, k in enumerate(self._which):
+            times = np.asarray(solution.t_events[first + j], float)
+            if not len(times):
+                continue
+            states = np.asarray(solution.y_events[first + j], float).reshape(len(times), -1)
+            if rung is not self.lower:
+                states = np.asarray(self.lower.model._core.initial_states(states))
+            self.times[k].append(times)
+            self.states[k].append(states)
+            self.seen[k] += len(times)
+        ended = solution.terminal_event
+        if ended is not None and ended >= first:
+            self.terminal = self._which[ended - first]
+            return True
+        return False
+
+    def joined(self, dim: int) -> dict:
+        """What :meth:`gyrostat.Solution.join` takes of them."""
+        return {"event_names": tuple(self.names),
+                "t_events": [np.concatenate(t) if t else np.zeros(0) for t in self.times],
+                "y_events": [np.vstack(y) if y else np.zeros((0, dim)) for y in self.states],
+                "terminal_event": -1 if self.terminal is None else self.terminal, "notes": tuple(self.notes)}
+
+
+def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tuple],
+          wanted: _PieceEvents | None = None) -> Solution:
     """A run that went up and down the ladder as one Solution in the lower rung's variables: the
     pieces run on the top are mapped down by the lower model's own projection (C++
     ``initial_state``) and its outputs evaluated there (C++ ``outputs_at``); ``rung`` is 0 where
@@ -428,7 +510,8 @@ def _join(lower: Rung, segments: list[tuple[str, Solution]], switches: list[tupl
             parts.append((sol.t, projected, core.outputs_along(sol.t, projected), 1))
     name, last = segments[-1]
     y_last = last.y_last if name == lower.name else np.asarray(core.initial_state(last.y_last))
-    return Solution.join(lower.model, segments, parts, switches, y_last)
+    events = wanted.joined(len(core.state_names)) if wanted else {}
+    return Solution.join(lower.model, segments, parts, switches, y_last, **events)
 
 
 _SWITCH_EVENTS: dict[int, tuple] = {}
@@ -508,12 +591,20 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
     extra_events = list(options.get("events", []))
     if rung is top or not rung.watches:  # one run, asked for as the scene asks for it (n_out: the same times)
         timing = {"t_eval": options["t_eval"]} if options.get("t_eval") is not None else {"n_out": n_out}
-        return solve(rung.model, rung.y0, span, **kept, **timing, events=extra_events or None,
-                     check_validity=False, progress=progress if progress is not None else False)
+        names = set(rung.model.state_names) | set(rung.model.output_names)
+        missing = [e for e in extra_events if isinstance(e, Event) and e.quantity not in names]
+        solution = solve(rung.model, rung.y0, span, **kept, **timing,
+                         events=[e for e in extra_events if not any(e is m for m in missing)] or None,
+                         check_validity=False, progress=progress if progress is not None else False)
+        solution.notes += [f"event {e.label!r}: {e.quantity!r} is not a quantity of the {rung.name} model (the "
+                           f"ladder's choice): not located" for e in missing]
+        return solution
     grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     # each rung's options made once per run, its events included (each segment sets its output times)
     opts = {False: make_options(**kept), True: make_options(**kept)}
-    opts[False].events, opts[True].events = _switch_events(rung, top)
+    switch_events = _switch_events(rung, top)
+    opts[False].events, opts[True].events = switch_events
+    wanted = _PieceEvents(extra_events, rung)  # the caller's events, located on every piece
     segments: list[tuple[str, Solution]] = []
     switches: list[tuple] = []
     t, state, on_top = t0, rung.y0, False
@@ -521,9 +612,13 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
         times = grid[(grid > t) | ((grid == t) & (not segments))]
         opts[on_top].t_eval = times if len(times) else np.array([t1])
         current = top if on_top else rung
+        own = wanted.on(current)
+        if wanted:
+            opts[on_top].events = switch_events[on_top] + own
         sol = _segment(current, state, (t, t1), opts[on_top])
         segments.append((current.name, sol))
-        if not sol.success or sol.terminal_event is None or sol.t_last >= t1:
+        ended_by_caller = wanted.record(current, sol, len(switch_events[on_top]))
+        if not sol.success or sol.terminal_event is None or sol.t_last >= t1 or ended_by_caller:
             break
         t = float(sol.t_last)
         if on_top:
@@ -535,14 +630,16 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
             switches.append((t, rung.name, top.name, f"{watch.statement}: {watch.output} reached {watch.limit:g}"))
         on_top = not on_top
         if len(switches) > MAX_SWITCHES:
-            rest = solve(top.model, state if on_top else _lifted(rung, top, state, phase), (t, t1),
-                         **kept, t_eval=grid[grid > t], check_validity=False, progress=False)
+            opts[True].t_eval = grid[grid > t] if np.any(grid > t) else np.array([t1])
+            opts[True].events = wanted.on(top)
+            rest = _segment(top, state if on_top else _lifted(rung, top, state, phase), (t, t1), opts[True])
             segments.append((top.name, rest))
+            wanted.record(top, rest, 0)
             switches.append((t, rung.name, top.name, f"more than {MAX_SWITCHES} switches: stays on the top"))
             break
-    if not switches:
+    if not switches and not wanted:
         return segments[0][1]
-    return _join(rung, segments, switches)
+    return _join(rung, segments, switches, wanted)
 
 
 # ------------------------------------------------------------------------------------ the chart

@@ -135,9 +135,9 @@ def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Cho
                             key=_ladder.scene_key(scene.doc))
     rung = choice.chosen
     name = rung.run
-    events = [e for e in template.options.get("events", ()) if getattr(e, "quantity", None) in
-              rung.model.state_names + rung.model.output_names]
-    options = {**template.options, "events": events}
+    # the scene's events, located wherever the run's model has their quantity (the run's notes name
+    # the others: ladder.run)
+    options = {**template.options, "events": list(template.options.get("events", ()))}
     bar = _bars.resolve(None if progress else False, description=f"{scene.name}: {rung.name}")
     try:
         solutions[name] = _ladder.run(choice, template.t_span, options, integration["phase"],

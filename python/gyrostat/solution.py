@@ -130,7 +130,8 @@ class Solution:
 
     @classmethod
     def join(cls, model, pieces: list[tuple[str, "Solution"]], parts: list[tuple], switches: list[tuple],
-             y_last) -> "Solution":
+             y_last, event_names: tuple = (), t_events: list | None = None, y_events: list | None = None,
+             terminal_event: int = -1, notes: tuple = ()) -> "Solution":
         """One solution of ``model`` from the pieces of a run that switched models.
 
         The statistics add up; status, message and the step to continue with are the last
@@ -150,6 +151,11 @@ class Solution:
             Where the run switched models and why.
         y_last : array_like
             The last state, in ``model``'s variables.
+        event_names, t_events, y_events, terminal_event : optional
+            The caller's events over the pieces (the crossings' states in ``model``'s variables;
+            ``terminal_event`` the index of the one that ended the run, -1: none).
+        notes : tuple of str, optional
+            What the run notes besides (an event not located on a piece whose model lacks its quantity).
 
         Examples
         --------
@@ -174,10 +180,13 @@ class Solution:
             output_units=tuple(q["unit"] for q in quantities if q["role"] == "output"),
             output_conserved=(False,) * n_out, output_kept=(False,) * n_out, options=last._result.options,
             stats=SimpleNamespace(**stats, last_step=each[-1]["last_step"]),
-            t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status, message=last.message,
+            t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status,
+            message=(f"terminal event {terminal_event} ('{event_names[terminal_event]}') at t = {last.t_last:.17g}"
+                     if terminal_event >= 0 else last.message),
             success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
-            methods_used=(), switches=[], warnings=(), notes=(), t_events=[], y_events=[], event_names=(),
-            terminal_event=-1, error_estimate=float("nan"), dense=_no_dense_output)
+            methods_used=(), switches=[], warnings=(), notes=tuple(notes), t_events=list(t_events or []),
+            y_events=list(y_events or []), event_names=tuple(event_names), terminal_event=terminal_event,
+            error_estimate=float("nan"), dense=_no_dense_output)
         joined = cls(result, model)
         joined.pieces, joined.switches = tuple(pieces), list(switches)
         joined.rung = np.concatenate([np.full(len(p[0]), float(p[3])) for p in parts]) if parts else np.zeros(0)
