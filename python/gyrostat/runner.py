@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import time
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -55,7 +56,7 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
         if solution.pieces:  # a run that switched models: checked where the lower rung ran
             keep = solution.rung == 0
             checks += validity.check(run.model, solution.y[keep], solution.t[keep], warn=False,
-                                     outputs={k: v[keep] for k, v in solution.outputs.items()})
+                                     outputs=_Rows(solution.outputs, keep))
         elif len(solution):
             checks += scene.kind.assumptions(run, solution)
     unique = {}
@@ -85,6 +86,23 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     report["agreement"] = agreement(report)
     report["verdict"] = verdict(report)
     return solutions, report, derived
+
+
+class _Rows(Mapping):
+    """The outputs at the rows ``keep``, each selected when it is read (a check reads one or two
+    of them)."""
+
+    def __init__(self, outputs: dict, keep: np.ndarray):
+        self._outputs, self._keep = outputs, keep
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self._outputs[name][self._keep]
+
+    def __iter__(self):
+        return iter(self._outputs)
+
+    def __len__(self) -> int:
+        return len(self._outputs)
 
 
 def _marker(text: str, expected: list[dict]) -> dict | None:
