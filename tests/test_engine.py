@@ -340,3 +340,20 @@ def test_unreachable_and_oversized_requests_are_refused():
     # 13 outputs: |G|, h, g, L, |Q|, δ, regularised, θ_G, φ_G, the nutation angle, ψ, θ, φ
     with pytest.raises(ValueError, match=r"would take .* GiB for this model's 8 state components and 13 outputs"):
         g.solve(orthogonal.OrthogonalModel(g.Body([2.0, 3.0, 4.0]), 0.1, attitude=True), W0, (0, 1), n_out=20_000_000)
+
+
+def test_the_options_cache_keeps_what_each_keyword_means():
+    """solve keeps the Options of recent keyword combinations (its key: the values, typed only where
+    True == 1 == 1.0 could mix them, and the output times). A value that is refused stays refused
+    after an equal one was accepted and kept: max_steps=True after max_steps=1, every_step=1 after
+    every_step=True; integer output times give the run of the same times as floats."""
+    model = g.Model(g.Body([1.0, 2.0, 3.0]))
+    y0 = [0.1, 0.2, 0.3]
+    g.solve(model, y0, (0.0, 1.0), max_steps=1)
+    with pytest.raises(ValueError, match="max_steps = True must be a number"):
+        g.solve(model, y0, (0.0, 1.0), max_steps=True)
+    g.solve(model, y0, (0.0, 1.0), every_step=True)
+    with pytest.raises(ValueError, match="every_step = 1 must be True or False"):
+        g.solve(model, y0, (0.0, 1.0), every_step=1)
+    ints, floats = (g.solve(model, y0, (0.0, 1.0), t_eval=t) for t in ([0, 1], [0.0, 1.0]))
+    assert np.array_equal(ints.t, [0.0, 1.0]) and np.array_equal(ints.y, floats.y)

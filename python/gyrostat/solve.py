@@ -102,10 +102,12 @@ def _options(options, method, rtol, atol, t_eval, n_out, every_step, max_steps, 
     modified once made): repeated calls with the same options, ``t_eval`` given as a short list
     or tuple included, cost a dictionary look-up."""
     if options is None and (t_eval is None or (n_out is None and type(t_eval) in (list, tuple) and len(t_eval) <= 64)):
-        values = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
-        key = values + tuple(map(type, values))  # True == 1, yet n_out=True is refused and n_out=1 is not
-        if t_eval is not None:  # a short list of output times: its values and their types join the key
-            key += (tuple(t_eval), tuple(map(type, t_eval)))
+        key = (method, rtol, atol, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
+        if True in key or False in key:  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
+            key += tuple(map(type, key))
+        if t_eval is not None:  # a short list of output times: its values (and their types, unless all floats)
+            times = tuple(t_eval)
+            key += (times,) if all(type(t) is float for t in times) else (times, tuple(map(type, times)))
         try:
             return _CACHE[key]
         except KeyError:
