@@ -1745,9 +1745,9 @@ class Model:
         ...
     def tau_rate(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def watch_event(self, outputs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], back: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], limit: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], name: str, direction: typing.SupportsInt | typing.SupportsIndex = -1, terminal: typing.SupportsInt | typing.SupportsIndex = 1) -> ...:
+    def watch_event(self, outputs: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], back: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], limit: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], name: str, direction: typing.SupportsInt | typing.SupportsIndex = -1, terminal: typing.SupportsInt | typing.SupportsIndex = 1, sample_interval: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> ...:
         """
-        An engine event for a run of a model above this one on the ladder, evaluated in C++ at every step: g(t, y) = the largest (o_i - back_i) / (limit_i - back_i) of this model's outputs o = outputs_at(t, y) (y mapped down as initial_state maps it) at the indices ``outputs`` (1 where one is not finite). It falls through 0 where every watched output is back below its ``back``.
+        An engine event for a run of a model above this one on the ladder, evaluated in C++ at every step (or, with ``sample_interval`` > 0, at step ends that far apart in t, the crossing placed at the step end where it is seen): g(t, y) = the largest (o_i - back_i) / (limit_i - back_i) of this model's outputs o = outputs_at(t, y) (y mapped down as initial_state maps it) at the indices ``outputs`` (1 where one is not finite). It falls through 0 where every watched output is back below its ``back``.
         """
     @property
     def dim(self) -> int:
@@ -1781,6 +1781,11 @@ class Event:
     @property
     def name(self) -> str:
         ...
+    @property
+    def sample_interval(self) -> float:
+        """
+        > 0: g evaluated only at step ends this far apart, a crossing placed where it is seen (a costly watch; 0: every step, crossings located on the step's continuous extension).
+        """
     @property
     def terminal(self) -> int:
         ...
