@@ -172,38 +172,40 @@ def test_summaries_in_bulk_equal_each_members_own_run():
 
 
 def test_bulk_records_equal_member_by_member_records():
-    """sweeps._record_results over members of different lengths (a failed member keeps a shorter
-    trajectory) and one member with other names writes what _record writes member by member."""
-    from types import SimpleNamespace
+    """sweeps._record_results (the engine's summaries in bulk: _core.summaries) over members of
+    different lengths (a member stopped by max_steps keeps a shorter trajectory, a refused one
+    none) and one member with other names (no attitude) writes what _record writes member by
+    member, bit for bit."""
+    from gyrostat.solve import ensemble_results
 
     doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=4)
     plan = sweeps.Plan(doc, {"torques[0].moment[2]": [0.0, 0.05, 0.1]})
-    model = plan.member(plan.values(0)).model
-    rng = np.random.default_rng(5)
-    states, outputs = len(plan.state_names), len(plan.output_names)
-
-    def result(n, status="success", names=None):
-        stats = SimpleNamespace(steps=n, rhs_evals=12 * n, rejected_steps=1, jacobian_evals=0,
-                                nonlinear_conv_failures=0, last_step=0.25)
-        return SimpleNamespace(
-            t=np.linspace(0.0, n - 1.0, n), y=rng.normal(size=(n, states)), outputs=rng.normal(size=(n, outputs)),
-            state_names=names or plan.state_names, output_names=plan.output_names, status=status,
-            message="" if status == "success" else "stopped", stats=stats, terminal_event=-1, warnings=(), notes=(),
-            t_events=[], y_events=[], event_names=(), output_conserved=(False,) * outputs,
-            output_kept=(False,) * outputs)
-
-    results = [result(4), result(2, "max_steps_reached"), result(4), result(0, "invalid_input"),
-               result(4, names=("a", "b", "r", *plan.state_names[3:]))]
-    extrema = plan.output_names[:2]
+    run = plan.member(plan.values(1))
+    options = dict(n_out=4, method="dop853", rtol=1e-10, atol=1e-12)
+    y0 = np.asarray(run.y0)
+    refused = y0.copy()
+    refused[0] = np.nan
+    _, full = ensemble_results([run.model], np.stack([y0, 1.1 * y0, refused]), run.t_span, **options)
+    _, stopped = ensemble_results([run.model], np.stack([y0]), run.t_span, max_steps=3, **options)
+    other = g.Model(run.model.body, run.model.torques)  # the same body without attitude: other names
+    _, unnamed = ensemble_results([other], np.stack([y0[:3]]), run.t_span, **options)
+    results = [full[0], stopped[0], full[1], full[2], unnamed[0]]
+    models = [run.model, run.model, run.model, run.model, other]
+    assert [(r.status, len(r.t)) for r in results] == [("success", 4), ("max_steps_reached", 1), ("success", 4),
+                                                       ("invalid_input", 0), ("success", 4)]
+    extrema = plan.output_names[:2] + ("q",)
     bulk, one = sweeps._blank(plan, 5, False, extrema), sweeps._blank(plan, 5, False, extrema)
-    sweeps._record_results(bulk, list(range(5)), results, [model], plan, False, extrema)
+    warnings_ = sweeps._record_results(bulk, list(range(5)), results, models, plan, False, extrema)
     for j, r in enumerate(results):
-        sweeps._record(one, j, g.Solution(r, model), plan, False, extrema)
+        sweeps._record(one, j, g.Solution(r, models[j]), plan, False, extrema)
+    assert list(warnings_) == [r.warnings[0] if len(r.warnings) else "" for r in results]
     assert set(bulk) == set(one)
     for name in one:
         assert np.array_equal(bulk[name], one[name], equal_nan=bulk[name].dtype != object), name
     assert bulk["final_p"][0] == results[0].y[-1, 0] and bulk["final_p"][1] == results[1].y[-1, 0]
-    assert np.isnan(bulk["final_p"][3]) and np.isnan(bulk["final_p"][4]) and bulk["final_r"][4] == results[4].y[-1, 2]
+    assert bulk["max_q"][2] == results[2].y[:, 1].max() and bulk["min_q"][2] == results[2].y[:, 1].min()
+    assert np.isnan(bulk["final_p"][3]) and bulk["final_r"][4] == results[4].y[-1, 2]
+    assert np.isnan(bulk[f"final_{plan.state_names[3]}"][4])  # a quaternion component the member has not
 
 
 def test_dispersion_statistics():
@@ -337,6 +339,54 @@ def test_bad_distributions_and_values_name_the_value():
     ds = g.sweep(doc, {"integration.rtol": [1e-8, -1.0]}, progress=False)  # a key's own checks, per member
     assert list(ds["status"].values) == ["success", "invalid_input"]
     assert ds["message"].values[1] == "[integration] rtol = -1.0: must be a finite positive number"  # the engine's rule
+
+
+def test_a_members_numbers_are_checked_alone_only_where_that_equals_checking_the_whole_scene():
+    """Plan.document checks a number set into a value by itself when every check of its field
+    holds number by number (schema.elementwise); the document and the refusals must be those of
+    validating the member's whole scene, and a field with another check (rtol's engine rule) is
+    still validated whole."""
+    from gyrostat.families import KINDS
+    from gyrostat.schema import validate
+
+    doc = scene("explorer1_flat_spin", t_span=[0.0, 10.0], n_out=5, model="full")
+    vary = {"torques[0].p0": [2e-4, -1e-4, 0.0], "initial.omega[0]": [0.05, -0.1]}  # p0: positive; omega: finite
+    plan = sweeps.Plan(doc, vary)
+    assert [located.numbers_alone for _, _, located in plan.located] == [True, True]
+    schema = KINDS[plan.kind_name].schema
+    refused = 0
+    for i in range(plan.size):
+        values = plan.values(i)
+        whole = json.loads(json.dumps(doc))  # the member's scene as a user would write it
+        whole["torques"][0]["p0"], whole["initial"]["omega"][0] = values
+        try:
+            expected = validate(schema, whole, "scene")
+        except SceneError as error:
+            with pytest.raises(SceneError) as member_error:
+                plan.document(values)
+            assert str(member_error.value) == str(error)  # the same message, naming the key and the value
+            refused += 1
+            continue
+        assert plan.document(values) == expected
+    assert refused == 4  # p0 = -1e-4 and p0 = 0, each with two omegas
+    ds = g.sweep(doc, vary, progress=False, trajectories=False)
+    assert list(ds["status"].values.ravel()) == ["success", "success"] + ["invalid_input"] * 4  # p0 by omega
+    assert ds["message"].values[1, 0] == "[torques[0]] p0 = -0.0001: must be positive"
+    assert not sweeps.Plan(doc, {"integration.rtol": [1e-8]}).located[0][2].numbers_alone  # an engine rule
+
+
+def test_a_chunks_members_share_the_body_and_torques_no_parameter_changes():
+    from gyrostat.kind import reusing
+
+    doc = scene("forced_damped", t_span=[0.0, 1.0], n_out=5)
+    plan = sweeps.Plan(doc, {"torques[1].matrix[0][0]": [0.02, 0.03]})
+    with reusing(plan.base):
+        first, second = (plan.member(plan.values(i)).model for i in range(2))
+    assert first.torques[0] is second.torques[0] and first.body is second.body  # built once
+    assert first.torques[1] is not second.torques[1]  # the changed one is each member's own
+    np.testing.assert_array_equal(np.asarray(second.torques[1].matrix)[0], [0.03, 0.01, 0.0])
+    alone = [plan.member(plan.values(i)).model for i in range(2)]  # outside the context: nothing is shared
+    assert alone[0].torques[0] is not alone[1].torques[0] and alone[0].body is not alone[1].body
 
 
 def test_memory_is_checked_before_anything_runs(monkeypatch):

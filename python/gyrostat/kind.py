@@ -14,6 +14,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,7 +28,7 @@ from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, SceneError,
 from gyrostat import torques as _torques
 
 __all__ = ["Kind", "Run", "KINDS", "register", "default_kind", "title_fields", "outputs_field", "build",
-           "make_body", "make_torques", "integration", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
+           "make_body", "make_torques", "reusing", "integration", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
            "SPLITTING_FIELDS", "engine_option", "engine_rule", "MAX_STEPS"]
 
 
@@ -277,17 +279,49 @@ def build(where: str, make, *args):
         raise SceneError(f"[{where}] {error}") from None
 
 
+_reuse = threading.local()
+
+
+@contextlib.contextmanager
+def reusing(document: dict):
+    """Within it (on this thread), :func:`make_body` and :func:`make_torques` build ``document``'s
+    own [body] table and [[torques]] entries once, and return those objects for any document that
+    holds these very tables (the same objects, not equal copies). A sweep's members are such
+    documents: :meth:`gyrostat.sweeps.Plan.document` copies only the tables a parameter changes,
+    so the others are built once per chunk instead of once per member (the body and the torques
+    are immutable core objects, which models copy)."""
+    previous = getattr(_reuse, "built", None)
+    sections = [document.get("body"), *document.get("torques", [])]
+    _reuse.built = {id(section): [section, None] for section in sections if section is not None}
+    try:
+        yield
+    finally:
+        _reuse.built = previous
+
+
+def _reused(section, make):
+    """``make()``, or the object made before for this very ``section`` inside :func:`reusing`."""
+    built = getattr(_reuse, "built", None)
+    entry = built.get(id(section)) if built else None
+    if entry is None or entry[0] is not section:
+        return make()
+    if entry[1] is None:
+        entry[1] = make()
+    return entry[1]
+
+
 def make_body(doc: dict) -> _core.Body:
     """The scene's [body] as a :class:`gyrostat.Body`."""
     body = doc["body"]
     if "inertia" in body:
-        return build("body", lambda: _core.Body(rotor=body["rotor"], inertia=body["inertia"]))
-    return build("body", _core.Body, body["moments"], body["rotor"])
+        return _reused(body, lambda: build("body", lambda: _core.Body(rotor=body["rotor"], inertia=body["inertia"])))
+    return _reused(body, lambda: build("body", _core.Body, body["moments"], body["rotor"]))
 
 
 def make_torques(doc: dict) -> list:
     """The scene's [[torques]], each built by its core class (:func:`gyrostat.torques.build`)."""
-    return [build(f"torques[{i}]", _torques.build, spec) for i, spec in enumerate(doc.get("torques", []))]
+    return [_reused(spec, lambda: build(f"torques[{i}]", _torques.build, spec))
+            for i, spec in enumerate(doc.get("torques", []))]
 
 
 def integration(doc: dict, kind: Kind, **extra) -> dict:

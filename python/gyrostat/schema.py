@@ -614,10 +614,27 @@ class Located:
     the keys and indices up to that field (``field_parts``), and those inside its value
     (``inner``: indices into a vector or a matrix)."""
 
-    __slots__ = ("field", "field_parts", "inner", "root")
+    __slots__ = ("field", "field_parts", "inner", "root", "numbers_alone")
 
     def __init__(self, field: Field, field_parts: tuple, inner: tuple, root: str):
         self.field, self.field_parts, self.inner, self.root = field, field_parts, inner, root
+        # a number, a vector or a matrix whose checks all hold number by number (elementwise)
+        self.numbers_alone = (isinstance(field.type, (_Float, Vector, Matrix))
+                              and all(getattr(check, "elementwise", False) for check in field.checks))
+
+    def accepts_number(self, number: Any) -> bool:
+        """Whether a float set into a valid value of this field (one number, or entries of a
+        vector or a matrix) leaves it valid, judged from the number alone: the field holds numbers
+        and each of its checks is :func:`elementwise`. False means "not known": :meth:`validate`
+        the whole value then (which names what is wrong)."""
+        if not (self.numbers_alone and type(number) is float):
+            return False
+        try:
+            for check in self.field.checks:
+                check(number)
+        except ValueError:
+            return False
+        return True
 
     def revalidate(self, document: Mapping) -> Any:
         """Validates the field's (changed) value in ``document`` as :func:`validate` would."""
@@ -664,18 +681,28 @@ def locate(schema: Table, document: Mapping, parts: tuple, where: str = "scene")
 # Ready-made checks (for Field(check=...)); a list of numbers is checked element by element
 
 
+def elementwise(check: Callable[[Any], Any]) -> Callable[[Any], Any]:
+    """Marks ``check`` as one that a list of numbers passes when each of its numbers passes it
+    alone (and that takes a single number): a number changed inside a valid value is then checked
+    by itself (:meth:`Located.accepts_number`, what a sweep member's values go through)."""
+    check.elementwise = True
+    return check
+
+
 def _each(value: Any) -> list:
     if isinstance(value, (list, tuple)):
         return [x for item in value for x in _each(item)]
     return [value]
 
 
+@elementwise
 def positive(value: Any) -> None:
     """Every number is > 0."""
     if not all(x > 0 for x in _each(value)):
         raise ValueError("must be positive")
 
 
+@elementwise
 def non_negative(value: Any) -> None:
     """Every number is >= 0."""
     if not all(x >= 0 for x in _each(value)):
@@ -685,6 +712,7 @@ def non_negative(value: Any) -> None:
 def at_least(bound: float) -> Callable[[Any], None]:
     """Every number is >= ``bound``."""
 
+    @elementwise
     def check(value: Any) -> None:
         if not all(x >= bound for x in _each(value)):
             raise ValueError(f"must be at least {bound}")
@@ -698,6 +726,7 @@ def increasing(value: Any) -> None:
         raise ValueError("must be increasing")
 
 
+@elementwise
 def finite(value: Any, _: Any = None) -> None:
     """A number is finite."""
     if not math.isfinite(value):
@@ -717,6 +746,7 @@ def _flat_floats(values: Any) -> Any:
     return None
 
 
+@elementwise
 def all_finite(values: Any) -> None:
     """Every number is finite."""
     flat = _flat_floats(values)  # validated values are floats: checked without NumPy

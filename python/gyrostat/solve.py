@@ -521,7 +521,12 @@ def check_output_memory(models, members: int, outputs: int, what: str) -> None:
     one per member) would record more than RUN_MEMORY_LIMIT bytes at ``outputs`` output times
     (t, the state and the named outputs at each, as the engine counts them; ``every_step`` is
     not counted: unknown before the run)."""
-    widths = [1 + m.dim + len(m.output_names) for m in models]
+    widths, known = [], {}
+    for m in models:
+        key = (m.family, m.dim)  # the model the engine runs, and so its outputs
+        if key not in known:
+            known[key] = 1 + m.dim + len(m.output_names)
+        widths.append(known[key])
     need = float(members) * max(outputs, 2) * sum(widths) / len(widths) * 8.0
     if need > RUN_MEMORY_LIMIT:
         raise ValueError(f"{what} would take {need / 2**30:.3g} GiB (limit {RUN_MEMORY_LIMIT / 2**30:g} GiB for "

@@ -17,8 +17,8 @@ import importlib
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.schema import (Field, ListOf, Matrix, NamedValues, Table, Variants, Vector, all_finite, non_negative,
-                             positive)
+from gyrostat.schema import (Field, ListOf, Matrix, NamedValues, Table, Variants, Vector, all_finite, elementwise,
+                             non_negative, positive)
 
 __all__ = ["TORQUE_TYPES", "BY_KIND", "TORQUE", "build", "names", "schema", "importable"]
 
@@ -34,6 +34,7 @@ def names() -> str:
     return ", ".join(cls.__name__ for cls in TORQUE_TYPES)
 
 
+@elementwise
 def _finite(values) -> None:
     all_finite(values)
 

@@ -1000,12 +1000,21 @@ class RigidBody(Kind):
     # plots an averaged model can draw: functions of its slow variables
     slow_plots = ("xy", "slow", "phase", "invariants", "ladder")
 
+    def start(self, doc: dict, attitude: bool) -> np.ndarray:
+        """The full model's initial state: ω, followed with ``attitude`` by the initial quaternion
+        normalised (the identity when the scene gives none)."""
+        initial = doc["initial"]
+        if not attitude:
+            return np.array(initial["omega"], float)
+        q = initial.get("attitude", (1.0, 0.0, 0.0, 0.0))
+        norm = math.hypot(*q)
+        return np.array([*initial["omega"], *[x / norm for x in q]], float)
+
     def ladder(self, doc):
         body, torques = make_body(doc), make_torques(doc)
         omega = np.asarray(doc["initial"]["omega"], float)
         attitude = self.needs_attitude(doc)
-        q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
-        y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
+        y0 = self.start(doc, attitude)
         free = not torques and not np.any(np.asarray(body.rotor))
         closed = _ladder.Rung("closed_form", TorqueFreeModel(body, attitude) if free else None, y0,
                               "the exact torque-free flow (elliptic functions)",
@@ -1026,14 +1035,12 @@ class RigidBody(Kind):
         options = integration(doc, self)
         runs = []
         attitude = self.needs_attitude(doc)
-        q0 = np.asarray(doc["initial"].get("attitude", [1.0, 0.0, 0.0, 0.0]), float)
         if choice == "closed_form":
-            y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
-            runs.append(Run("closed_form", build("body", TorqueFreeModel, body, attitude), y0, t_span, options))
+            runs.append(Run("closed_form", build("body", TorqueFreeModel, body, attitude), self.start(doc, attitude),
+                            t_span, options))
         if choice in ("full", "compare"):
             model = build("torques", Model, body, torques, attitude)
-            y0 = np.concatenate([omega, q0 / np.linalg.norm(q0)]) if attitude else omega
-            runs.append(Run("full", model, y0, t_span, options))
+            runs.append(Run("full", model, self.start(doc, attitude), t_span, options))
         triaxial = choice == "averaged_triaxial" or (choice == "compare" and nearly_symmetric(body) > SMALL)
         if triaxial:
             model = build("torques", TriaxialAveragedModel, body, torques)
