@@ -23,21 +23,20 @@ namespace gyrostat {
 /// Every model the library integrates (each implements model/system.hpp). Adding a model: its
 /// header (included above), one alternative here, and its constructor in the bindings
 /// (cpp/bindings/expose_models.cpp), and one line in GYROSTAT_SOLVED_MODELS below (which
-/// src/solve_part*.cpp compiles its solve).
+/// src/solve_models.cpp compiles the solve of).
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
                               model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
                               model::TorqueFreeAttitude, model::AveragedTriaxial>;
 
-/// Every alternative of AnyModel as X(K, Model), K the part (src/solve_part<K>.cpp, K in 0..3)
-/// that compiles its integration; the parts share the work about evenly (parallel builds). A new
-/// model: one line here, beside its alternative above (solve_system.hpp's static_assert says when
-/// AnyModel has one not listed).
-#define GYROSTAT_SOLVED_MODELS(X)                                                          \
-    X(0, model::Gyrostat<false>) X(1, model::Gyrostat<true>) X(2, model::AveragedSymmetric) \
-    X(3, model::MovingMass) X(0, model::LagrangeTop) X(1, model::LagrangeAveraged)          \
-    X(2, model::OrthogonalTorque<false>) X(3, model::OrthogonalTorque<true>)                \
-    X(0, model::TorqueFree) X(1, model::TorqueFreeAttitude) X(2, model::AveragedTriaxial)
+/// Every alternative of AnyModel as X(Model): src/solve_models.cpp compiles their integration. A
+/// new model: one line here, beside its alternative above (solve_system.hpp's static_assert says
+/// when AnyModel has one not listed).
+#define GYROSTAT_SOLVED_MODELS(X)                                                      \
+    X(model::Gyrostat<false>) X(model::Gyrostat<true>) X(model::AveragedSymmetric)     \
+    X(model::MovingMass) X(model::LagrangeTop) X(model::LagrangeAveraged)              \
+    X(model::OrthogonalTorque<false>) X(model::OrthogonalTorque<true>)                 \
+    X(model::TorqueFree) X(model::TorqueFreeAttitude) X(model::AveragedTriaxial)
 
 /// The family of a model: "gyrostat", "averaged_symmetric", "averaged_triaxial", "moving_mass",
 /// "lagrange_top", "lagrange_averaged", "orthogonal_torque", "torque_free".
@@ -87,7 +86,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
                                               const integrate::Control* control = nullptr, bool batch = true);
 
 /// The integration of one model type: the whole engine (every method) instantiated for it. Each
-/// alternative of AnyModel is instantiated in one of the translation units src/solve_part*.cpp
+/// alternative of AnyModel is instantiated in the translation unit src/solve_models.cpp
 /// (solve_system.hpp: GYROSTAT_SOLVED_MODELS).
 template <class Model>
 integrate::Result solve_system(const Model& model, double t0, const Eigen::VectorXd& y0, double t1,
