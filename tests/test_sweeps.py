@@ -139,6 +139,18 @@ def test_a_chunks_streams_are_numpys_own(seed):
         plan.values_range(2999, 3001)
 
 
+@pytest.mark.parametrize("distribution, numpys_own", [
+    (g.Uniform(-0.5, 2), lambda rng: rng.uniform(-0.5, 2)),
+    (g.Normal(1, 0.1), lambda rng: rng.normal(1, 0.1)),
+    (g.LogUniform(1e-3, 1e-1), lambda rng: math.exp(rng.uniform(math.log(1e-3), math.log(1e-1))))])
+def test_a_draw_is_numpys_own_distribution_bit_for_bit(distribution, numpys_own):
+    """The draws are written out (a + w·u, m + s·z) for speed; they must stay NumPy's numbers."""
+    ours, theirs = np.random.default_rng(3), np.random.default_rng(3)
+    drawn = [distribution.draw(ours) for _ in range(20000)]
+    assert drawn == [float(numpys_own(theirs)) for _ in range(20000)]
+    assert all(type(x) is float for x in drawn[:10])
+
+
 def test_summaries_alone_equal_the_summaries_kept_with_trajectories():
     """A summaries-only sweep records its members' columns together: the same values,
     statuses and statistics as the member-by-member record of a sweep that keeps trajectories,

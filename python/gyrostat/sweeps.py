@@ -123,9 +123,12 @@ class Uniform:
     def __post_init__(self):
         if not _number(self.low, "Uniform low") < _number(self.high, "Uniform high"):
             raise ValueError(f"Uniform({self.low!r}, {self.high!r}): low must be below high")
+        object.__setattr__(self, "_affine", (float(self.low), float(self.high) - float(self.low)))
 
     def draw(self, rng: np.random.Generator) -> float:
-        return float(rng.uniform(self.low, self.high))
+        # rng.uniform(low, high) bit for bit (NumPy computes low + (high - low)·u in doubles), ~3x faster
+        low, width = self._affine
+        return low + width * rng.random()
 
 
 @_documented_draw
@@ -155,7 +158,8 @@ class Normal:
             raise ValueError(f"Normal({self.mean!r}, {self.std!r}): std must be positive")
 
     def draw(self, rng: np.random.Generator) -> float:
-        return float(rng.normal(self.mean, self.std))
+        # rng.normal(mean, std) bit for bit (NumPy computes mean + std·z in doubles)
+        return float(self.mean) + float(self.std) * rng.standard_normal()
 
 
 @_documented_draw
@@ -183,9 +187,12 @@ class LogUniform:
         low, high = _number(self.low, "LogUniform low"), _number(self.high, "LogUniform high")
         if not 0 < low < high:
             raise ValueError(f"LogUniform({self.low!r}, {self.high!r}): needs 0 < low < high")
+        object.__setattr__(self, "_affine", (math.log(low), math.log(high) - math.log(low)))
 
     def draw(self, rng: np.random.Generator) -> float:
-        return float(math.exp(rng.uniform(math.log(self.low), math.log(self.high))))
+        # exp(rng.uniform(log low, log high)) bit for bit, the logarithms taken once
+        low, width = self._affine
+        return math.exp(low + width * rng.random())
 
 
 DISTRIBUTIONS = {"uniform": Uniform, "normal": Normal, "loguniform": LogUniform}
