@@ -10,61 +10,14 @@ import pytest
 
 from gyrostat import figures as drawing
 from gyrostat import plots
-from gyrostat.cli import main
 
 
 @pytest.fixture(scope="module")
-def figures(tmp_path_factory):
-    """{(scene, plot file name): [axes facts]} of every figure `gyrostat examples` draws."""
-    recorded = {}
-    finish = drawing.finish
-
-    def record(fig, path):
-        fig.canvas.draw()
-        fig.tight_layout()  # as finish() lays it out: the legends' places are the saved ones
-        fig.canvas.draw()
-        recorded[(path.parent.name, path.stem)] = [dict(
-            drawn=_drawn(ax), hidden=_hidden_by_legend(ax), title=ax.get_title(),
-            xlabel=ax.get_xlabel(), ylabel=ax.get_ylabel(), yscale=ax.get_yscale(),
-            x_offset=ax.xaxis.get_major_formatter().get_offset(),
-            legend_sizes=[text.get_fontsize() for text in ax.get_legend().get_texts()] if ax.get_legend() else [],
-            lines={line.get_label(): (line.get_linestyle(), line.get_ydata()) for line in ax.get_lines()},
-            shaded=len(ax.collections), ylim=ax.get_ylim()) for ax in fig.axes
-            if ax.get_label() != "<colorbar>"]  # a colorbar's label is checked with its map
-        return finish(fig, path)
-
-    patch = pytest.MonkeyPatch()
-    patch.setattr(drawing, "finish", record)
-    try:
-        assert main(["examples", "--out", str(tmp_path_factory.mktemp("plots")), "--quiet"]) == 0
-    finally:
-        patch.undo()
-    return recorded
-
-
-def _drawn(ax) -> bool:
-    """Whether a panel shows any data: a line with two finite points, a map, a scatter, a band."""
-    lines = any(np.isfinite(np.asarray(line.get_xdata(), float)).sum() >= 2 and
-                np.isfinite(np.asarray(line.get_ydata(), float)).sum() >= 2 for line in ax.get_lines())
-    return lines or bool(ax.collections) or bool(ax.images)
-
-
-def _hidden_by_legend(ax) -> dict:
-    """label → the fraction of the curve's points (in display space) that the legend's box covers."""
-    legend = ax.get_legend()
-    if legend is None:
-        return {}
-    box = legend.get_window_extent()
-    hidden = {}
-    for line in ax.get_lines():
-        x, y = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
-        ok = np.isfinite(x) & np.isfinite(y)
-        if ok.sum() < 2:
-            continue
-        points = ax.transData.transform(np.column_stack([x[ok], y[ok]]))
-        inside = (points[:, 0] >= box.x0) & (points[:, 0] <= box.x1) & (points[:, 1] >= box.y0) & (points[:, 1] <= box.y1)
-        hidden[line.get_label()] = float(inside.mean())
-    return hidden
+def figures(examples):
+    """{(scene, plot file name): [axes facts]} of every figure `gyrostat examples` draws
+    (conftest.py: the session's one run)."""
+    assert examples.code == 0
+    return examples.figures
 
 
 UNIT = re.compile(r"\[[^\]]+\]$")

@@ -12,8 +12,10 @@ from gyrostat.scene import Scene
 from references import euler_poinsot
 
 
-def test_examples_run_and_write_results(tmp_path, capsys):
-    assert main(["examples", "--out", str(tmp_path), "--quiet"]) == 0
+def test_examples_run_and_write_results(examples):
+    """The session's one run of `gyrostat examples` (conftest.py), as `bash run.sh main` runs it."""
+    assert examples.code == 0
+    tmp_path = examples.folder
     names = [p.stem for p in example_scenes()]
     assert {"torque_free_triaxial", "torque_free_integrated", "forced_damped"} <= set(names)
     for name in names:
@@ -39,7 +41,7 @@ def test_examples_run_and_write_results(tmp_path, capsys):
         assert json.loads(str(np.load(tmp_path / name / "result.npz")["units"]))["kinetic_energy"] == "J"
     with (tmp_path / "p000_A8_C4_M3-0p1" / "result_averaged.csv").open() as handle:
         assert next(csv.reader(handle))[:3] == ["t [s]", "a [rad/s]", "r [rad/s]"]
-    out = capsys.readouterr().out
+    out = examples.out
     assert "model: closed_form" in out and "WARNING" not in out
     assert set(out[out.index("\nsummary"):].split()) >= set(names)  # the summary has a row per scene
     assert all(f"href='{name}/report.json'" in (tmp_path / "index.html").read_text() for name in names)
