@@ -6,10 +6,13 @@ The scene: `forced_damped` (a body under a constant torque and a linear damping)
 with 11 outputs, DOP853 at the scene's tolerances, its initial ω and the damping dispersed
 (Normal and LogUniform, seed 1). Rows, all measured in this one run:
 
-* `sweep, local pool`: `gyrostat.sweep(..., trajectories=False)`: members drawn, each member's
-  scene entries checked and its model built (the next chunk's on a helper thread while the
-  current one is solved), chunks solved on the C++ pool, summaries kept; after a warm-up sweep of
-  100 members (the process's first Dataset imports xarray's duck-array modules, ~1 s);
+* `sweep, default`: `gyrostat.sweep(..., trajectories=False)` as a user calls it: at 10⁵ members
+  (at least `sweeps.WORKERS_FROM`) one forked worker process per core, each drawing its chunks'
+  members, checking each member's scene entries, building its model and solving the chunk on one
+  C++ thread; summaries kept; after a warm-up sweep of 100 members (the process's first Dataset
+  imports xarray's duck-array modules, ~1 s);
+* `sweep, workers=1`: this process alone: the next chunk's members made on a helper thread while
+  the current one is solved on the C++ pool (Python's lock keeps the making to one core);
 * `solve_ensemble`: the same members (the same models and initial states, built beforehand and
   not timed) in one `gyrostat.solve_ensemble` call: the engine alone;
 * `sweep, Dask LocalCluster`: the sweep with `client=` on a LocalCluster of 2 worker processes
@@ -77,6 +80,10 @@ def main() -> None:
     started = time.perf_counter()
     swept = g.sweep(doc, VARY, samples=n, seed=1, trajectories=False, progress=False)
     t_sweep = time.perf_counter() - started
+    started = time.perf_counter()
+    alone = g.sweep(doc, VARY, samples=n, seed=1, trajectories=False, progress=False, workers=1)
+    t_alone = time.perf_counter() - started
+    identical = alone.drop_attrs().identical(swept.drop_attrs())
 
     plan = sweeps.Plan(doc, VARY, samples=n, seed=1)
     members = []
@@ -97,7 +104,7 @@ def main() -> None:
 
     dask_members = min(n, 20_000)
     local_small = time.perf_counter()
-    g.sweep(doc, VARY, samples=dask_members, seed=1, trajectories=False, progress=False)
+    g.sweep(doc, VARY, samples=dask_members, seed=1, trajectories=False, progress=False, workers=-1)
     local_small = time.perf_counter() - local_small
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             Client(cluster) as client:
@@ -107,13 +114,16 @@ def main() -> None:
 
     print(f"Sweep of {n} members (forced_damped, t = 0..10, 11 outputs, dop853), summaries only, "
           f"{os.cpu_count()} cores")
-    print(f"  sweep, local pool          {t_sweep:8.3f} s   {n / t_sweep:10.0f} members/s")
+    print(f"  sweep, default             {t_sweep:8.3f} s   {n / t_sweep:10.0f} members/s   "
+          f"({sweeps._processes(None, 0, n)} worker processes)")
+    print(f"  sweep, workers=1           {t_alone:8.3f} s   {n / t_alone:10.0f} members/s   "
+          f"(identical Dataset: {identical})")
     print(f"  solve_ensemble (engine)    {t_ensemble:8.3f} s   {len(members) / t_ensemble:10.0f} members/s   "
           f"(same final p: {same})")
     print(f"  sweep / solve_ensemble     {t_sweep / t_ensemble:8.2f}x  "
-          f"({(t_sweep - t_ensemble) / n * 1e6:.1f} us per member to draw, check and build; target: at most 2x)")
+          f"(target: at most 2x; workers=1: {t_alone / t_ensemble:.2f}x)")
     print(f"  sweep, Dask LocalCluster   {t_dask:8.3f} s   {dask_members / t_dask:10.0f} members/s   "
-          f"({dask_members} members; local pool {local_small:.3f} s; Dask overhead "
+          f"({dask_members} members; local workers {local_small:.3f} s; Dask overhead "
           f"{(t_dask - local_small) / dask_members * 1e6:+.1f} us per member)")
     small, large = peak_memory(n // 10), peak_memory(n)
     print(f"  peak memory, streamed      {small:8.1f} MiB at {n // 10} members, {large:.1f} MiB at {n} members")

@@ -285,11 +285,64 @@ def test_a_dask_local_cluster_gives_the_same_dataset(tmp_path, capsys):
     assert "cannot reach the scheduler" in capsys.readouterr().err
 
 
+# ------------------------------------------------------------------------------------ worker processes
+def test_worker_processes_give_the_dataset_of_one_process(tmp_path):
+    # the same members, refusals and numbers bit for bit: each chunk is solve_chunk's, wherever it runs
+    doc = scene("forced_damped", t_span=[0.0, 5.0], n_out=11)
+    alone = g.sweep(doc, DISPERSED, samples=60, seed=3, progress=False, workers=1, chunk_size=7)
+    forked = g.sweep(doc, DISPERSED, samples=60, seed=3, progress=False, workers=2, chunk_size=7)
+    xr.testing.assert_identical(alone.drop_attrs(), forked.drop_attrs())
+    assert (forked["status"] == "invalid_input").any() and (forked["status"] == "success").any()
+    streamed = g.sweep(doc, DISPERSED, samples=60, seed=3, progress=False, workers=2, chunk_size=7,
+                       trajectories=False, path=tmp_path / "s.nc")
+    summaries = g.sweep(doc, DISPERSED, samples=60, seed=3, progress=False, workers=1, chunk_size=7,
+                        trajectories=False)
+    xr.testing.assert_identical(summaries.drop_attrs(), streamed.load().drop_attrs())
+
+
+def test_workers_by_default_and_refused(monkeypatch, tmp_path, capsys):
+    cores = sweeps._cores()
+    monkeypatch.setattr(sweeps, "_forks", lambda: True)
+    assert sweeps._processes(None, 0, sweeps.WORKERS_FROM) == cores  # a large sweep: every core's process
+    assert sweeps._processes(None, 0, sweeps.WORKERS_FROM - 1) == 1  # small: forking costs more than it gains
+    assert sweeps._processes(None, 1, sweeps.WORKERS_FROM) == 1  # threads=1: one core asked for
+    assert sweeps._processes(-1, 1, 5) == cores and sweeps._processes(3, 0, 5) == 3
+    monkeypatch.setattr(sweeps, "_forks", lambda: False)
+    assert sweeps._processes(None, 0, 10 * sweeps.WORKERS_FROM) == 1  # no fork: no spawned surprise
+    doc = scene("forced_damped", t_span=[0.0, 1.0], n_out=3)
+    for bad in (0, -2, True, 2.5, "2"):
+        with pytest.raises(ValueError, match=f"workers = {bad!r} must be"):
+            g.sweep(doc, {"initial.omega[0]": [1.0, 2.0]}, workers=bad, progress=False)
+    assert main(["sweep", str(SCENES / "forced_damped.toml"), "--vary", "initial.omega[0]=1,2", "--workers", "0",
+                 "--out", str(tmp_path)]) == 2
+    assert "error: workers = 0 must be a positive whole number" in capsys.readouterr().err
+
+
+def test_a_failing_worker_process_is_recorded_per_member(monkeypatch):
+    # the forked workers inherit the patched solve_chunk: chunk 0 raises there, the other chunk is solved
+    real = sweeps.solve_chunk
+
+    def failing(plan, start, stop, **options):
+        if start == 0:
+            raise RuntimeError("disk full")
+        return real(plan, start, stop, **options)
+
+    monkeypatch.setattr(sweeps, "solve_chunk", failing)
+    ds = g.sweep(scene("forced_damped", t_span=[0.0, 1.0], n_out=3), {"initial.omega[0]": np.linspace(1, 2, 8)},
+                 workers=2, chunk_size=4, progress=False)
+    status = ds["status"].values
+    assert list(status[:4]) == ["failed"] * 4 and list(status[4:]) == ["success"] * 4
+    assert "the worker process failed: RuntimeError: disk full" in str(ds["message"].values[0])
+    assert np.array_equal(ds["initial.omega[0]"].values, np.linspace(1, 2, 8))  # the values kept
+
+
 # ------------------------------------------------------------------------------------ stopping and progress
-def test_ctrl_c_keeps_the_members_that_finished():
+@pytest.mark.parametrize("where", [{"threads": 1}, {"workers": 2}], ids=["this_process", "worker_processes"])
+def test_ctrl_c_keeps_the_members_that_finished(where, capfd):
     doc = scene("torque_free_integrated", t_span=[0.0, 2e5], n_out=11)
     # Ctrl-C once 5 % of the work is done (some members finished, whatever the machine's load),
-    # sent from another thread as a user's would be
+    # sent from another thread as a user's would be; to this process alone: with worker processes
+    # it forwards the signal to them
     some_done = threading.Event()
     timer = threading.Thread(target=lambda: some_done.wait(60) and os.kill(os.getpid(), signal.SIGINT))
     timer.start()
@@ -300,7 +353,7 @@ def test_ctrl_c_keeps_the_members_that_finished():
 
     with pytest.warns(RuntimeWarning, match="sweep interrupted"):
         ds = g.sweep(doc, {"initial.omega[0]": np.linspace(0.5, 1.5, 400)}, progress=progress, chunk_size=2,
-                     threads=1)
+                     **where)
     timer.join()
     status = ds["status"].values
     assert ds.attrs["interrupted"] == 1
@@ -308,6 +361,7 @@ def test_ctrl_c_keeps_the_members_that_finished():
     assert 0 < finished.sum() < 400 and set(status[~finished]) == {"interrupted"}
     assert np.all(np.isfinite(ds["final_p"].values[finished]))
     assert np.all(ds["initial.omega[0]"].values == np.linspace(0.5, 1.5, 400))  # no member lost
+    assert "Traceback" not in capfd.readouterr().err  # no worker dies of the signal
 
 
 def test_progress_bar_is_on_when_asked_and_off_with_false(capsys):

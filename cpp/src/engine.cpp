@@ -250,9 +250,12 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
         [&](std::size_t task, const integrate::Control* member) {
             if (task < n_batches) {
                 kernels.solve(plan.batches[task], models, starts, t0, t1, options, member, results);
-                for (std::size_t i : plan.batches[task])
+                integrate::Result task_result;  // Interrupted when the caller stopped the batch: no task starts after it
+                for (std::size_t i : plan.batches[task]) {
                     if (rotated[i]) visit(model_of(i), [&](const auto& m) { to_user_frame(m, results[i]); });
-                return integrate::Result{};
+                    if (results[i].status == integrate::Status::Interrupted) task_result.status = integrate::Status::Interrupted;
+                }
+                return task_result;
             }
             const std::size_t i = plan.single[task - n_batches];
             return visit(model_of(i), [&](const auto& m) {

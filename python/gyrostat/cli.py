@@ -131,7 +131,7 @@ def _sweep(args) -> int:
             warnings.simplefilter("ignore", RuntimeWarning)  # an interrupted sweep: in its report
             report = run_sweep(args.scene, args.out, vary, samples=args.samples, seed=args.seed, run=args.run,
                                trajectories=True if args.trajectories else None, summary=args.summary, client=client,
-                               threads=args.threads, chunk_size=args.chunk_size,
+                               threads=args.threads, workers=args.workers, chunk_size=args.chunk_size,
                                progress=False if args.quiet else None)
     except KeyboardInterrupt:
         print(f"{args.scene}: interrupted", file=sys.stderr)
@@ -271,6 +271,8 @@ def _main(argv: list[str] | None = None) -> int:
                                          "'final_x / final_y'")
     sweep.add_argument("--trajectories", action="store_true", help="keep every member's trajectory in sweep.nc")
     sweep.add_argument("--threads", type=int, default=0, help="C++ threads per chunk (default: every core)")
+    sweep.add_argument("--workers", type=int, help="worker processes on this machine, -1: one per core (default: one "
+                       "per core for a large sweep, else this process alone)")
     sweep.add_argument("--chunk-size", type=int, help="members per ensemble call (default: about 64 MB of results)")
     sweep.add_argument("--dask", metavar="ADDRESS", help="run the chunks on this Dask scheduler (tcp://host:8786)")
     sweep.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")

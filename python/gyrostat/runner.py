@@ -250,8 +250,8 @@ def prepare_sweep(path: str | Path | Scene, vary=None, *, samples: int | None = 
 
 def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, samples: int | None = None,
               seed: int | None = None, run: str | None = None, trajectories: bool | None = None,
-              summary: str | None = None, client=None, threads: int = 0, chunk_size: int | None = None,
-              progress: bool | None = None) -> dict:
+              summary: str | None = None, client=None, threads: int = 0, workers: int | None = None,
+              chunk_size: int | None = None, progress: bool | None = None) -> dict:
     """Runs a scene's sweep (:func:`prepare_sweep`, or a job it made): every member's results
     streamed to ``OUT/SCENE/sweep.nc``, the summary plotted against the parameters in
     ``sweep.png``, a report in ``sweep.json``; returns the report."""
@@ -264,7 +264,7 @@ def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, sa
     folder.mkdir(parents=True, exist_ok=True)
     target = folder / "sweep.nc"
     ds = sweeps.sweep(job.plan, None, trajectories=job.trajectories, client=client, threads=threads,
-                      chunk_size=chunk_size, path=target, progress=progress)
+                      workers=workers, chunk_size=chunk_size, path=target, progress=progress)
     ds.close()
     ds = sweeps.open_sweep(target)
     expression = job.summary

@@ -43,7 +43,10 @@ import gc
 import itertools
 import json
 import math
+import os
 import re
+import signal
+import sys
 import time
 import warnings
 from collections.abc import Mapping, Sequence
@@ -66,6 +69,11 @@ __all__ = ["Uniform", "Normal", "LogUniform", "Parameter", "Plan", "sweep", "ope
 MEMORY_LIMIT = 4 * 2**30
 """Bytes a sweep may keep in memory (trajectories and summaries); beyond it a sweep asks for
 ``trajectories=False`` or ``path=`` (streaming to a file) before it starts."""
+
+WORKERS_FROM = 10_000
+"""Members from which a sweep on this machine runs on worker processes by default (``workers=None``,
+where the platform forks): below it, forking the workers and their first chunk cost more than
+making members on one helper thread beside the engine's."""
 
 STATS = ("steps", "rhs_evals", "rejected_steps", "jacobian_evals", "nonlinear_conv_failures")
 
@@ -1057,9 +1065,10 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
         starts = [run.y0 for _, run in members]
         if len({len(y0) for y0 in starts}) == 1:
             starts = np.stack(starts)  # one (members, dim) array: converted once, not member by member
-        _, results = ensemble_results(models, starts, span, threads=threads,
-                                       events=list(events) or None,
-                                       progress=report if progress is not None else False, **dict(options))
+        with _interruptible():
+            _, results = ensemble_results(models, starts, span, threads=threads,
+                                           events=list(events) or None,
+                                           progress=report if progress is not None else False, **dict(options))
         rows = [j for j, _ in members]
         arrays["accuracy_warning"][rows] = _record_results(arrays, rows, results, models, plan, trajectories, extrema)
         checked = {kind: check_validity and kind.check is not ModelBase.check for kind in {type(m) for m in models}}
@@ -1245,8 +1254,8 @@ def _chunk_size(plan: Plan, trajectories: bool, extrema: tuple[str, ...], worker
 
 def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None,
           trajectories: bool = True, extrema: Sequence[str] | None = None, chunk_size: int | None = None,
-          threads: int = 0, client=None, path: str | Path | None = None, check_validity: bool = True,
-          progress=None):
+          threads: int = 0, workers: int | None = None, client=None, path: str | Path | None = None,
+          check_validity: bool = True, progress=None):
     """Solves a scene for every member of a grid or a dispersion of its numeric entries.
 
     Parameters
@@ -1271,6 +1280,15 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     chunk_size, threads:
         Members per ensemble call (default: about 64 MB of results, at least 4 chunks per
         worker) and C++ threads per chunk (≤ 0: every core here; 1 per task on Dask).
+    workers:
+        Processes on this machine, each making its chunks' members and solving them on one C++
+        thread (SciPy's convention: ``-1`` one per core). ``1``: this process alone, the next
+        chunk's members made on a helper thread while the engine's threads solve the current one;
+        Python's lock keeps that helper to one core, so that making members bounds the throughput
+        (~30 us a member) whatever the cores. None (default): one per core when the sweep has
+        at least :data:`WORKERS_FROM` members, ``threads ≤ 0`` and the platform forks (Linux),
+        else 1. Workers are forks of this process (elsewhere spawned: the calling script then
+        needs the ``if __name__ == "__main__":`` guard, as with Dask). Ignored with ``client``.
     client:
         A ``dask.distributed.Client``: chunks become tasks on its cluster; the results are
         identical to the local ones.
@@ -1318,7 +1336,8 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     unknown = [name for name in extrema if name not in plan.names]
     if unknown:
         raise ValueError(f"extrema: {unknown} are not quantities of the run ({', '.join(plan.names)})")
-    workers = len(client.scheduler_info()["workers"]) if client is not None else 1
+    processes = _processes(workers, threads, plan.size) if client is None else 1
+    workers = len(client.scheduler_info()["workers"]) if client is not None else processes
     if chunk_size is None:
         chunk_size = _chunk_size(plan, trajectories, extrema, workers)
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
@@ -1331,7 +1350,9 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     started = time.perf_counter()
     options = {"trajectories": trajectories, "extrema": extrema, "check_validity": bool(check_validity)}
     try:
-        if client is None:
+        if client is None and processes > 1:
+            finished = _run_processes(plan, ranges, sink, bar, processes, threads, options)
+        elif client is None:
             finished = _run_local(plan, ranges, sink, bar, threads, options)
         else:
             finished = _run_dask(plan, ranges, sink, bar, client, threads, options)
@@ -1391,6 +1412,146 @@ def _run_local(plan, ranges, sink, bar, threads, options) -> dict:
         finished["interrupted"] = True
     finally:
         helper.shutdown(wait=True, cancel_futures=True)
+    return finished
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))  # the cores this process may run on (a container's share)
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+def _forks() -> bool:
+    import multiprocessing
+
+    return sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
+
+
+def _processes(workers, threads, members: int) -> int:
+    """The worker processes of a sweep run here (:func:`sweep`'s ``workers``); 1: this process."""
+    if workers is None:
+        return _cores() if members >= WORKERS_FROM and threads <= 0 and _forks() else 1
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers == 0 or workers < -1 \
+            or workers > 4096:
+        raise ValueError(f"workers = {workers!r} must be a positive whole number of at most 4096, -1 (one per core) "
+                         "or None (chosen from the sweep's size)")
+    return _cores() if workers == -1 else int(workers)
+
+
+# A worker process's sweep: the plan and the options, set once when the worker starts (a fork
+# inherits them; they are not sent with every chunk).
+_WORKER: dict = {}
+
+
+def _worker_start(plan, options: dict, stopping) -> None:
+    """A worker process's start: Ctrl-C is the parent's to handle (it sets ``stopping`` and
+    forwards the signal; a worker takes it only while the engine runs: :func:`_interruptible`);
+    the sweep kept."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _WORKER.update(plan=plan, options=options, stopping=stopping)
+
+
+def _worker_chunk(start: int, stop: int) -> dict:
+    if _WORKER["stopping"].is_set():  # queued before the sweep was stopped: not run
+        raise KeyboardInterrupt
+    return solve_chunk(_WORKER["plan"], start, stop, **_WORKER["options"])
+
+
+def _stop_once(signum, frame):
+    """A worker's Ctrl-C: the first stops the engine (KeyboardInterrupt, which the engine takes as
+    Ctrl-C: it returns what it computed); a second (the terminal's and the parent's) is ignored,
+    so that it cannot strike the results on their way back."""
+    if not _WORKER.get("stopped"):
+        _WORKER["stopped"] = True
+        raise KeyboardInterrupt
+
+
+class _interruptible:
+    """In a worker process, around the engine's run: Ctrl-C (forwarded by the parent) stops the
+    engine, which returns what it computed, as in the parent; outside it a worker ignores Ctrl-C, so
+    that an idle worker never dies of it. Elsewhere: nothing."""
+
+    def __enter__(self):
+        if _WORKER:
+            signal.signal(signal.SIGINT, _stop_once)
+            if _WORKER["stopping"].is_set() or _WORKER.get("stopped"):  # the sweep was stopped while this chunk's members were made
+                raise KeyboardInterrupt
+
+    def __exit__(self, *exc):
+        if _WORKER:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+        return False
+
+
+def _run_processes(plan, ranges, sink, bar, processes, threads, options) -> dict:
+    """The chunks on ``processes`` forked worker processes (one C++ thread each, or ``threads``):
+    each makes its chunks' members and solves them, :func:`solve_chunk` as on Dask, so that making
+    members runs on every core instead of one helper thread. Ctrl-C: the chunks finished are kept,
+    the running ones stop and return what they computed (the parent forwards the signal to its
+    workers), the others are not run."""
+    import multiprocessing
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+    context = multiprocessing.get_context("fork" if _forks() else "spawn")
+    per_chunk = threads if threads > 0 else 1
+    stopping = context.Event()
+    pool = ProcessPoolExecutor(processes, mp_context=context, initializer=_worker_start,
+                               initargs=(plan, {**options, "threads": per_chunk}, stopping))
+    finished: dict = {}
+    queue = iter(ranges)
+    running: dict = {}
+    done = 0
+
+    def submit(count: int) -> None:
+        for start, stop in itertools.islice(queue, count):
+            running[pool.submit(_worker_chunk, start, stop)] = (start, stop)
+
+    def take(future) -> None:
+        nonlocal done
+        start, stop = running.pop(future)
+        try:
+            chunk = future.result()
+        except BaseException as error:  # noqa: B036 - a worker lost, or stopped by Ctrl-C before its engine ran
+            chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
+            if isinstance(error, KeyboardInterrupt):
+                chunk["interrupted"] = np.ones(1, dtype=bool)
+            else:
+                chunk["status"][:] = "failed"
+                chunk["message"][:] = f"the worker process failed: {type(error).__name__}: {' '.join(str(error).split())}"
+            _put_values(chunk, plan, plan.values_range(start, stop))
+        sink.put(start, chunk)
+        finished[(start, stop)] = True
+        if chunk.get("interrupted", np.zeros(1, bool))[0]:
+            finished["interrupted"] = True
+        done += stop - start
+        if bar is not None:
+            bar(done / plan.size)
+
+    try:
+        try:
+            submit(2 * processes)
+            while running and not finished.get("interrupted"):
+                completed, _ = wait(list(running), return_when=FIRST_COMPLETED)
+                for future in completed:
+                    take(future)
+                submit(len(completed))
+        except KeyboardInterrupt:
+            finished["interrupted"] = True
+        if finished.get("interrupted"):
+            stopping.set()
+            for future in list(running):
+                if future.cancel():
+                    running.pop(future)
+            for process in list(getattr(pool, "_processes", {}).values()):  # the workers' engines stop
+                try:
+                    os.kill(process.pid, signal.SIGINT)
+                except OSError:
+                    pass
+            for future in list(running):  # what the running chunks computed
+                take(future)
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
     return finished
 
 

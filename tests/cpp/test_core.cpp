@@ -484,6 +484,28 @@ int main() {
         bool all_interrupted = true;
         for (const auto& r : none) all_interrupted = all_interrupted && r.status == integrate::Status::Interrupted;
         CHECK(all_interrupted, "a stopped ensemble returns its members as interrupted");
+        // On one thread, members shorter than the poll interval (a few steps: their tickers never
+        // poll) are polled between: a poll saying stop leaves every member after it unstarted,
+        // whether the members run alone or in SIMD batches (a batch counts as one).
+        for (const bool batch : {false, true}) {
+            integrate::Control stop_now;
+            stop_now.interval = 0.0;
+            int polls_between = 0;
+            stop_now.poll = [&](double) { return ++polls_between < 0; };
+            o.method = Method::Dop853;
+            const std::vector<const AnyModel*> short_members(40, &damped);
+            const auto ran = solve_ensemble(short_members, std::vector<Eigen::VectorXd>(40, Eigen::Vector3d(w0)), 0.0,
+                                            0.01, o, 1, &stop_now, batch);
+            int finished = 0, unstarted = 0;
+            for (const auto& r : ran) {
+                finished += r.status == integrate::Status::Success;
+                unstarted += r.status == integrate::Status::Interrupted && r.t.empty();
+            }
+            CHECK(polls_between == 1 && finished >= 1 && finished <= 8 && finished + unstarted == 40,
+                  (std::string(batch ? "batched" : "alone") + ": stopped after the first task: " +
+                   std::to_string(finished) + " finished, " + std::to_string(unstarted) + " not started, " +
+                   std::to_string(polls_between) + " polls").c_str());
+        }
     }
 
     // Events and dense output: q = b sn(u) of the free body crosses zero where the closed form

@@ -45,9 +45,16 @@ std::vector<integrate::Result> run_ensemble(std::size_t n, SolveMember&& solve_m
     member_control.stop = &stop;
     if (control && control->stop && control->stop->load()) stop = true;  // stopped before it started
     const bool inline_only = threads == 1 || n <= 1;
-    if (inline_only && control) {  // the calling thread polls between its own steps
+    // Run inline, the calling thread polls within its members' runs (their tickers) and between
+    // them: a run shorter than the interval never polls, and an ensemble of short members would
+    // otherwise see Ctrl-C only at its end.
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point last_poll = Clock::now();
+    const bool polls_inline = inline_only && control && control->poll;
+    if (polls_inline) {
         member_control.interval = control->interval;
         member_control.poll = [&](double fraction) {
+            last_poll = Clock::now();
             return caller_continues((static_cast<double>(done.load()) + fraction) / static_cast<double>(n));
         };
     }
@@ -77,6 +84,11 @@ std::vector<integrate::Result> run_ensemble(std::size_t n, SolveMember&& solve_m
                 if (results[i].status == integrate::Status::Interrupted) stop = true;  // the caller asked
             }
             ++done;
+            if (polls_inline && !stop.load() &&
+                std::chrono::duration<double>(Clock::now() - last_poll).count() >= control->interval) {
+                last_poll = Clock::now();
+                if (!caller_continues(static_cast<double>(done.load()) / static_cast<double>(n))) stop = true;
+            }
             std::lock_guard<std::mutex> lock(mutex);
             finished.notify_all();
         }
