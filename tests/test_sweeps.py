@@ -307,6 +307,11 @@ def test_workers_by_default_and_refused(monkeypatch, tmp_path, capsys):
     assert sweeps._processes(None, 0, sweeps.WORKERS_FROM - 1) == 1  # small: forking costs more than it gains
     assert sweeps._processes(None, 1, sweeps.WORKERS_FROM) == 1  # threads=1: one core asked for
     assert sweeps._processes(-1, 1, 5) == cores and sweeps._processes(3, 0, 5) == 3
+    monkeypatch.setattr(sweeps, "_daemon", lambda: True)  # inside a Dask task: a daemon has no children
+    assert sweeps._processes(None, 0, sweeps.WORKERS_FROM) == 1
+    with pytest.raises(ValueError, match="workers = 2: this process is a daemon"):
+        sweeps._processes(2, 0, 5)
+    monkeypatch.setattr(sweeps, "_daemon", lambda: False)
     monkeypatch.setattr(sweeps, "_forks", lambda: False)
     assert sweeps._processes(None, 0, 10 * sweeps.WORKERS_FROM) == 1  # no fork: no spawned surprise
     doc = scene("forced_damped", t_span=[0.0, 1.0], n_out=3)

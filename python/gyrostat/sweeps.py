@@ -1428,15 +1428,27 @@ def _forks() -> bool:
     return sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
 
 
+def _daemon() -> bool:
+    """Whether this process is a daemon (a Dask worker's, a multiprocessing pool's): it may not
+    start processes of its own."""
+    import multiprocessing
+
+    return multiprocessing.current_process().daemon
+
+
 def _processes(workers, threads, members: int) -> int:
     """The worker processes of a sweep run here (:func:`sweep`'s ``workers``); 1: this process."""
     if workers is None:
-        return _cores() if members >= WORKERS_FROM and threads <= 0 and _forks() else 1
+        return _cores() if members >= WORKERS_FROM and threads <= 0 and _forks() and not _daemon() else 1
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers == 0 or workers < -1 \
             or workers > 4096:
         raise ValueError(f"workers = {workers!r} must be a positive whole number of at most 4096, -1 (one per core) "
                          "or None (chosen from the sweep's size)")
-    return _cores() if workers == -1 else int(workers)
+    processes = _cores() if workers == -1 else int(workers)
+    if processes > 1 and _daemon():
+        raise ValueError(f"workers = {workers!r}: this process is a daemon (a Dask worker's or a process pool's) and "
+                         "cannot start processes; use workers=1 (or client= to run the chunks on Dask)")
+    return processes
 
 
 # A worker process's sweep: the plan and the options, set once when the worker starts (a fork
