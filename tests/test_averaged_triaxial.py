@@ -124,7 +124,10 @@ def test_the_off_diagonal_damping_averages_to_zero():
 def test_symmetric_limit_equals_the_a_r_model(moments):
     # In the symmetric limit (k² = 0) the rates of (|G|², p_b) are those the (a, r) model gives:
     # d|G|²/dt = 2(A² a ȧ + C² r ṙ), dT/dt = A a ȧ + C r ṙ, p_b = G² − 2T A. Both are closed forms of the
-    # same averages: 1e-13 relative (rounding).
+    # same averages: 1e-12 relative (rounding); plus 1e-20 absolute for the moving-mass damper, which
+    # has no closed form here: its d|G|²/dt (0: an internal damper) is the trapezoidal rule's sum of
+    # terms A_i ω_i M_i up to 3.5e-6 that cancel, whose rounding (8 nodes · 2.2e-16 · 3.5e-6 ≈ 6e-21;
+    # measured 1e-22 … 6.5e-22 with the nodes summed in different orders) is ~1e-12 of d p_b/dt here.
     body = g.Body(list(moments))
     A_, C_ = moments[0], moments[2]
     for torques in ([g.LinearDamping(np.diag([0.2, 0.2, 0.5]))], [cavity()], [g.ConstantTorque([0.0, 0.0, 0.3])],
@@ -138,7 +141,8 @@ def test_symmetric_limit_equals_the_a_r_model(moments):
             want_dG2 = 2 * (A_**2 * a * da + C_**2 * r * dr)
             want_dpb = want_dG2 - 2 * A_ * (A_ * a * da + C_ * r * dr)
             scale = max(abs(want_dG2), abs(want_dpb))
-            assert abs(dG2 - want_dG2) <= 1e-12 * scale and abs(dpb - want_dpb) <= 1e-12 * scale, (torques, a, r)
+            bound = 1e-12 * scale + 1e-20
+            assert abs(dG2 - want_dG2) <= bound and abs(dpb - want_dpb) <= bound, (torques, a, r)
             assert math.isclose(triaxial._core.outputs_at(0.0, y)[list(triaxial.output_names).index("fast_frequency")],
                                 abs((C_ - A_) * r / A_), rel_tol=1e-13)
 

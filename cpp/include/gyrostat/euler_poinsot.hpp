@@ -130,11 +130,25 @@ public:
         const auto [sn0, cn0, dn] = model::jacobi_sn_cn_dn_complementary(K_ * (mirrored ? 1.0 - f : f), m1_);
         const double sn = quarter >= 2 ? -sn0 : sn0;
         const double cn = (quarter == 1 || quarter == 2) ? -cn0 : cn0;
-        Vec3 w;
-        w[a_] = branch_ * alpha_a_ * dn;
-        w[b_] = -sigma_ * branch_ * alpha_b_ * sn;
-        w[c_] = alpha_c_ * cn;
-        return w;
+        return omega_of(sn, cn, dn);
+    }
+
+    /// Calls visit(ω) at the n phases 2πj/n, j = 0 … n − 1 (n a multiple of 4, as nodes() gives),
+    /// in some order: the nodes of the trapezoidal rule over one period. sn, cn, dn are computed
+    /// on the first quarter only (u_j = 4Kj/n ≤ K); the phases π − φ, π + φ and 2π − φ have the
+    /// same u with the signs of sn and cn changed (the quarter periods of omega()): a quarter of
+    /// the elliptic evaluations.
+    template <class Visit>
+    void for_each_node(int n, Visit&& visit) const {
+        const int quarter = n / 4;
+        for (int j = 0; j <= quarter; ++j) {
+            const auto [sn, cn, dn] = model::jacobi_sn_cn_dn_complementary(K_ * (4.0 * j / n), m1_);
+            visit(omega_of(sn, cn, dn));                // φ_j
+            visit(omega_of(-sn, -cn, dn));              // π + φ_j
+            if (j == 0 || j == quarter) continue;       // π − φ_j and 2π − φ_j: the two above
+            visit(omega_of(sn, -cn, dn));               // π − φ_j
+            visit(omega_of(-sn, cn, dn));               // 2π − φ_j
+        }
     }
 
     /// The phase φ ∈ [0, 2π) at which omega(φ) = ω, for ω on this motion (sn, cn, dn read off its
@@ -197,17 +211,27 @@ public:
 
     /// Nodes of the trapezoidal rule in the phase for a relative error ~tolerance on an average of
     /// a function analytic in ω: the integrand is analytic in the strip |Im u| < K' (the poles of
-    /// sn, cn, dn), so n nodes err by ~exp(−πK'n/(2K)); n = 2⌈K ln(10³/tolerance)/(πK')⌉ (10³: the
+    /// sn, cn, dn), so n nodes err by ~exp(−πK'n/(2K)); n = 4⌈K ln(10³/tolerance)/(2πK')⌉ (10³: the
     /// margin measured for the double poles of ω², docs/papers/triaxial_averaging.md §2(d)), at
-    /// least 8, at most 4096. ~20 nodes at k² = 0.5 and 1e-13, ~100 at k'² = 1e-6.
+    /// least 8, at most 4096; a multiple of 4, for for_each_node's quarters. ~20 nodes at k² = 0.5
+    /// and 1e-13, ~100 at k'² = 1e-6.
     int nodes(double tolerance) const {
         if (m_ == 0.0) return 8;  // K' = K(k') = R_F(0, k², 1) = ∞: the integrand is a trigonometric polynomial
         const double K_prime = model::carlson_RF(0.0, m_, 1.0);
-        const double n = 2.0 * std::ceil(K_ * std::log(1e3 / tolerance) / (M_PI * K_prime));
+        const double n = 4.0 * std::ceil(K_ * std::log(1e3 / tolerance) / (2.0 * M_PI * K_prime));
         return static_cast<int>(std::clamp(n, 8.0, 4096.0));
     }
 
 private:
+    /// ω from sn, cn, dn of the motion's argument (the amplitudes, the branch and the axes' order).
+    Vec3 omega_of(double sn, double cn, double dn) const {
+        Vec3 w;
+        w[a_] = branch_ * alpha_a_ * dn;
+        w[b_] = -sigma_ * branch_ * alpha_b_ * sn;
+        w[c_] = alpha_c_ * cn;
+        return w;
+    }
+
     /// K and S1 = ⟨sn²⟩ = (K − E)/(k²K) by the arithmetic-geometric mean (DLMF 19.8.1, 19.8.6): with
     /// a_0 = 1, b_0 = k', a_{n+1} = (a_n + b_n)/2, b_{n+1} = √(a_n b_n), c_0 = k, c_{n+1} = c_n²/(2(a_n + b_n))
     /// (= (a_n − b_n)/2 without its cancellation), K = π/(2 a_∞) and E = K (1 − Σ_{n≥0} 2^{n−1} c_n²), so

@@ -302,7 +302,8 @@ public:
     /// the folded M0 − D ω gives P_i = M0_i ⟨ω_i⟩ − D_ii ⟨ω_i²⟩ (⟨ω_i ω_j⟩ = 0 for i ≠ j; only the
     /// component of M0 along the axis circulated about acts), a torque with `averaged_power` its own;
     /// every other torque (a user's included) by the trapezoidal rule in the phase,
-    ///   P_i ≈ (1/n) Σ_j ω_i(φ_j) M_i(t, ω(φ_j)),  φ_j = 2πj/n,  n = motion.nodes(tolerance),
+    ///   P_i ≈ (1/n) Σ_j ω_i(φ_j) M_i(t, ω(φ_j)),  φ_j = 2πj/n,  n = motion.nodes(tolerance)
+    /// (EulerPoinsot::for_each_node: the elliptic functions on a quarter period),
     /// which converges geometrically for these periodic analytic integrands. Torques that need the
     /// attitude are refused by the model before (require_no_attitude).
     Vec3 averaged_power(double t, const EulerPoinsot& motion, const Vec3& moments, double tolerance) const {
@@ -320,14 +321,13 @@ public:
         if (!quadrature) return power;
         const int n = motion.nodes(tolerance);
         Vec3 sum = Vec3::Zero();
-        for (int j = 0; j < n; ++j) {
-            const Vec3 omega = motion.omega(2.0 * M_PI * j / n);
+        motion.for_each_node(n, [&](const Vec3& omega) {
             Vec3 m = Vec3::Zero();
             for (const auto& part : others_)
                 if (!std::visit([](const auto& x) { return has_averaged_power<std::decay_t<decltype(x)>>::value; }, part))
                     m += evaluate(part, t, omega, moments, nullptr);
             sum += omega.cwiseProduct(m);
-        }
+        });
         return power + sum / n;
     }
 
