@@ -455,10 +455,12 @@ def test_vector_torque_in_every_form_of_the_batches(isa):
     import subprocess
     import sys
 
-    from test_batch import _runs
+    from test_batch import _runs, _session_form
 
     if isa != "sse2" and not _runs(isa):
         pytest.skip(f"this CPU does not run the {isa} batches, or their plugin is not installed")
+    if _session_form(isa):
+        pytest.skip(f"this session runs the {isa} batches: its own run of the tests above is that form's")
     result = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", __file__, "-k",
                              "vector and not every_form"], env={**os.environ, "GYROSTAT_SIMD": isa},
                             capture_output=True, text=True)
