@@ -341,6 +341,26 @@ def test_a_failing_worker_process_is_recorded_per_member(monkeypatch):
     assert np.array_equal(ds["initial.omega[0]"].values, np.linspace(1, 2, 8))  # the values kept
 
 
+def test_a_worker_process_that_dies_fails_its_members_not_the_sweep(monkeypatch):
+    # a worker killed (out of memory, a signal: os._exit here) breaks the pool: the chunks it and the
+    # others had not returned are recorded as failed, with the reason; the sweep returns
+    real = sweeps.solve_chunk
+
+    def dying(plan, start, stop, **options):
+        if start == 4:
+            os._exit(9)
+        return real(plan, start, stop, **options)
+
+    monkeypatch.setattr(sweeps, "solve_chunk", dying)
+    ds = g.sweep(scene("forced_damped", t_span=[0.0, 1.0], n_out=3), {"initial.omega[0]": np.linspace(1, 2, 40)},
+                 workers=2, chunk_size=4, progress=False)
+    status, message = ds["status"].values, ds["message"].values
+    assert set(status) <= {"success", "failed"} and list(status[4:8]) == ["failed"] * 4
+    assert all("BrokenProcessPool" in m for m in message[status == "failed"])
+    assert np.array_equal(ds["initial.omega[0]"].values, np.linspace(1, 2, 40))
+    assert np.all(np.isfinite(ds["final_p"].values[status == "success"]))
+
+
 # ------------------------------------------------------------------------------------ stopping and progress
 @pytest.mark.parametrize("where", [{"threads": 1}, {"workers": 2}], ids=["this_process", "worker_processes"])
 def test_ctrl_c_keeps_the_members_that_finished(where, capfd):

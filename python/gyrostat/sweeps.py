@@ -1504,6 +1504,7 @@ def _run_processes(plan, ranges, sink, bar, processes, threads, options) -> dict
     workers), the others are not run."""
     import multiprocessing
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures.process import BrokenProcessPool
 
     context = multiprocessing.get_context("fork" if _forks() else "spawn")
     per_chunk = threads if threads > 0 else 1
@@ -1515,23 +1516,28 @@ def _run_processes(plan, ranges, sink, bar, processes, threads, options) -> dict
     running: dict = {}
     done = 0
 
+    def unsolved(start: int, stop: int, error: BaseException) -> dict:
+        """A chunk no worker returned: its members' values, and why (Ctrl-C: interrupted)."""
+        chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
+        if isinstance(error, KeyboardInterrupt):
+            chunk["interrupted"] = np.ones(1, dtype=bool)
+        else:
+            chunk["status"][:] = "failed"
+            chunk["message"][:] = f"the worker process failed: {type(error).__name__}: {' '.join(str(error).split())}"
+        _put_values(chunk, plan, plan.values_range(start, stop))
+        return chunk
+
     def submit(count: int) -> None:
         for start, stop in itertools.islice(queue, count):
-            running[pool.submit(_worker_chunk, start, stop)] = (start, stop)
+            try:
+                running[pool.submit(_worker_chunk, start, stop)] = (start, stop)
+            except BrokenProcessPool as error:  # a worker died (killed, out of memory): no chunk runs any more
+                for first, last in [(start, stop), *queue]:
+                    put(first, last, unsolved(first, last, error))
+                return
 
-    def take(future) -> None:
+    def put(start: int, stop: int, chunk: dict) -> None:
         nonlocal done
-        start, stop = running.pop(future)
-        try:
-            chunk = future.result()
-        except BaseException as error:  # noqa: B036 - a worker lost, or stopped by Ctrl-C before its engine ran
-            chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
-            if isinstance(error, KeyboardInterrupt):
-                chunk["interrupted"] = np.ones(1, dtype=bool)
-            else:
-                chunk["status"][:] = "failed"
-                chunk["message"][:] = f"the worker process failed: {type(error).__name__}: {' '.join(str(error).split())}"
-            _put_values(chunk, plan, plan.values_range(start, stop))
         sink.put(start, chunk)
         finished[(start, stop)] = True
         if chunk.get("interrupted", np.zeros(1, bool))[0]:
@@ -1539,6 +1545,14 @@ def _run_processes(plan, ranges, sink, bar, processes, threads, options) -> dict
         done += stop - start
         if bar is not None:
             bar(done / plan.size)
+
+    def take(future) -> None:
+        start, stop = running.pop(future)
+        try:
+            chunk = future.result()
+        except BaseException as error:  # noqa: B036 - a worker lost, or stopped by Ctrl-C before its engine ran
+            chunk = unsolved(start, stop, error)
+        put(start, stop, chunk)
 
     try:
         try:
