@@ -176,7 +176,7 @@ def test_scene_names_the_torque_by_import(tmp_path, expected):
     from gyrostat import scene as scenes
     path = tmp_path / "user.toml"
     path.write_text(SCENE.format(sweep=""))
-    solutions, _, _ = runner.solve_scene(scenes.load(path), progress=False)
+    solutions, _, _ = runner.solve_scene(scenes.load(path, allow_import=["user_torques"]), progress=False)
     (main,) = solutions.values()
     # the factory's drag with c = 0.05, a = 0.02 is the reference's: as in test_against_scipy
     assert np.abs(main.y[:, :3] - expected).max() < 2e-11
@@ -188,7 +188,8 @@ def test_sweep_over_a_scene_with_a_user_torque(tmp_path):
     from gyrostat import scene as scenes
     path = tmp_path / "user.toml"
     path.write_text(SCENE.format(sweep=""))
-    ds = g.sweep(scenes.load(path), {"initial.omega[0]": [0.8, 1.0, 1.2]}, progress=False, threads=2)
+    ds = g.sweep(scenes.load(path, allow_import="user_torques"), {"initial.omega[0]": [0.8, 1.0, 1.2]}, progress=False,
+                 threads=2)
     for k, p0 in enumerate([0.8, 1.0, 1.2]):
         alone = g.solve(python_model(), [p0, 0.5, -0.3], (0.0, 20.0), n_out=41, method="dop853", rtol=1e-12,
                         atol=1e-14)
@@ -202,11 +203,11 @@ def test_scene_errors_name_the_key(tmp_path):
     from gyrostat.schema import SceneError
     path = tmp_path / "user.toml"
     path.write_text(SCENE.format(sweep="").replace("user_torques:drag_factory", "user_torques:nothing_here"))
-    with pytest.raises(SceneError, match="function = 'user_torques:nothing_here'.*has no attribute"):
-        scenes.load(path)
+    with pytest.raises(SceneError, match=r"\[torques\[0\]\] function = 'user_torques:nothing_here'.*has no attribute"):
+        scenes.load(path, allow_import=["user_torques"])
     path.write_text(SCENE.format(sweep="").replace("user_torques:drag_factory", "no_such_module_x:f"))
     with pytest.raises(SceneError, match="cannot import module 'no_such_module_x'"):
-        scenes.load(path)
+        scenes.load(path, allow_import=["no_such_module_x"])
 
 
 def test_an_ensemble_with_a_python_torque_runs_on_one_thread():
@@ -400,7 +401,7 @@ def test_scene_and_sweep_with_a_vector_torque(tmp_path, expected):
     from gyrostat import scene as scenes
     path = tmp_path / "lanes.toml"
     path.write_text(VECTOR_SCENE.format(sweep=""))
-    loaded = scenes.load(path)
+    loaded = scenes.load(path, allow_import=["user_torques"])
     solutions, _, _ = runner.solve_scene(loaded, progress=False)
     (main,) = solutions.values()
     # drag.c's quadratic_drag_lanes is the reference's torque: as test_against_scipy

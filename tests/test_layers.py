@@ -26,7 +26,7 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
 
 CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.torques",
-        "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
+        "gyrostat.scene_code", "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
         "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
 REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")
 GENERIC = ("gyrostat.scene", "gyrostat.runner", "gyrostat.output", "gyrostat.plots", "gyrostat.sweeps",

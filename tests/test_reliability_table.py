@@ -85,10 +85,11 @@ plots = ["omega", "approximation_errors"]
 """
 
 
-def command_line(scene, *args):
+def command_line(scene, *args, files=None, cwd=None):
     """``python -m gyrostat run SCENE --out OUT`` (or ``sweep`` with ``args = ("sweep", ...)``) on
-    a scene written to a fresh folder: (exit code, stdout, stderr, report.json or None when the
-    scene did not run)."""
+    a scene written to a fresh folder (with ``files``: {relative path: text} beside it; the
+    command run in its sub-folder ``cwd``): (exit code, stdout, stderr, report.json or None when
+    the scene did not run)."""
     import json
     import tempfile
 
@@ -96,18 +97,22 @@ def command_line(scene, *args):
         folder = Path(name)
         path = folder / "scene.toml"
         path.write_bytes(scene) if isinstance(scene, bytes) else path.write_text(scene)
+        for relative, text in (files or {}).items():
+            (folder / relative).parent.mkdir(parents=True, exist_ok=True)
+            (folder / relative).write_text(text)
         command = args[0] if args else "run"
         env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
         done = subprocess.run([sys.executable, "-m", "gyrostat", command, str(path), "--out", str(folder / "out"),
-                               "--quiet", *args[1:]], capture_output=True, text=True, env=env, timeout=600)
+                               "--quiet", *args[1:]], capture_output=True, text=True, env=env, timeout=600,
+                              cwd=folder / cwd if cwd else None)
         report = folder / "out" / "scene" / "report.json"
         return done.returncode, done.stdout, done.stderr, json.loads(report.read_text()) if report.exists() else None
 
 
-def cli_error(scene, *words, args=()):
+def cli_error(scene, *words, args=(), files=None, cwd=None):
     """The command line refuses the scene before running anything: exit code 2, one line on
     stderr holding every word, no traceback, no results written."""
-    code, _, err, report = command_line(scene, *args)
+    code, _, err, report = command_line(scene, *args, files=files, cwd=cwd)
     lines = [line for line in err.splitlines() if line]
     assert code == 2 and len(lines) == 1 and "Traceback" not in err, (code, err)
     _one_line(lines[0], words)
@@ -439,6 +444,55 @@ def _max_steps_case():
     failed(part, "max_steps_reached")
     assert 0 < part.t_last < 100 and len(part.y_last) == 3
     assert g.solve(g.Model(BODY), part, (part.t_last, 100)).success
+
+
+# issue 48: a scene runs no code its user did not allow (tests/test_scene_code.py checks with
+# marker files that refused code is never imported or called, and covers the Python loader,
+# sweeps on worker processes and what a factory returns).
+def _custom_scene(function, parameters="{ c = 0.05 }"):
+    return SCENE.replace("[initial]", f'[[torques]]\ntype = "custom"\nfunction = "{function}"\n'
+                         f"parameters = {parameters}\n[initial]") + "[outputs]\nplots = []\n"
+
+
+MARKING_MODULE = """def drag_factory(c):
+    return lambda t, omega: [-c * w for w in omega]
+"""
+
+
+def _refused(function, module, args=("run",), files=None, cwd=None):
+    cli_error(_custom_scene(function, '{ args = "touch pwned", shell = true }' if module == "subprocess"
+                            else "{ c = 0.05 }"),
+              f"function = '{function}'", f"names code in module '{module}'", f"--allow-import {module}",
+              args=args, files=files, cwd=cwd)
+
+
+def _allowed(function, args=(), files=None, cwd=None):
+    """The scene runs with exit 0 and its drag: |G| falls as for the same drag given in Python."""
+    code, _, err, report = command_line(_custom_scene(function), *args, files=files, cwd=cwd)
+    assert code == 0 and report["status"] == "success", err
+    reference = g.solve(g.Model(g.Body([1.0, 2.0, 2.5]), [g.CustomTorque(lambda t, w: -0.05 * np.asarray(w))]),
+                        W0, (0.0, 2.0), method="dop853")
+    change = report["runs"]["full"]["changed_by_torques"]["angular_momentum_norm"]["relative_change"]
+    expected = np.linalg.norm(reference.y[-1] * [1.0, 2.0, 2.5]) / np.linalg.norm(np.multiply(W0, [1.0, 2.0, 2.5])) - 1
+    assert abs(change - expected) < 1e-6, (change, expected)  # both at the default rtol 1e-8 (report: 4 digits)
+
+
+CASES.update({
+    "scene naming a standard-library callable (subprocess:run with shell = true)": lambda: _refused(
+        "subprocess:run", "subprocess"),
+    "gyrostat sweep on the same scene (check: tests/test_scene_code.py)": lambda: _refused(
+        "subprocess:run", "subprocess", ("sweep", "--vary", "initial.omega[0]=1:2:2")),
+    "scene naming a site-packages callable (numpy.testing:assert_equal)": lambda: _refused(
+        "numpy.testing:assert_equal", "numpy.testing"),
+    "scene naming a module outside its folder (importable from the working folder)": lambda: _refused(
+        "marking:drag_factory", "marking", files={"elsewhere/marking.py": MARKING_MODULE}, cwd="elsewhere"),
+    "allowed: a module beside the scene": lambda: _allowed("marking:drag_factory", files={"marking.py": MARKING_MODULE}),
+    "allowed: a package below the scene's folder": lambda: _allowed(
+        "lib.marking:drag_factory", files={"lib/__init__.py": "", "lib/marking.py": MARKING_MODULE}),
+    "allowed: --allow-import for a module outside the folder": lambda: _allowed(
+        "marking:drag_factory", ("run", "--allow-import", "marking"), files={"elsewhere/marking.py": MARKING_MODULE},
+        cwd="elsewhere"),
+})
 
 
 @pytest.mark.parametrize("case", list(CASES))

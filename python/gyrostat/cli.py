@@ -1,9 +1,12 @@
 """The command line: ``gyrostat run SCENE.toml``, ``gyrostat sweep SCENE.toml --vary ...``,
-``gyrostat examples``, ``gyrostat methods``, ``gyrostat scene-format``; ``gyrostat --version``.
-Also ``python -m gyrostat``. A scene with a ``[sweep]`` table runs its sweep too.
+``gyrostat check SCENE.toml``, ``gyrostat examples``, ``gyrostat methods``, ``gyrostat
+scene-format``; ``gyrostat --version``. Also ``python -m gyrostat``. A scene with a ``[sweep]``
+table runs its sweep too. A scene runs code only from its own folder and the modules given with
+``--allow-import`` (:mod:`gyrostat.scene_code`).
 
-Exit codes: 0 every scene ran and succeeded; 1 a run failed (its partial results are written);
-2 a scene file is wrong (a one-line message names the key and the table, no traceback)."""
+Exit codes: 0 every scene ran and succeeded (``check``: every scene is valid); 1 a run failed (its
+partial results are written); 2 a scene file is wrong (a one-line message names the key and the
+table, no traceback)."""
 
 from __future__ import annotations
 
@@ -13,6 +16,10 @@ import os
 import sys
 from importlib import resources
 from pathlib import Path
+
+
+ALLOW_HELP = ("a module (package) whose code the scene may name in a user torque, with every module below it; "
+              "repeat for several (the scene's own folder is always allowed; nothing else is)")
 
 
 def example_scenes() -> list[Path]:
@@ -105,6 +112,46 @@ def _print_sweep(report: dict) -> None:
         print(f"  wrote {f}")
 
 
+def _one_line(error: BaseException) -> str:
+    """An exception as one line: its type where it is not a plain input error, its message, its notes."""
+    text = " ".join(str(error).split())
+    if not isinstance(error, (ValueError, TypeError, OSError)):
+        text = f"{type(error).__name__}: {text}" if text else type(error).__name__
+    notes = getattr(error, "__notes__", None) or []
+    return "; ".join([text, *(" ".join(str(note).split()) for note in notes)])
+
+
+def _code_names(scene) -> str:
+    """``'m:f', 'm:g'``: the code a scene names (its user torques' functions), or nothing."""
+    names = sorted({str(entry[key]) for entry in scene.doc.get("torques", [])
+                    for key in ("function", "jacobian") if key in entry})
+    return ", ".join(repr(name) for name in names)
+
+
+def _check(args) -> int:
+    """``gyrostat check``: every scene validated as ``run`` would, its code neither imported nor
+    called; exit 0 when all are valid, 2 otherwise."""
+    from gyrostat.scene import Scene
+
+    bad = 0
+    for path in args.scenes:
+        try:
+            scene = Scene.from_file(path, allow_import=args.allow_import, check_only=True)
+        except KeyboardInterrupt:
+            print(f"{path}: interrupted", file=sys.stderr)
+            return 130
+        except Exception as error:  # noqa: BLE001 - the scene is wrong: one line, never a traceback
+            print(f"{path}: error: {_one_line(error)}", file=sys.stderr)
+            bad += 1
+            continue
+        runs = ", ".join(f"{run.name} ({type(run.model).__name__}, t = {run.t_span[0]:g}..{run.t_span[1]:g})"
+                         for run in scene.runs)
+        code = f"; names code (not imported by the check): {_code_names(scene)}" if scene.names_code else ""
+        print(f"{path}: ok: kind {scene.kind.name}, runs {runs}"
+              + (f", model chosen by the ladder when run" if scene.ladder is not None else "") + code)
+    return 2 if bad else 0
+
+
 def _sweep(args) -> int:
     """``gyrostat sweep``: exit 0 when every member ran (failed members are recorded in
     sweep.nc and counted on the summary line), 2 for a wrong scene or --vary, 130 on Ctrl-C."""
@@ -132,15 +179,15 @@ def _sweep(args) -> int:
             report = run_sweep(args.scene, args.out, vary, samples=args.samples, seed=args.seed, run=args.run,
                                trajectories=True if args.trajectories else None, summary=args.summary, client=client,
                                threads=args.threads, workers=args.workers, chunk_size=args.chunk_size,
-                               progress=False if args.quiet else None)
+                               progress=False if args.quiet else None, allow_import=args.allow_import)
     except KeyboardInterrupt:
         print(f"{args.scene}: interrupted", file=sys.stderr)
         return 130
     except SceneError as error:
         print(f"{args.scene}: error: {error}", file=sys.stderr)
         return 2
-    except (ValueError, TypeError, OSError) as error:
-        print(f"{args.scene}: error: {' '.join(str(error).split())}", file=sys.stderr)
+    except Exception as error:  # noqa: BLE001 - one line, never a traceback
+        print(f"{args.scene}: error: {_one_line(error)}", file=sys.stderr)
         return 2
     finally:
         if client is not None:
@@ -246,6 +293,13 @@ def _main(argv: list[str] | None = None) -> int:
                      help="output folder; each scene's results go to OUT/<scene>/ (default: %(default)s)")
     run.add_argument("--quiet", action="store_true", help="no progress bars")
     run.add_argument("--overwrite", action="store_true", help="replace the results of an earlier run in OUT")
+    run.add_argument("--allow-import", action="append", metavar="MODULE", help=ALLOW_HELP)
+    check = sub.add_parser("check", help="validate scene files without running them or any code they name",
+                           description="Checks each scene as `gyrostat run` would (keys, values, models, tolerances, "
+                                       "events), without solving it and without importing or calling any code it "
+                                       "names (a user torque's function).")
+    check.add_argument("scenes", nargs="+", type=Path, help="scene files (TOML)")
+    check.add_argument("--allow-import", action="append", metavar="MODULE", help=ALLOW_HELP)
     examples = sub.add_parser("examples", help="run every example scene shipped with the package",
                               description="Runs every scene shipped with the package (gyrostat/scenes/*.toml) as "
                                           "gyrostat run does: results in OUT/<scene>/, a summary table at the end, "
@@ -278,6 +332,7 @@ def _main(argv: list[str] | None = None) -> int:
     sweep.add_argument("--out", type=Path, default=Path("gyrostat-results"), help="output folder (default: %(default)s)")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
     sweep.add_argument("--overwrite", action="store_true", help="replace an earlier sweep of the scene in OUT")
+    sweep.add_argument("--allow-import", action="append", metavar="MODULE", help=ALLOW_HELP)
     sub.add_parser("methods", help="list the integrators, one line each")
     sub.add_parser("scene-format", help="print the reference of every scene kind (Markdown)")
     args = parser.parse_args(argv)
@@ -305,18 +360,21 @@ def _main(argv: list[str] | None = None) -> int:
 
     if args.command == "sweep":
         return _sweep(args)
+    if args.command == "check":
+        return _check(args)
     paths = args.scenes if args.command == "run" else example_scenes()
+    allow_import = args.allow_import if args.command == "run" else None
     bad_scenes = failures = 0
     rows: list[tuple[str, ...]] = []
     for path in paths:
         try:
-            scene = Scene.from_toml(path)
+            scene = Scene.from_file(path, allow_import=allow_import)
             job = prepare_sweep(scene) if "sweep" in scene.doc else None  # its [sweep] checked before any run
         except KeyboardInterrupt:
             print(f"{path}: interrupted", file=sys.stderr)
             return 130
-        except (ValueError, TypeError) as error:  # SceneError included: the scene is wrong and nothing ran
-            print(f"{path}: error: {' '.join(str(error).split())}", file=sys.stderr)
+        except Exception as error:  # noqa: BLE001 - SceneError, a user factory's error: the scene is wrong, nothing ran
+            print(f"{path}: error: {_one_line(error)}", file=sys.stderr)
             bad_scenes += 1
             continue
         try:
@@ -336,8 +394,9 @@ def _main(argv: list[str] | None = None) -> int:
             print(f"{path}: error: {error}", file=sys.stderr)
             failures += 1
             continue
-        except (ValueError, OSError) as error:
-            print(f"{path}: error: {' '.join(str(error).split())}", file=sys.stderr)
+        except Exception as error:  # noqa: BLE001 - the run failed (a user torque raised, ...): one line
+            print(f"{path}: error: the run failed: {_one_line(error)}"
+                  + (f" (the scene runs user code: {_code_names(scene)})" if scene.names_code else ""), file=sys.stderr)
             failures += 1
             continue
         _print_report(report)
@@ -352,8 +411,8 @@ def _main(argv: list[str] | None = None) -> int:
             except KeyboardInterrupt:
                 print(f"{path}: sweep interrupted", file=sys.stderr)
                 return 130
-            except (ValueError, OSError) as error:
-                print(f"{path}: sweep error: {' '.join(str(error).split())}", file=sys.stderr)
+            except Exception as error:  # noqa: BLE001 - one line, never a traceback
+                print(f"{path}: sweep error: {_one_line(error)}", file=sys.stderr)
                 failures += 1
         if report["status"] == "interrupted":
             print(f"{path}: interrupted; the outputs computed so far are written", file=sys.stderr)

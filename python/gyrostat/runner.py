@@ -8,7 +8,7 @@ from __future__ import annotations
 import json
 import time
 import warnings
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -175,13 +175,14 @@ def _ladder_report(choice: "_ladder.Choice", solutions: dict) -> dict:
 
 
 # ------------------------------------------------------------------------------------ a scene on disk
-def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = True) -> dict:
-    """Loads (unless given a loaded :class:`Scene`), solves, saves and plots one scene of any
-    kind; returns its report (also written as report.json; ``plots_skipped`` names the plots
-    asked for that could not be drawn, with the reason). Scene errors raise
-    :class:`gyrostat.schema.SceneError` (one line)."""
+def run_scene(path: str | Path | Scene, out_dir: str | Path, progress: bool = True, *,
+              allow_import: Iterable[str] | str | None = None) -> dict:
+    """Loads (unless given a loaded :class:`Scene`; ``allow_import`` as in
+    :meth:`Scene.from_file`), solves, saves and plots one scene of any kind; returns its report
+    (also written as report.json; ``plots_skipped`` names the plots asked for that could not be
+    drawn, with the reason). Scene errors raise :class:`gyrostat.schema.SceneError` (one line)."""
     started = time.perf_counter()
-    scene = path if isinstance(path, Scene) else Scene.from_toml(path)
+    scene = path if isinstance(path, Scene) else Scene.from_file(path, allow_import=allow_import)
     solutions, report, derived = solve_scene(scene, progress=progress)
     for broken in report["broken_assumptions"]:
         marker = _marker(broken, scene.doc.get("expected_broken", []))
@@ -221,14 +222,15 @@ class SweepJob:
 
 def prepare_sweep(path: str | Path | Scene, vary=None, *, samples: int | None = None, seed: int | None = None,
                   run: str | None = None, trajectories: bool | None = None,
-                  summary: str | None = None) -> SweepJob:
+                  summary: str | None = None, allow_import: Iterable[str] | str | None = None) -> SweepJob:
     """A scene's sweep (its ``[sweep]`` table, or ``vary``: a list of
     :class:`gyrostat.sweeps.Parameter` that replaces the table's parameters) with everything it
     can get wrong checked now: the paths, the grid or dispersion, the run, the summary and the
-    plot's reference lines. Errors of the table are SceneErrors naming ``[sweep]``."""
+    plot's reference lines. Errors of the table are SceneErrors naming ``[sweep]``. ``allow_import``
+    as in :meth:`Scene.from_file`."""
     from gyrostat import sweeps
 
-    scene = path if isinstance(path, Scene) else Scene.from_toml(path)
+    scene = path if isinstance(path, Scene) else Scene.from_file(path, allow_import=allow_import)
     spec = scene.doc.get("sweep", {})
     from_table = vary is None
     try:
@@ -251,14 +253,16 @@ def prepare_sweep(path: str | Path | Scene, vary=None, *, samples: int | None = 
 def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, samples: int | None = None,
               seed: int | None = None, run: str | None = None, trajectories: bool | None = None,
               summary: str | None = None, client=None, threads: int = 0, workers: int | None = None,
-              chunk_size: int | None = None, progress: bool | None = None) -> dict:
+              chunk_size: int | None = None, progress: bool | None = None,
+              allow_import: Iterable[str] | str | None = None) -> dict:
     """Runs a scene's sweep (:func:`prepare_sweep`, or a job it made): every member's results
     streamed to ``OUT/SCENE/sweep.nc``, the summary plotted against the parameters in
     ``sweep.png``, a report in ``sweep.json``; returns the report."""
     from gyrostat import sweeps
 
     job = path if isinstance(path, SweepJob) else prepare_sweep(path, vary, samples=samples, seed=seed, run=run,
-                                                                 trajectories=trajectories, summary=summary)
+                                                                 trajectories=trajectories, summary=summary,
+                                                                 allow_import=allow_import)
     scene = job.scene
     folder = Path(out_dir) / scene.name
     folder.mkdir(parents=True, exist_ok=True)

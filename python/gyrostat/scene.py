@@ -39,12 +39,14 @@ A rigid-body scene looks like::
 from __future__ import annotations
 
 import tomllib
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from gyrostat.events import Event
 from gyrostat.families import KINDS, default_kind
 from gyrostat.kind import Kind, Run, build
+from gyrostat.scene_code import Allowance, CodeName, allowing, module_names, stand_ins
 from gyrostat.schema import Common, SceneError, describe, describe_common, validate
 from gyrostat.solve import check_run
 
@@ -144,9 +146,14 @@ class Scene:
         return list(self.doc["outputs"]["plots"])
 
     @classmethod
-    def from_dict(cls, data: dict, name: str = "scene") -> "Scene":
+    def from_dict(cls, data: dict, name: str = "scene", *, allow_import: Iterable[str] | str | None = None,
+                  folder: str | Path | None = None) -> "Scene":
         """A scene from its document (a dict as TOML gives it); every problem is a one-line
         :class:`SceneError` naming the key.
+
+        A scene that names code (a ``type = "custom"`` torque) is checked whole first, its code
+        neither imported nor called (:mod:`gyrostat.scene_code`); only then are its modules
+        imported and its factories called.
 
         Parameters
         ----------
@@ -154,6 +161,11 @@ class Scene:
             The document.
         name : str, optional
             Its name (default "scene").
+        allow_import : str or list of str, optional
+            Modules (packages) whose code the scene may name, each with the modules below it.
+        folder : str or pathlib.Path, optional
+            The scene's folder: the modules in it and below it may be named (:meth:`from_file`
+            gives the file's folder).
 
         Examples
         --------
@@ -163,6 +175,36 @@ class Scene:
         Traceback (most recent call last):
         ...
         gyrostat.schema.SceneError: [body] needs exactly one of 'moments' or 'inertia'; none is given
+        """
+        scene = cls.checked(data, name, allow_import=allow_import, folder=folder)
+        if not scene.names_code:
+            return scene
+        return cls._built(scene.name, scene.kind, scene.doc)  # checked whole: now its code runs
+
+    @classmethod
+    def checked(cls, data: dict, name: str = "scene", *, allow_import: Iterable[str] | str | None = None,
+                folder: str | Path | None = None) -> "Scene":
+        """The scene checked as :meth:`from_dict` checks it, without importing or calling any code it
+        names: its user torques are stand-ins that refuse to run (``gyrostat check``).
+
+        Parameters
+        ----------
+        data, name, allow_import, folder
+            As in :meth:`from_dict`.
+
+        Examples
+        --------
+        >>> from gyrostat.schema import SceneError
+        >>> doc = {"body": {"moments": [1, 2, 3]}, "initial": {"omega": [1, 0, 0]},
+        ...        "integration": {"model": "full", "t_span": [0.0, 1.0]},
+        ...        "torques": [{"type": "custom", "function": "os:system"}]}
+        >>> try:
+        ...     Scene.checked(doc)
+        ... except SceneError as error:
+        ...     print(str(error)[:76])
+        scene 'scene': [torques[0]] function = 'os:system' names code in module 'os'
+        >>> Scene.checked(doc, allow_import=["os"]).names_code   # allowed, and still not imported
+        True
         """
         if not isinstance(data, dict):
             raise SceneError(f"a scene is a table of keys, got {type(data).__name__}")
@@ -174,7 +216,21 @@ class Scene:
             raise SceneError(f"kind = {kind_name!r} is not a scene kind ({', '.join(KINDS)})"
                              + (f"; did you mean {close[0]!r}?" if close else ""))
         kind = KINDS[kind_name]
-        doc = validate(kind.schema, data)
+        try:
+            allowance = Allowance(name, str(Path(folder).resolve()) if folder is not None else None,
+                                  module_names(allow_import))
+        except ValueError as error:
+            raise SceneError(str(error)) from None
+        with allowing(allowance):
+            doc = validate(kind.schema, data)
+        if not holds_code(doc):
+            return cls._built(name, kind, doc)
+        with stand_ins():
+            return cls._built(name, kind, doc)
+
+    @classmethod
+    def _built(cls, name: str, kind: Kind, doc: dict) -> "Scene":
+        """The scene of a validated document: its runs, checked (tolerances, outputs, events)."""
         runs, choice, reason = kind.runs(doc)
         for run in runs:  # tolerances, outputs and their memory: refused now, naming the key, not once running
             build("integration", check_run, run.model, run.t_span, run.options)
@@ -182,19 +238,36 @@ class Scene:
         rungs = kind.ladder(doc) if doc.get("integration", {}).get("model") == "auto" else None
         return cls(name=name, kind=kind, doc=doc, runs=runs, model_choice=choice, model_reason=reason, ladder=rungs)
 
+    @property
+    def names_code(self) -> bool:
+        """Whether the scene names code (a user torque's function) that building it imports and calls.
+
+        Examples
+        --------
+        >>> scene.names_code
+        False
+        """
+        return holds_code(self.doc)
+
     @classmethod
-    def from_toml(cls, path: str | Path) -> "Scene":
-        """A scene from its TOML file (:func:`load`).
+    def from_file(cls, path: str | Path, *, allow_import: Iterable[str] | str | None = None,
+                  check_only: bool = False) -> "Scene":
+        """A scene from its TOML file (:func:`load`): the modules in the file's folder (and below
+        it) and those in ``allow_import`` may be named by its user torques.
 
         Parameters
         ----------
         path : str or pathlib.Path
             The file.
+        allow_import : str or list of str, optional
+            Modules (packages) the scene may name code in, besides its folder's.
+        check_only : bool, optional
+            Check it without importing or calling its code (:meth:`checked`).
 
         Examples
         --------
         >>> from gyrostat.scene import SCENES, Scene
-        >>> Scene.from_toml(SCENES / "forced_damped.toml").name
+        >>> Scene.from_file(SCENES / "forced_damped.toml").name
         'forced_damped'
         """
         path = Path(path)
@@ -208,20 +281,51 @@ class Scene:
                              f"{error.start}): a scene is a TOML text file") from None
         except OSError as error:
             raise SceneError(f"cannot read the scene: {error.strerror}") from None
-        return cls.from_dict(data, name=path.stem)
+        make = cls.checked if check_only else cls.from_dict
+        return make(data, name=path.stem, allow_import=allow_import, folder=path.resolve().parent)
+
+    @classmethod
+    def from_toml(cls, path: str | Path, *, allow_import: Iterable[str] | str | None = None) -> "Scene":
+        """:meth:`from_file` (its older name).
+
+        Parameters
+        ----------
+        path, allow_import
+            As in :meth:`from_file`.
+
+        Examples
+        --------
+        >>> from gyrostat.scene import SCENES, Scene
+        >>> Scene.from_toml(SCENES / "forced_damped.toml").name
+        'forced_damped'
+        """
+        return cls.from_file(path, allow_import=allow_import)
+
+
+def holds_code(doc) -> bool:
+    """Whether a validated document holds a name of code (:class:`gyrostat.scene_code.CodeName`)."""
+    if isinstance(doc, CodeName):
+        return True
+    if isinstance(doc, dict):
+        return any(holds_code(value) for value in doc.values())
+    if isinstance(doc, (list, tuple)):
+        return any(holds_code(value) for value in doc)
+    return False
 
 
 SCENES = Path(__file__).resolve().parent / "scenes"
 """The folder of the scenes shipped with the package (``gyrostat examples`` runs them)."""
 
 
-def load(path: str | Path) -> Scene:
+def load(path: str | Path, *, allow_import: Iterable[str] | str | None = None) -> Scene:
     """Reads and validates a scene file; every problem is a one-line :class:`SceneError`.
 
     Parameters
     ----------
     path : str or pathlib.Path
         The TOML file.
+    allow_import : str or list of str, optional
+        Modules (packages) whose code the scene may name besides its folder's (:mod:`gyrostat.scene_code`).
 
     Examples
     --------
@@ -229,7 +333,7 @@ def load(path: str | Path) -> Scene:
     >>> load(SCENES / "forced_damped.toml").title
     'Damped body under a constant body-fixed torque'
     """
-    return Scene.from_toml(path)
+    return Scene.from_file(path, allow_import=allow_import)
 
 
 def scene_format() -> str:

@@ -58,6 +58,7 @@ __all__ = [
     "Variants",
     "OneOf",
     "Choice",
+    "ValueType",
     "Vector",
     "Matrix",
     "ListOf",
@@ -242,6 +243,11 @@ class _Type:
 
     def __repr__(self) -> str:
         return f"<{self.name}>"
+
+
+ValueType = _Type
+"""The base of a field's type, for a value another module converts itself (subclass it: ``kinds``,
+``expected``, ``name``, ``plural`` and ``convert(value, path)``, raising :class:`SceneError`)."""
 
 
 class _Float(_Type):

@@ -49,7 +49,7 @@ import signal
 import sys
 import time
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -576,15 +576,15 @@ def _parameters(vary) -> list[Parameter]:
 
 
 # ------------------------------------------------------------------------------------ the plan
-def _scene(scene):
+def _scene(scene, allow_import=None):
     from gyrostat.scene import Scene
 
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, (str, Path)):
-        return Scene.from_toml(scene)
+        return Scene.from_file(scene, allow_import=allow_import)
     if isinstance(scene, Mapping):
-        return Scene.from_dict(dict(scene))
+        return Scene.from_dict(dict(scene), allow_import=allow_import)
     raise TypeError(f"scene must be a gyrostat Scene, a scene file or a dict, not {type(scene).__name__}")
 
 
@@ -605,6 +605,9 @@ class Plan:
         Seed of a dispersion (default: a fresh one, kept in ``seed``).
     run : str, optional
         The scene's run to sweep.
+    allow_import : str or list of str, optional
+        Modules whose code a scene file or document may name (:meth:`gyrostat.scene.Scene.from_file`);
+        the members' user torques are built under the same allowance, on every worker.
 
     Examples
     --------
@@ -620,8 +623,9 @@ class Plan:
     The examples of its attributes use this ``plan``.
     """
 
-    def __init__(self, scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None):
-        scene = _scene(scene)
+    def __init__(self, scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None,
+                 allow_import: Iterable[str] | str | None = None):
+        scene = _scene(scene, allow_import)
         self.scene_name, self.kind_name = scene.name, scene.kind.name
         doc = copy.deepcopy(scene.doc)
         integration = doc.get("integration", {})
@@ -1255,7 +1259,7 @@ def _chunk_size(plan: Plan, trajectories: bool, extrema: tuple[str, ...], worker
 def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, run: str | None = None,
           trajectories: bool = True, extrema: Sequence[str] | None = None, chunk_size: int | None = None,
           threads: int = 0, workers: int | None = None, client=None, path: str | Path | None = None,
-          check_validity: bool = True, progress=None):
+          check_validity: bool = True, progress=None, allow_import: Iterable[str] | str | None = None):
     """Solves a scene for every member of a grid or a dispersion of its numeric entries.
 
     Parameters
@@ -1300,6 +1304,9 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
         ``first_broken_assumption``): how far to trust each member's answer.
     progress:
         None: a bar over the members in a terminal; True, False, or a callable of the fraction.
+    allow_import:
+        Modules whose code a scene file or document may name besides the scene file's folder
+        (:mod:`gyrostat.scene_code`); the same rule holds on every worker.
 
     Returns
     -------
@@ -1326,7 +1333,8 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     >>> [round(float(r), 4) for r in ds["final_r"].values]
     [0.3679, 0.1353]
     """
-    plan = scene if isinstance(scene, Plan) else Plan(scene, vary, samples=samples, seed=seed, run=run)
+    plan = scene if isinstance(scene, Plan) else Plan(scene, vary, samples=samples, seed=seed, run=run,
+                                                                allow_import=allow_import)
     if trajectories and getattr(plan, "varies_n_out", False):
         raise ValueError("integration.n_out varies across members: their trajectories differ in length; keep "
                          "summaries only (trajectories=False)")

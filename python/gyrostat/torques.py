@@ -12,15 +12,15 @@ torque to the core adds it here, to the scene format and to ``gyrostat``'s names
 
 from __future__ import annotations
 
-import importlib
+import inspect
 
-import numpy as np
 
-from gyrostat import _core
-from gyrostat.schema import (Field, ListOf, Matrix, NamedValues, Table, Variants, Vector, all_finite, elementwise,
-                             non_negative, positive)
+from gyrostat import _core, scene_code
+from gyrostat.scene_code import ImportName
+from gyrostat.schema import (Field, ListOf, Matrix, NamedValues, Table, Variants, Vector, all_finite,
+                             elementwise, non_negative, positive)
 
-__all__ = ["TORQUE_TYPES", "BY_KIND", "TORQUE", "build", "names", "schema", "importable"]
+__all__ = ["TORQUE_TYPES", "BY_KIND", "TORQUE", "build", "names", "schema"]
 
 TORQUE_TYPES: tuple[type, ...] = tuple(_core.torque_types)
 """Every torque class, in the core's order."""
@@ -44,46 +44,78 @@ _SHAPES = {"scalar": lambda: float, "vector3": lambda: Vector(3), "matrix3": lam
 _CHECKS = {"finite": _finite, "positive": positive, "non_negative": [_finite, non_negative]}
 
 
-def importable(name: str):
-    """The object at ``"module:attribute"`` (``"package.module:function"``, dotted attributes
-    allowed), or ``ValueError`` saying what could not be found."""
-    module_name, colon, attribute = name.partition(":")
-    if not colon or not module_name or not attribute:
-        raise ValueError(f"must be an importable name 'module:attribute', got {name!r}")
-    try:
-        target = importlib.import_module(module_name)
-    except ImportError as error:
-        raise ValueError(f"cannot import module {module_name!r}: {error}") from None
-    for part in attribute.split("."):
-        if not hasattr(target, part):
-            raise ValueError(f"module {module_name!r} has no attribute {attribute!r}")
-        target = getattr(target, part)
-    return target
-
-
 # The user's torque holds a function, not physical parameters: its scene keys are written here
-# (its C++ side, torque/custom.hpp, only calls the function).
+# (its C++ side, torque/custom.hpp, only calls the function). The names it holds run code: they
+# are checked against what the scene's user allowed (gyrostat.scene_code) and imported only when
+# the torque is built.
 _CUSTOM = Table({
-    "function": Field(str, required=True, check=importable,
+    "function": Field(ImportName(), required=True,
                       doc="the torque function, an importable name 'module:attribute': a Python callable "
                           "f(t, omega[, quaternion]) -> M, or a scipy.LowLevelCallable (see gyrostat.CustomTorque); "
                           "with `parameters`, a factory called once with them that returns one"),
-    "jacobian": Field(str, check=importable,
+    "jacobian": Field(ImportName(),
                       doc="its Jacobian dM/domega, an importable name of the same kind (default: difference quotients)"),
     "parameters": Field(NamedValues(), doc="keyword arguments of the factories `function` and `jacobian` name"),
     "attitude": Field(bool, default=False, doc="the function takes the attitude quaternion (models with attitude)"),
-}, doc=_core.CustomTorque.description)
+}, doc=_core.CustomTorque.description + ". **Such a scene runs code**: the module it names is imported and its "
+       "function (or factory) called. A scene names code only from modules in its own folder or below it, and from "
+       "modules its user allows (`gyrostat run|sweep|check --allow-import PACKAGE`, `Scene.from_file(path, "
+       "allow_import=[...])`, `gyrostat.sweep(..., allow_import=[...])`); any other name is refused before anything "
+       "is imported. Nothing is imported or called until the whole scene has passed its checks.")
+
+
+def _stand_in(name: str):
+    """A torque function that refuses to run: it stands in for the user's while a scene is checked."""
+    def refuse(t, omega, quaternion=None):
+        raise RuntimeError(f"CustomTorque {name!r} is a stand-in: the scene was only checked (Scene.checked, "
+                           f"gyrostat check); load it with Scene.from_file to run its code")
+    return refuse
+
+
+def _call_factory(name: str, factory, parameters: dict):
+    """What the factory ``name`` returns for the scene's ``parameters``, or ValueError naming it."""
+    if not callable(factory):
+        raise ValueError(f"{name.field} = {str(name)!r} with `parameters` must name a factory (a callable), "
+                         f"got {type(factory).__name__}")
+    try:
+        return factory(**parameters)
+    except TypeError as error:
+        raise ValueError(f"{name.field} = {str(name)!r}: the factory refused the scene's `parameters` "
+                         f"({', '.join(parameters) or 'none'}): {error}") from None
+
+
+def _check_signature(name, function, attitude: bool) -> None:
+    """A Python torque function must take (t, omega) or (t, omega, quaternion): ValueError naming
+    ``name`` otherwise (e.g. a factory named without its ``parameters``). Compiled functions and
+    callables whose signature Python cannot read are left to the torque's own checks."""
+    if not callable(function) or type(function).__name__ == "LowLevelCallable":
+        return
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):
+        return
+    arguments = ("t", "omega", "quaternion") if attitude else ("t", "omega")
+    try:
+        signature.bind(*arguments)
+    except TypeError:
+        raise ValueError(f"{name.field} = {str(name)!r} takes {signature}, but a torque function takes "
+                         f"({', '.join(arguments)}); if it is a factory, give its arguments in `parameters`") from None
 
 
 def _custom(entry: dict):
-    """A ``custom`` entry → ``CustomTorque``: the named objects, called with ``parameters`` when given."""
+    """A ``custom`` entry → ``CustomTorque``: the named objects (imported now, as allowed), called
+    with ``parameters`` when given. Inside :func:`gyrostat.scene_code.stand_ins` nothing is
+    imported or called: a function that refuses to run stands in for it, to check the scene's models."""
+    if scene_code.standing_in():
+        return _core.CustomTorque(_stand_in(str(entry["function"])), None, attitude=entry["attitude"], name=str(entry["function"]))
     parameters = entry.get("parameters")
-    function = importable(entry["function"])
-    jacobian = importable(entry["jacobian"]) if "jacobian" in entry else None
+    function = entry["function"].load()
+    jacobian = entry["jacobian"].load() if "jacobian" in entry else None
     if parameters is not None:
-        function = function(**parameters)
-        jacobian = jacobian(**parameters) if jacobian is not None else None
-    return _core.CustomTorque(function, jacobian, attitude=entry["attitude"], name=entry["function"])
+        function = _call_factory(entry["function"], function, parameters)
+        jacobian = _call_factory(entry["jacobian"], jacobian, parameters) if jacobian is not None else None
+    _check_signature(entry["function"], function, entry["attitude"])
+    return _core.CustomTorque(function, jacobian, attitude=entry["attitude"], name=str(entry["function"]))
 
 
 def schema(cls: type) -> Table:

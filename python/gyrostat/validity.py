@@ -19,7 +19,7 @@ from gyrostat.scene import Scene
 __all__ = ["SMALL", "PAPER_RATIO", "ValidityWarning", "Assumption", "check", "check_scene"]
 
 
-def check_scene(scene, warn: bool = True) -> list[Assumption]:
+def check_scene(scene, warn: bool = True, *, allow_import=None) -> list[Assumption]:
     """Checks a scene (a :class:`gyrostat.scene.Scene` or the path of its TOML file) at its
     initial state, for every model the scene uses, without solving it. (`gyrostat run` checks
     along the whole solution.)
@@ -28,6 +28,8 @@ def check_scene(scene, warn: bool = True) -> list[Assumption]:
     ----------
     scene : gyrostat.scene.Scene or str or pathlib.Path
         The scene or its file.
+    allow_import : str or list of str, optional
+        Modules whose code a scene file may name (:meth:`gyrostat.scene.Scene.from_file`).
     warn : bool, optional
         Warn for each broken assumption (default True).
 
@@ -40,7 +42,7 @@ def check_scene(scene, warn: bool = True) -> list[Assumption]:
     'Reynolds number |ω| b²/ν ≪ 1'
     """
     if not isinstance(scene, Scene):
-        scene = Scene.from_toml(scene)
+        scene = Scene.from_file(scene, allow_import=allow_import)
     results: list[Assumption] = []
     for run in scene.runs:
         results += scene.kind.initial_assumptions(run, warn)
