@@ -1,5 +1,7 @@
 import contextlib
 import io
+import os
+import signal
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -8,6 +10,21 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
+
+
+@pytest.fixture
+def ctrl_c():
+    """A function that sends Ctrl-C (SIGINT) to this process, as a terminal would, with Python's
+    own handler (KeyboardInterrupt) installed for the test and the one before restored after it:
+    a suite started in the background or under nohup inherits SIGINT ignored, so that Python
+    installs no handler and the signal would be lost (the test then waiting for it). A test that
+    uses it also bounds its run (max_steps, a span), so that a lost signal fails it in seconds."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield lambda: os.kill(os.getpid(), signal.SIGINT)
+    finally:
+        if previous is not None:  # None: a handler not installed from Python, which cannot be put back
+            signal.signal(signal.SIGINT, previous)
 
 
 def _drawn(ax) -> bool:

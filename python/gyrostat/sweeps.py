@@ -16,7 +16,10 @@ sets several paths, optionally scaled (``Parameter("I1_over_I3", ["torques[0].di
 values, scale=0.1)`` sets ε I1 with ε = 0.1). Every member's document is checked as the scene
 file would be (the key's type and checks), and its model built by the scene's kind; a member
 whose values the physics refuses (a negative moment of inertia after dispersion) is recorded
-with status ``invalid_input`` and the message, never lost and never stopping the others.
+with status ``invalid_input`` and the message, never lost and never stopping the others; a
+member whose run raises (a user's :class:`gyrostat.CustomTorque` raising for its values) is
+recorded with status ``failed`` and its exception, the others with their own results, on every
+runner (this process, worker processes, Dask).
 
 ``model = "auto"`` is resolved once, from the scene as written (the model ladder's choice, probes
 included: :mod:`gyrostat.ladder`), so that every member is solved with the same model, without
@@ -981,7 +984,8 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
                 extrema: Sequence[str] = (), check_validity: bool = True, progress=None) -> dict[str, np.ndarray]:
     """Solves members ``start`` to ``stop - 1`` of a plan and returns their arrays (what a sweep
     keeps of each). Members that share options are one :func:`gyrostat.solve_ensemble` call on
-    ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``; with
+    ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``, a member
+    whose run raises (a user's torque) status ``failed`` and its exception as message; with
     ``check_validity``, the assumptions of an averaged model are checked along each member (the
     count of broken ones and the first, per member). The same on every machine: a Dask task
     runs exactly this.
@@ -1058,7 +1062,7 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
     count = len(arrays["status"])
     done = count - sum(len(members) for members in groups.values())
     for (span, options, events), members in groups.items():
-        share = len(members) / count
+        size, share = len(members), len(members) / count
 
         def report(fraction, before=done / count, share=share):
             progress(before + share * fraction)
@@ -1070,22 +1074,61 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
         if len({len(y0) for y0 in starts}) == 1:
             starts = np.stack(starts)  # one (members, dim) array: converted once, not member by member
         with _interruptible():
-            _, results = ensemble_results(models, starts, span, threads=threads,
-                                           events=list(events) or None,
-                                           progress=report if progress is not None else False, **dict(options))
+            try:
+                _, results = ensemble_results(models, starts, span, threads=threads,
+                                               events=list(events) or None,
+                                               progress=report if progress is not None else False, **dict(options))
+            except Exception:  # a member's run raised (a user's torque): each member solved alone
+                members, results = _one_by_one(arrays, members, span, events, options, threads,
+                                               report if progress is not None else None)
+                models = [run.model for _, run in members]
         rows = [j for j, _ in members]
-        arrays["accuracy_warning"][rows] = _record_results(arrays, rows, results, models, plan, trajectories, extrema)
+        if rows:
+            arrays["accuracy_warning"][rows] = _record_results(arrays, rows, results, models, plan, trajectories,
+                                                               extrema)
         checked = {kind: check_validity and kind.check is not ModelBase.check for kind in {type(m) for m in models}}
         for (j, run), result in zip(members, results):
             if checked[type(run.model)] and len(result.t):
                 broken = [str(a) for a in run.model.check(Solution(result, run.model)) if not a.holds]  # the averaging's
                 arrays["broken_assumptions"][j] = len(broken)
                 arrays["first_broken_assumption"][j] = broken[0] if broken else ""
-        done += len(members)
+        done += size
         if any(r.status == "interrupted" for r in results):
             arrays["interrupted"][0] = True
             break
     return arrays
+
+
+def _said(error: BaseException) -> str:
+    """An exception as one line of a member's ``message``: its type and its words."""
+    return f"{type(error).__name__}: {' '.join(str(error).split())}"
+
+
+def _one_by_one(arrays: dict, members: list, span, events, options, threads: int, report) -> tuple[list, list]:
+    """The members of an ensemble call that raised (the engine raises the first exception a
+    member's run raised, a user's torque's, once the members have finished), solved again one
+    at a time, so that an exception is its own member's alone: that member gets status
+    ``failed`` and the exception as its message, every other member the result of its own run
+    (an ensemble of one: the numbers of its lane in the call, bit for bit). Returns the members
+    that returned a result and their results; stops at a member Ctrl-C interrupted (the later
+    ones stay ``interrupted``)."""
+    from gyrostat.solve import ensemble_results
+
+    solved, results = [], []
+    for k, (j, run) in enumerate(members):
+        try:
+            _, (result,) = ensemble_results([run.model], [run.y0], span, threads=threads,
+                                            events=list(events) or None, progress=False, **dict(options))
+        except Exception as error:  # this member's own: recorded, the others go on
+            arrays["status"][j], arrays["message"][j] = "failed", _said(error)
+        else:
+            solved.append((j, run))
+            results.append(result)
+            if result.status == "interrupted":
+                break
+        if report is not None:
+            report((k + 1) / len(members))
+    return solved, results
 
 
 # ------------------------------------------------------------------------------------ where results go
@@ -1171,7 +1214,8 @@ def _attributes(plan: Plan, name: str) -> dict:
     fixed = {"t": {"units": "s", "description": "output times"},
              "t_final": {"units": "s", "description": "time where the run ended"},
              "last_step": {"units": "s", "description": "the last step size"},
-             "status": {"description": "success, or why the run stopped (invalid_input: the values were refused)"},
+             "status": {"description": "success, or why the run stopped (invalid_input: the values were refused; "
+                                  "failed: the run raised, or its worker failed)"},
              "message": {"description": "the reason in words"},
              "terminal_event": {"description": "the event that ended the run, or empty"},
              "broken_assumptions": {"description": "how many of the model's assumptions (an averaged model's "
@@ -1531,7 +1575,7 @@ def _run_processes(plan, ranges, sink, bar, processes, threads, options) -> dict
             chunk["interrupted"] = np.ones(1, dtype=bool)
         else:
             chunk["status"][:] = "failed"
-            chunk["message"][:] = f"the worker process failed: {type(error).__name__}: {' '.join(str(error).split())}"
+            chunk["message"][:] = f"the worker process failed: {_said(error)}"
         _put_values(chunk, plan, plan.values_range(start, stop))
         return chunk
 
@@ -1615,7 +1659,7 @@ def _run_dask(plan, ranges, sink, bar, client, threads, options) -> dict:
             except Exception as error:  # a worker lost or a task failing: its members say why
                 chunk = _blank(plan, stop - start, options["trajectories"], options["extrema"])
                 chunk["status"][:] = "failed"
-                chunk["message"][:] = f"the Dask task failed: {type(error).__name__}: {' '.join(str(error).split())}"
+                chunk["message"][:] = f"the Dask task failed: {_said(error)}"
                 _put_values(chunk, plan, plan.values_range(start, stop))
             sink.put(start, chunk)
             finished[(start, stop)] = True
