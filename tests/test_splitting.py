@@ -308,6 +308,38 @@ def test_bad_splitting_step(step):
         g.solve(model, W0, (0, 1), method="splitting", step=step)
 
 
+# issue 44: a body (1, 2, 3) under M0 = (0.02, 0, -0.03) and D = diag(0.05, 0.02, 0.03) from
+# (0.7, -0.4, 0.9) over (0, 100). Its composite steps err by a floor of ~7e-15 each (the
+# sub-flows' constants recomputed from the state round alike step after step), which adds up
+# linearly: counted as a random walk, the estimate read 7.6e-13 at order 4, rtol 1e-11, where the
+# error was 3.2e-10 (order 2 at 1e-9: 6.3e-12 against 6.1e-9; order 6 at 1e-10: 3.9e-13 against
+# 5.2e-11), and a smaller step did not take the error below ~1e-10.
+FLOOR_J, FLOOR_W0 = np.array([1.0, 2.0, 3.0]), np.array([0.7, -0.4, 0.9])
+FLOOR_M, FLOOR_D = np.array([0.02, 0.0, -0.03]), np.diag([0.05, 0.02, 0.03])
+
+
+@pytest.fixture(scope="module")
+def floor_reference():
+    def euler(t, w):  # A ω̇ = (A ω) × ω + M0 − D ω, written here
+        return (np.cross(FLOOR_J * w, w) + FLOOR_M - FLOOR_D @ w) / FLOOR_J
+    return solve_ivp(euler, (0.0, 100.0), FLOOR_W0, method="DOP853", rtol=1e-13, atol=1e-15, dense_output=True).sol
+
+
+@pytest.mark.parametrize("order, rtol", [(4, 1e-11), (2, 1e-9), (6, 1e-10)])
+def test_the_splitting_estimate_sees_its_rounding_floor(order, rtol, floor_reference):
+    """The estimate lies within [1/2, 30] x the error measured against SciPy (the error floored at
+    1e-10, the contract's "near rounding" floor: SciPy's own error at rtol 1e-13 over t = 100 is
+    ~1e-12), and the run warns exactly when its estimate exceeds rtol, naming the steps' rounding
+    when that is what dominates (no smaller step would help)."""
+    model = g.Model(g.Body(FLOOR_J), [g.ConstantTorque(FLOOR_M), g.LinearDamping(FLOOR_D)])
+    sol = split_run(model, FLOOR_W0, (0.0, 100.0), splitting_order=order, rtol=rtol, n_out=101)
+    truth = floor_reference(sol.t).T
+    error = np.abs(sol.y - truth).max() / np.abs(truth).max()
+    assert 0.5 * error <= sol.error_estimate <= 30 * max(error, 1e-10), (error, sol.error_estimate)
+    if error > rtol:  # the run missed rtol: it must have said so, with the number
+        assert any("exceeds rtol" in note for note in sol.notes), (error, sol.notes)
+
+
 @pytest.mark.parametrize("rtol", [1e-6, 1e-10])
 def test_splitting_chooses_its_step_from_rtol(rtol):
     """step left out: h from the splitting's own probe at t0, so that the run meets rtol (against
