@@ -5,7 +5,9 @@
 #
 #   bash run.sh main [OUT]   run every example scene, results and plots in OUT/<scene>/ (default: results/);
 #                            ends with a summary table and writes OUT/index.html (and index.md) linking them
-#   bash run.sh test         run the whole test suite (C++ tests, plain and under sanitizers, then pytest)
+#   bash run.sh test         run the test suite: the C++ tests (Release, on the package's core), then pytest
+#   bash run.sh sanitize     the C++ tests under AddressSanitizer + UBSan and the ensemble stress test under
+#                            ThreadSanitizer (their own -O0 builds; CI runs it after `test`)
 #   bash run.sh bench        build the benchmark executable and chart work-precision (bench/)
 #   bash run.sh docs         build the documentation site into docs/_build/html (warnings are errors)
 set -euo pipefail
@@ -188,11 +190,15 @@ case $command in
         stage "building and installing the package" setup_python test
         stage "building the C++ tests and the benchmark (Release)" build_cpp_tests
         stage "C++ tests" run_cpp_tests
+        stage "Python tests" run_python_tests
+        ;;
+    sanitize)
+        install_debian_packages
+        trap stage_table EXIT
         stage "building the C++ tests under ASan + UBSan (-O0)" build_asan_tests
         stage "C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer" run_asan_tests
         stage "building the stress test under TSan (-O0)" build_tsan_tests
         stage "the ensemble stress test under ThreadSanitizer" run_tsan_tests
-        stage "Python tests" run_python_tests
         ;;
     bench)
         install_debian_packages
@@ -214,7 +220,7 @@ case $command in
         "$VENV/bin/python" -m sphinx -W --keep-going -b html "$ROOT/docs" "$ROOT/docs/_build/html"
         ;;
     *)
-        echo "usage: bash run.sh main [OUT] | test | bench | docs" >&2
+        echo "usage: bash run.sh main [OUT] | test | sanitize | bench | docs" >&2
         exit 2
         ;;
 esac
