@@ -296,6 +296,8 @@ CASES = {
     "initial quaternion at 1e200 and 1e-170 (was refused as zero)": lambda: _quaternion_scale_case(),
     "closed form with attitude from |omega| = 1e160 (symmetric body)": lambda: _closed_form_scale_case(),
     "orthogonal.attitude_along_momentum([0, 0, 1e300]) and of 0": lambda: _along_momentum_case(),
+    # item 2: an overflow is the state's, never a quaternion the user did not give
+    "InertialTorque([1e308, 0, 0]) overflows (was a ValueError about a quaternion)": lambda: _overflow_case(),
 }
 
 
@@ -477,6 +479,20 @@ def _along_momentum_case():
     np.testing.assert_allclose(orthogonal.attitude_along_momentum([0.0, 1e300, 1e300]),
                                orthogonal.attitude_along_momentum([0.0, 1.0, 1.0]), rtol=0, atol=1e-15)
     error(lambda: orthogonal.attitude_along_momentum([0.0, 0.0, 0.0]), "G0 = [0, 0, 0]", "must not be zero")
+
+
+def _overflow_case():
+    """M = 1e308 in inertial axes overflows ω in the first step: the run fails with the state's
+    non-finite value and where, as the same overflow under ConstantTorque does, in solve and in
+    solve_ensemble, for the explicit and the implicit methods."""
+    for method in ("dop853", "cvode_bdf"):
+        for torque in (g.InertialTorque([1e308, 0, 0]), g.ConstantTorque([1e308, 0, 0])):
+            model = g.Model(BODY, [torque], attitude=True)
+            sol = g.solve(model, W0 + [1.0, 0.0, 0.0, 0.0], (0, 10), method=method)
+            failed(sol, "non_finite_state")
+            assert "non-finite" in sol.message and "t = " in sol.message and "quaternion" not in sol.message, sol.message
+            members = g.solve_ensemble(model, [W0 + [1.0, 0.0, 0.0, 0.0]] * 2, (0, 10), method=method)
+            assert [m.status for m in members] == ["non_finite_state"] * 2, [m.message for m in members]
 
 
 def _equal(value, expected):
