@@ -1550,7 +1550,8 @@ class CustomTorque:
     function : callable or scipy.LowLevelCallable
         A Python callable (each call holds the GIL and costs about 1 us plus the function's own
         time: bench/custom_torque.py; an ensemble of such members runs on one thread, since more
-        would only pass the GIL back and forth; its exception reaches the caller as raised), or a
+        would only pass the GIL back and forth; its exception reaches the caller as raised, but
+        Ctrl-C in it ends the run with status "interrupted", keeping what was computed), or a
         ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of one of the C signatures::
     
             int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)
