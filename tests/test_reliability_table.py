@@ -279,6 +279,30 @@ CASES = {
     "cvode_bdf from (1e100, 0.5, -0.3): steps over the oscillation": lambda: _bdf_oscillation_case(),
     "explicit moving mass on a soft spring (Omega = 0.5)": lambda: _soft_spring_case(),
     "orthogonal torque at rest with a rotor, and at a permanent rotation": lambda: _orthogonal_one_rule_case(),
+    # issue 44, item 1: a direction of any length is normalised without overflow or underflow
+    "GravityGradient orbit_normal = [0, 0, 1e300] (was stored [0, 0, 0], 136 % off)": lambda: _same_direction_case(
+        lambda n: g.GravityGradient(orbit_rate=0.7, orbit_normal=n), [0, 0, 1e300], [0, 0, 1], "orbit_normal=[0, 0, 1]"),
+    "GravityGradient orbit_normal = [3e-162, 0, 0] (was stored [0.954, 0, 0], 14 % off)": lambda: _same_direction_case(
+        lambda n: g.GravityGradient(orbit_rate=0.7, orbit_normal=n), [3e-162, 0, 0], [1, 0, 0], "orbit_normal=[1, 0, 0]"),
+    "DipoleFieldTorque dipole_axis = [0, 0, -1e200] (was stored [0, 0, -0], 68 % off)": lambda: _same_direction_case(
+        lambda d: g.DipoleFieldTorque([1, 0, 0], 0.5, 0.7, dipole_axis=d, orbit_normal=[0, 1e-200, 1e-200]),
+        [0, 0, -1e200], [0, 0, -1], "dipole_axis=[0, 0, -1]"),
+    "GravityGradient orbit_normal = [nan, 0, 0]": lambda: error(
+        lambda: g.GravityGradient(0.7, orbit_normal=[math.nan, 0, 0]), "GravityGradient: orbit_normal = [nan, 0, 0]",
+        "must be finite"),
+    "DipoleFieldTorque dipole_axis = [0, 0, 0]": lambda: error(
+        lambda: g.DipoleFieldTorque([1, 0, 0], 0.5, 0.7, dipole_axis=[0, 0, 0]),
+        "DipoleFieldTorque: dipole_axis = [0, 0, 0] must not be zero"),
+    "scene: orbit_normal = [0, 0, 0]": lambda: cli_error(
+        SCENE.replace("[initial]", '[[torques]]\ntype = "gravity_gradient"\norbit_rate = 0.7\norbit_normal = [0.0, 0.0, 0.0]\n'
+                      "[initial]").replace("omega = [1.0, 0.5, -0.3]", "omega = [1.0, 0.5, -0.3]\nattitude = [1.0, 0.0, 0.0, 0.0]"),
+        "orbit_normal = [0, 0, 0] must not be zero"),
+    "scene: orbit_normal = [0, 0, 1e300] and attitude at 1e-170": lambda: _tiny_and_huge_scene_case(),
+    "initial quaternion at 1e200 and 1e-170 (was refused as zero)": lambda: _quaternion_scale_case(),
+    "closed form with attitude from |omega| = 1e160 (symmetric body)": lambda: _closed_form_scale_case(),
+    "orthogonal.attitude_along_momentum([0, 0, 1e300]) and of 0": lambda: _along_momentum_case(),
+    # item 2: an overflow is the state's, never a quaternion the user did not give
+    "InertialTorque([1e308, 0, 0]) overflows (was a ValueError about a quaternion)": lambda: _overflow_case(),
 }
 
 
@@ -390,6 +414,90 @@ def _orthogonal_one_rule_case():
     for body, w0 in ((g.Body([2, 3, 4], [0.3, -0.2, 0.5]), [0.0, 0.0, 0.0]), (g.Body([2, 3, 4]), [1.0, 0.0, 0.0])):
         sol = g.solve(orthogonal.OrthogonalModel(body, 0.1), w0, (0, 1), n_out=3)
         assert np.all(sol["regularised"] == 1.0) and np.all(sol["g"] == 1.0), (w0, sol["regularised"], sol["g"])
+
+
+def _attitude_run(torque, **options):
+    return g.solve(g.Model(BODY, [torque], attitude=True), W0 + [1.0, 0.0, 0.0, 0.0], (0, 10), n_out=11, rtol=1e-12,
+                   atol=1e-14, **options)
+
+
+def _same_direction_case(make, scaled, unit, shown_unit):
+    """The torque built from a direction at an extreme scale keeps the unit direction (its repr
+    says so) and gives the run of the unit one; both directions are the same unit vector once
+    normalised, so the runs agree to rounding (1e-12: the bound, well above the 0 measured)."""
+    big, one = make(scaled), make(unit)
+    assert shown_unit in repr(big), repr(big)
+    a, b = _attitude_run(big), _attitude_run(one)
+    assert a.success and b.success, (a.message, b.message)
+    assert np.max(np.abs(a.y - b.y)) <= 1e-12, np.max(np.abs(a.y - b.y))
+
+
+def _tiny_and_huge_scene_case():
+    """Through `gyrostat run`: a scene with orbit_normal = [0, 0, 1e300] and an initial attitude
+    given at 1e-170 runs as the scene with [0, 0, 1] and the unit attitude (to 1e-12: the same
+    unit vectors once normalised)."""
+    scene = SCENE.replace("[initial]", '[[torques]]\ntype = "gravity_gradient"\norbit_rate = 0.7\n'
+                          "orbit_normal = [0.0, 0.0, 1e300]\n[initial]")
+    scene = scene.replace("omega = [1.0, 0.5, -0.3]", "omega = [1.0, 0.5, -0.3]\nattitude = [1e-170, 0.0, 0.0, 1e-171]")
+    code, _, err, report = command_line(scene)
+    assert code == 0 and "Traceback" not in err and report["status"] == "success", err
+    import tomllib
+
+    from gyrostat.runner import solve_scene
+    from gyrostat.scene import Scene
+
+    doc = tomllib.loads(scene)
+    (huge,) = solve_scene(Scene.from_dict(doc), progress=False)[0].values()
+    doc["torques"][0]["orbit_normal"], doc["initial"]["attitude"] = [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.1]
+    (unit,) = solve_scene(Scene.from_dict(doc), progress=False)[0].values()
+    assert np.max(np.abs(huge.y - unit.y)) <= 1e-12, np.max(np.abs(huge.y - unit.y))
+
+
+def _quaternion_scale_case():
+    """An initial quaternion of any length is a rotation: the runs from 1e200 q and 1e-170 q equal
+    the run from q (to 1e-12: the start is the same unit quaternion; measured 0), in solve and in
+    the ensembles' SIMD batches (dop853 with a constant torque)."""
+    model = g.Model(BODY, [g.ConstantTorque([0.0, 0.0, 0.05])], attitude=True)
+    q = np.array([0.8, 0.0, 0.6, 0.0])
+    unit = g.solve(model, W0 + list(q), (0, 10), n_out=11, rtol=1e-12, atol=1e-14)
+    for scale in (1e200, 1e-170):
+        sol = g.solve(model, W0 + list(scale * q), (0, 10), n_out=11, rtol=1e-12, atol=1e-14)
+        assert sol.success and np.max(np.abs(sol.y - unit.y)) <= 1e-12, (scale, sol.message)
+        members = g.solve_ensemble(model, [W0 + list(scale * q)] * 4, (0, 10), n_out=11, rtol=1e-12, atol=1e-14)
+        assert all(m.success and np.max(np.abs(m.y - unit.y)) <= 1e-12 for m in members), scale
+
+
+def _closed_form_scale_case():
+    """The free symmetric body from s ω0 is the one from ω0 at times s t (ω scaled by s, the same
+    attitude): with s = 1e160 the squares of ω overflow unless the norms are scaled. To 1e-12
+    (relative in ω): the two runs evaluate the same phases, up to the rounding of s t."""
+    model, s = g.TorqueFreeModel(g.Body([1.0, 1.0, 2.0]), attitude=True), 1e160
+    q0 = [0.9, 0.1, 0.3, 0.3]
+    t = np.linspace(0.0, 5.0, 6)
+    unit = g.solve(model, [0.6, -0.2, 0.4] + q0, (0, 5), t_eval=t)
+    big = g.solve(model, [0.6 * s, -0.2 * s, 0.4 * s] + q0, (0, 5 / s), t_eval=t / s)
+    assert big.success and np.all(np.isfinite(big.y)), big.message
+    assert np.max(np.abs(big.y[:, :3] / s - unit.y[:, :3])) <= 1e-12 and np.max(np.abs(big.y[:, 3:] - unit.y[:, 3:])) <= 1e-12
+
+
+def _along_momentum_case():
+    np.testing.assert_allclose(orthogonal.attitude_along_momentum([0.0, 1e300, 1e300]),
+                               orthogonal.attitude_along_momentum([0.0, 1.0, 1.0]), rtol=0, atol=1e-15)
+    error(lambda: orthogonal.attitude_along_momentum([0.0, 0.0, 0.0]), "G0 = [0, 0, 0]", "must not be zero")
+
+
+def _overflow_case():
+    """M = 1e308 in inertial axes overflows ω in the first step: the run fails with the state's
+    non-finite value and where, as the same overflow under ConstantTorque does, in solve and in
+    solve_ensemble, for the explicit and the implicit methods."""
+    for method in ("dop853", "cvode_bdf"):
+        for torque in (g.InertialTorque([1e308, 0, 0]), g.ConstantTorque([1e308, 0, 0])):
+            model = g.Model(BODY, [torque], attitude=True)
+            sol = g.solve(model, W0 + [1.0, 0.0, 0.0, 0.0], (0, 10), method=method)
+            failed(sol, "non_finite_state")
+            assert "non-finite" in sol.message and "t = " in sol.message and "quaternion" not in sol.message, sol.message
+            members = g.solve_ensemble(model, [W0 + [1.0, 0.0, 0.0, 0.0]] * 2, (0, 10), method=method)
+            assert [m.status for m in members] == ["non_finite_state"] * 2, [m.message for m in members]
 
 
 def _equal(value, expected):

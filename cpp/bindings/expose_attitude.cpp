@@ -10,6 +10,7 @@
 
 #include "expose.hpp"
 #include "gyrostat/attitude.hpp"
+#include "gyrostat/numeric/unit_vector.hpp"
 
 namespace py = pybind11;
 
@@ -115,6 +116,16 @@ void expose_attitude(py::module_& m) {
         py::arg("R"),
         "Unit quaternions (w, x, y, z), w >= 0, of rotation matrices, shape (3, 3) or (n, 3, 3) (Shepperd's\n"
         "method). Returns shape (4,) or (n, 4).");
+    m.def(
+        "unit_vector",
+        [](const Array& v, const std::string& name) {
+            if (v.ndim() != 1) throw py::value_error(name + " must have shape (n,), got shape " + shape_text(v));
+            const Eigen::VectorXd u = unit_direction(Eigen::Map<const Eigen::VectorXd>(v.data(), v.shape(0)), name, "");
+            return py::array_t<double>(u.size(), u.data());
+        },
+        py::arg("v"), py::arg("name") = "v",
+        "The unit vector along v, shape (n,), whatever its length: v / max|v_i| normalised (no overflow or\n"
+        "underflow). ValueError naming `name` and v when v is zero or not finite.");
 }
 
 }  // namespace gyrostat::bindings

@@ -12,6 +12,7 @@
 
 #include "convert.hpp"
 #include "expose.hpp"
+#include "gyrostat/integrate/control.hpp"
 #include "gyrostat/torque/custom.hpp"
 
 namespace gyrostat::bindings {
@@ -20,7 +21,8 @@ namespace {
 
 /// A Python callable f(t, omega[, quaternion]) -> M and its optional jac(t, omega[, quaternion]) -> dM/domega.
 /// Each call holds the GIL (ensembles call it one thread at a time). The first exception it
-/// raises is kept for solve_ensemble to re-raise (a single solve propagates it directly).
+/// raises is kept for solve_ensemble to re-raise (a single solve propagates it directly); a
+/// KeyboardInterrupt becomes integrate::Interruption, which the run turns into its status.
 class PythonTorqueFunction final : public torque::TorqueFunction {
 public:
     PythonTorqueFunction(py::object function, py::object jacobian, std::string label)
@@ -64,6 +66,9 @@ private:
             if (quaternion) return f(t, w, py::array_t<double>(4, quaternion->data()));
             return f(t, w);
         } catch (py::error_already_set& e) {
+            // Ctrl-C while the function ran (or its own KeyboardInterrupt): the run stops there and
+            // keeps what it computed (status interrupted), as Ctrl-C between two steps does
+            if (e.matches(PyExc_KeyboardInterrupt)) throw integrate::Interruption();
             if (!error_) error_ = std::make_unique<py::error_already_set>(e);
             throw;
         }
@@ -202,7 +207,8 @@ Parameters
 function : callable or scipy.LowLevelCallable
     A Python callable (each call holds the GIL and costs about 1 us plus the function's own
     time: bench/custom_torque.py; an ensemble of such members runs on one thread, since more
-    would only pass the GIL back and forth; its exception reaches the caller as raised), or a
+    would only pass the GIL back and forth; its exception reaches the caller as raised, but
+    Ctrl-C in it ends the run with status "interrupted", keeping what was computed), or a
     ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of one of the C signatures::
 
         int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)

@@ -101,6 +101,15 @@ std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
 }  // namespace
 
 void expose_integrate(py::module_& m) {
+    // An Interruption that leaves the core (a user's torque that saw Ctrl-C, called outside a run:
+    // Model.rhs, the torque itself) is the KeyboardInterrupt it came from.
+    py::register_exception_translator([](std::exception_ptr error) {
+        try {
+            if (error) std::rethrow_exception(error);
+        } catch (const integrate::Interruption&) {
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
+        }
+    });
     using integrate::Event;
     py::class_<Event>(m, "Event", "A zero crossing g(t, y) = quantity - value, located by the engine.")
         .def(py::init([](const std::string& quantity, int index, double value, int direction, int terminal,

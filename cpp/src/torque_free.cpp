@@ -4,6 +4,7 @@
 #include "gyrostat/attitude.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -199,12 +200,24 @@ void FreeBodyFlow::require_closed_form(const Body& body, const char* who) {
 
 namespace {
 
-/// |v| in double-double from the exact components.
-DoubleDouble norm_dd(const Vec3& v) {
+/// |v| in double-double, taken of v / 2^e with 2^e ≤ max|v_i| < 2^(e+1) (exact): the squares
+/// neither overflow (|v_i| > 1e154) nor underflow (every |v_i| < 1e-154), and in between the
+/// result is the unscaled one, bit for bit.
+DoubleDouble norm_dd(const std::array<DoubleDouble, 3>& v) {
+    const double largest = std::max({std::abs(v[0].hi), std::abs(v[1].hi), std::abs(v[2].hi)});
+    if (!(largest > 0.0)) return DoubleDouble(0.0);
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    const double scale = std::ldexp(1.0, exponent - 1);
     DoubleDouble sum;
-    for (int i = 0; i < 3; ++i) sum += DoubleDouble(v[i]) * DoubleDouble(v[i]);
-    return sqrt(sum);
+    for (const DoubleDouble& x : v) {
+        const DoubleDouble scaled(x.hi / scale, x.lo / scale);
+        sum += scaled * scaled;
+    }
+    return sqrt(sum) * DoubleDouble(scale);
 }
+/// |v| in double-double from the exact components.
+DoubleDouble norm_dd(const Vec3& v) { return norm_dd({DoubleDouble(v[0]), DoubleDouble(v[1]), DoubleDouble(v[2])}); }
 
 const DoubleDouble four_pi_dd(2.0 * two_pi_dd.hi, 2.0 * two_pi_dd.lo);
 
@@ -251,13 +264,12 @@ FreeBodyFlow::FreeBodyFlow(const Body& body, const Vec3& omega0, const Eigen::Ve
         }
         spin_ = lambda;
         if (attitude) {  // about G_in = R(q0) G_b at |G|/A, G_b = J ω0 + k
-            DoubleDouble G2;
-            for (int i = 0; i < 3; ++i) {
-                const DoubleDouble Gi = DoubleDouble(J[i]) * DoubleDouble(omega0[i]) + DoubleDouble(k[i]);
-                G2 += Gi * Gi;
-            }
-            const Vec3 G_in = rotation_matrix(q0_) * body.angular_momentum(omega0);
-            if (G2.hi > 0.0) precession_ = {G_in.normalized(), sqrt(G2) / A};
+            std::array<DoubleDouble, 3> G;
+            for (int i = 0; i < 3; ++i) G[i] = DoubleDouble(J[i]) * DoubleDouble(omega0[i]) + DoubleDouble(k[i]);
+            const DoubleDouble G_norm = norm_dd(G);
+            Vec3 G_in = rotation_matrix(q0_) * body.angular_momentum(omega0);
+            normalize_in_place(G_in);  // (|G| may overflow or underflow in double: numeric/unit_vector.hpp)
+            if (G_norm.hi > 0.0) precession_ = {G_in, G_norm / A};
         }
         return;
     }

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector']
 class Body:
     """
     A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -1550,7 +1550,8 @@ class CustomTorque:
     function : callable or scipy.LowLevelCallable
         A Python callable (each call holds the GIL and costs about 1 us plus the function's own
         time: bench/custom_torque.py; an ensemble of such members runs on one thread, since more
-        would only pass the GIL back and forth; its exception reaches the caller as raised), or a
+        would only pass the GIL back and forth; its exception reaches the caller as raised, but
+        Ctrl-C in it ends the run with status "interrupted", keeping what was computed), or a
         ``scipy.LowLevelCallable`` (from ``numba.cfunc``, ctypes or cffi) of one of the C signatures::
     
             int f(double t, const double *omega, const double *quaternion, double *moment, void *user_data)
@@ -2382,6 +2383,11 @@ def summaries(results: list, state_names: collections.abc.Sequence[str], output_
     """
 def torque_free_model(body: Body, attitude: bool = False) -> Model:
     ...
+def unit_vector(v: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], name: str = 'v') -> numpy.typing.NDArray[numpy.float64]:
+    """
+    The unit vector along v, shape (n,), whatever its length: v / max|v_i| normalised (no overflow or
+    underflow). ValueError naming `name` and v when v is zero or not finite.
+    """
 __version__: str = '0.1.0'
 large: float = 10.0
 max_output_bytes: float = 2147483648.0

@@ -23,6 +23,7 @@
 #include <string>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/numeric/unit_vector.hpp"
 
 namespace gyrostat {
 
@@ -93,18 +94,17 @@ inline double wrap_angle(double a) {
 }
 }  // namespace detail
 
-/// q / |q|. The norm is taken of q / max|q_i| (no overflow or underflow for any finite q).
-/// Throws std::invalid_argument naming the value when q is not finite or is zero (no rotation).
+/// q / |q|. The norm is taken of q / max|q_i| (no overflow or underflow for any finite q:
+/// numeric/unit_vector.hpp). Throws std::invalid_argument naming the value when q is not finite
+/// or is zero (no rotation).
 inline Eigen::Vector4d unit_quaternion(const Eigen::Vector4d& q) {
     if (!q.allFinite())
         throw std::invalid_argument("the quaternion (w, x, y, z) = " + detail::format_quaternion(q) +
                                     " is not a rotation: it is not finite");
-    const double scale = q.cwiseAbs().maxCoeff();
-    if (scale == 0.0)
+    if (q.cwiseAbs().maxCoeff() == 0.0)
         throw std::invalid_argument("the quaternion (w, x, y, z) = " + detail::format_quaternion(q) +
                                     " is not a rotation: it is zero");
-    const Eigen::Vector4d s = q / scale;
-    return s / s.norm();
+    return scaled_unit(q);
 }
 
 /// Hamilton product a ⊗ b = (a_w b_w − a_v·b_v, a_w b_v + b_w a_v + a_v × b_v): the rotation b

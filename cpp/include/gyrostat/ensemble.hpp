@@ -72,6 +72,10 @@ std::vector<integrate::Result> run_ensemble(std::size_t n, SolveMember&& solve_m
                     results[i].message = "member " + std::to_string(i) +
                                          ": out of memory (its outputs could not be allocated): ask for fewer output "
                                          "times or fewer members at once";
+                } catch (const integrate::Interruption&) {  // Ctrl-C seen by a user's function outside a step loop
+                    results[i] = Result{};
+                    results[i].status = integrate::Status::Interrupted;
+                    results[i].message = "member " + std::to_string(i) + ": " + integrate::Interruption().what();
                 } catch (const std::exception& e) {
                     results[i] = Result{};
                     results[i].status = integrate::Status::InvalidInput;

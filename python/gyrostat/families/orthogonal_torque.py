@@ -537,13 +537,19 @@ def attitude_along_momentum(G0, psi0: float = 0.0) -> np.ndarray:
     psi0 : float, optional
         ψ0, in rad.
 
+    Raises
+    ------
+    ValueError
+        For G0 = 0 (no direction) or a component that is not finite; G0 of any size is
+        normalised without overflow or underflow.
+
     Examples
     --------
     >>> from gyrostat import orthogonal
     >>> orthogonal.attitude_along_momentum([0.0, 0.0, 2.0])
     array([1., 0., 0., 0.])
     """
-    s = np.asarray(G0, float) / np.linalg.norm(G0)
+    s = _core.unit_vector(G0, "attitude_along_momentum: G0")  # (G0 of any size: no overflow in |G0|)
     return attitude.quaternion_from_euler([psi0, math.acos(max(-1.0, min(1.0, s[2]))), math.atan2(s[0], s[1])],
                                           "zxz")
 
@@ -1157,8 +1163,7 @@ class OrthogonalTorqueKind(Kind):
                 raise SceneError("[initial] is missing required key 'omega' (angular velocity in body axes [rad/s])")
             omega0 = np.asarray(doc["initial"]["omega"], float)
             if "attitude" in doc["initial"]:
-                q0 = np.asarray(doc["initial"]["attitude"], float)
-                q0 = q0 / np.linalg.norm(q0)
+                q0 = _core.unit_vector(doc["initial"]["attitude"], "[initial] attitude")
             else:  # inertial z3 along G(0), ψ0 = 0: the Euler angles of (15)-(16)
                 q0 = attitude_along_momentum(np.asarray(body.inertia) @ omega0 + np.asarray(body.rotor))
         integ = doc["integration"]

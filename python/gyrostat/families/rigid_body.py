@@ -1006,9 +1006,8 @@ class RigidBody(Kind):
         initial = doc["initial"]
         if not attitude:
             return np.array(initial["omega"], float)
-        q = initial.get("attitude", (1.0, 0.0, 0.0, 0.0))
-        norm = math.hypot(*q)
-        return np.array([*initial["omega"], *[x / norm for x in q]], float)
+        q = _core.unit_vector(initial.get("attitude", (1.0, 0.0, 0.0, 0.0)), "[initial] attitude")
+        return np.array([*initial["omega"], *q], float)
 
     def ladder(self, doc):
         body, torques = make_body(doc), make_torques(doc)

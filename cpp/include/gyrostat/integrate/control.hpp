@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <functional>
 
 namespace gyrostat::integrate {
@@ -19,6 +20,25 @@ struct Control {
     /// Set by another thread to stop the run (an ensemble stops its members this way).
     const std::atomic<bool>* stop = nullptr;
 };
+
+/// Thrown from inside a right-hand side to stop the run there: a user's Python torque that saw
+/// Ctrl-C (KeyboardInterrupt raised in it, bindings/expose_custom.cpp) throws it. Each step loop
+/// (DOP853, CVODE/ARKODE, splitting) catches it and ends the run as when its Ticker stops it:
+/// status Interrupted, the outputs up to the last accepted step kept, t_last and y_last there.
+struct Interruption : std::exception {
+    const char* what() const noexcept override { return "interrupted (Ctrl-C in a user's function)"; }
+};
+
+/// Whether `error` (an exception a callback kept, integrate/sundials.hpp) is an Interruption.
+inline bool is_interruption(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const Interruption&) {
+        return true;
+    } catch (...) {
+        return false;
+    }
+}
 
 /// The integrators' side of a Control: ask `keep_going(t)` once per step. It reads the stop flag
 /// every 16 steps and the clock every 64 (a few ns per step), and calls poll at the set rate.

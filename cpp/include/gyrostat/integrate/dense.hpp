@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/numeric/unit_vector.hpp"
 
 namespace gyrostat::integrate {
 
@@ -62,7 +63,7 @@ public:
             y = Eigen::Map<const Eigen::VectorXd>(c + order_[i] * dim_, dim_);
             for (int k = order_[i] - 1; k >= 0; --k) y = y * s + Eigen::Map<const Eigen::VectorXd>(c + k * dim_, dim_);
         }
-        if (quaternion_ >= 0) y.segment<4>(quaternion_).normalize();
+        if (quaternion_ >= 0) normalize_in_place(y.segment<4>(quaternion_));
         if (transform_) transform_(y.data());
         return y;
     }

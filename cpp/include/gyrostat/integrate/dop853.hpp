@@ -85,7 +85,7 @@ public:
         : OneTrajectory<System>(system, run.result), run_(run), monitor_(monitor) {}
 
     void rhs(double t, const Vector& y, Vector& dy) const { this->system_.rhs(t, y[0], dy[0]); }
-    void start(double, const Vector&) {}  // the caller recorded t0 (Recording::start)
+    void start(double t, const Vector& y) { reached(t, y[0], 0.0); }  // the caller recorded t0 (Recording::start)
     void empty_span(int, double, const Vector&) { this->active_ = false; }
     void fail_at_start(int, Status status, std::string message, double, const Vector&) {
         run_.result.status = status;
@@ -116,18 +116,33 @@ public:
             this->active_ = false;
             return true;
         }
+        reached(t_new, y_new[0], std::abs(h));  // the outputs reach t_new (the step's end comes next)
         return false;
     }
     [[gnu::noinline]] void at_end(int l, double t, const Vector& y, double h_next, bool every_step) {
+        reached(t, y[0], h_next);
         run_.cursor.at_end(t, y[0], every_step);
         if (t == run_.t1) this->finish(l, t, y[0], h_next);
     }
     /// The hand-over to BDF at (t, y) (method 'auto').
     void hand_over(double t, const Vector& y, double h_next) { this->finish(0, t, y[0], h_next); }
+    /// A user's function stopped the run (integrate::Interruption, thrown in a right-hand side):
+    /// it ends Interrupted where its recorded outputs reach, as when the Ticker stops it.
+    void interrupt() {
+        if (!this->active_) return;
+        mark_interrupted(run_.result, reached_t_);
+        this->finish(0, reached_t_, reached_y_, reached_h_);
+    }
 
 private:
+    /// The last point the run's outputs reach: the start, the end of an accepted step, or (between
+    /// the outputs inside a step and its end) the step's end before projection.
+    void reached(double t, const State& y, double h_next) { reached_t_ = t, reached_y_ = y, reached_h_ = h_next; }
+
     Recording<System>& run_;
     StiffnessMonitor<System>* monitor_;
+    double reached_t_ = 0.0, reached_h_ = 0.0;
+    State reached_y_;
 };
 
 namespace dop853_detail {
@@ -446,7 +461,12 @@ template <class System>
 bool dop853_segment(const System& system, Recording<System>& run, double t0, const typename System::State& y0,
                     const Options& options, const Control* control, StiffnessMonitor<System>* monitor = nullptr) {
     OneRun<System> one(system, run, monitor);
-    return dop853_steps(one, t0, {y0}, run.t1, options, control);
+    try {
+        return dop853_steps(one, t0, {y0}, run.t1, options, control);
+    } catch (const Interruption&) {  // Ctrl-C in a user's function: stop where the outputs reach
+        one.interrupt();
+        return false;
+    }
 }
 
 /// Integrates `system` from (t0, y0) to t1. Never throws on a failing run: the result carries the

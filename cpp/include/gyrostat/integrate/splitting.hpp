@@ -318,6 +318,13 @@ Result splitting(const System& system, double t0, const typename System::State& 
     SplittingStep<System> stepper(system, options.splitting_order);
     const splitting_detail::MomentumNormProjection<System> keep_G(system, y);
     const splitting_detail::ErrorProbe<System> probe(stepper, keep_G, options.splitting_order);
+    double t = t0;
+    // Stopped (Ctrl-C, or integrate::Interruption from a user's function that saw it) before the
+    // step from t: the outputs up to there kept, and (t, y) where the run would continue.
+    auto stop_interrupted = [&]() {
+        mark_interrupted(result, t);
+        keep_last(result, t, y, 0.0);
+    };
     double step = options.step;
     try {
         if (step == 0.0) {
@@ -335,6 +342,9 @@ Result splitting(const System& system, double t0, const typename System::State& 
         result.message = std::string("the splitting's probe at t0 failed: ") + e.what();
         keep_last(result, t0, y, 0.0);
         return result;
+    } catch (const Interruption&) {
+        stop_interrupted();
+        return result;
     }
     const double h_full = direction * step;
     const double n_steps = std::ceil(span / step * (1.0 - 4.0 * std::numeric_limits<double>::epsilon()));
@@ -342,65 +352,69 @@ Result splitting(const System& system, double t0, const typename System::State& 
     double worst_truncation = 0.0, worst_rounding = 0.0;  // the largest probed le/h and rounding-level le
     Ticker ticker(control, t0, t1);
     State f0, f1;
-    double t = t0;
     // The number of steps is known in advance: run as far as the budget allows, like the
     // adaptive methods, and say why the run stopped.
     const double budget = std::min(n_steps, static_cast<double>(options.max_steps));
-    for (double i = 0.0; i < budget; i += 1.0) {
-        if (!ticker.keep_going(t)) {
-            mark_interrupted(result, t);
-            return result;
-        }
-        // Full steps are of size h_full exactly (t_n = t0 + n h_full only labels them); the last
-        // one is shortened to land on t1.
-        const bool last = i + 1.0 >= n_steps;
-        const double t_new = last ? t1 : t0 + (i + 1.0) * h_full;
-        const double h = last ? t1 - t : h_full;
-        State y_new = y;
-        try {
-            stats.rhs_evals += stepper.advance(t, h, y_new);
-            model::system::project(system, y_new);
-            keep_G.apply(y_new);
-            if (std::fmod(i, probe_stride) == 0.0 && h != 0.0 && all_finite(y_new)) {
-                const auto [truncation, rounding] = probe.parts(probe.local_error(t, h, y, y_new));
-                worst_truncation = std::max(worst_truncation, truncation / std::abs(h));
-                worst_rounding = std::max(worst_rounding, rounding);
+    try {
+        for (double i = 0.0; i < budget; i += 1.0) {
+            if (!ticker.keep_going(t)) {
+                stop_interrupted();
+                return result;
             }
-        } catch (const std::invalid_argument& e) {
-            result.status = Status::SolverFailure;
-            result.message = "the splitting step from t = " + format_number(t, 17) + " failed: " + e.what();
-            keep_last(result, t, y, std::abs(h));
-            return result;
+            // Full steps are of size h_full exactly (t_n = t0 + n h_full only labels them); the last
+            // one is shortened to land on t1.
+            const bool last = i + 1.0 >= n_steps;
+            const double t_new = last ? t1 : t0 + (i + 1.0) * h_full;
+            const double h = last ? t1 - t : h_full;
+            State y_new = y;
+            try {
+                stats.rhs_evals += stepper.advance(t, h, y_new);
+                model::system::project(system, y_new);
+                keep_G.apply(y_new);
+                if (std::fmod(i, probe_stride) == 0.0 && h != 0.0 && all_finite(y_new)) {
+                    const auto [truncation, rounding] = probe.parts(probe.local_error(t, h, y, y_new));
+                    worst_truncation = std::max(worst_truncation, truncation / std::abs(h));
+                    worst_rounding = std::max(worst_rounding, rounding);
+                }
+            } catch (const std::invalid_argument& e) {
+                result.status = Status::SolverFailure;
+                result.message = "the splitting step from t = " + format_number(t, 17) + " failed: " + e.what();
+                keep_last(result, t, y, std::abs(h));
+                return result;
+            }
+            ++stats.steps;
+            stats.last_step = std::abs(h);
+            if (!all_finite(y_new)) {
+                result.status = Status::NonFiniteState;
+                result.message = "the state became non-finite (inf/NaN) in the splitting step from t = " + format_number(t, 17);
+                return result;
+            }
+            const State y_start = y;
+            const double t_start = t;
+            auto dense = [&](double time) { return stepper.partial(t_start, time - t_start, y_start); };
+            const double t_stop = events.step(t, t_new, y_new, dense);
+            const bool terminated = !std::isnan(t_stop);
+            if (result.dense) {  // cubic Hermite in s = (t − t_n)/h
+                system.rhs(t, y, f0);
+                system.rhs(t_new, y_new, f1);
+                std::array<State, 4> c;
+                c[0] = y;
+                c[1] = h * f0;
+                c[2] = 3.0 * (y_new - y) - h * (2.0 * f0 + f1);
+                c[3] = 2.0 * (y - y_new) + h * (f0 + f1);
+                result.dense->add(t, terminated ? t_stop : t_new, t, h, 3, c[0].data());
+            }
+            if (cursor.inside(t_new, t_stop, dense)) {
+                mark_terminated(result, t_stop);
+                return result;
+            }
+            t = t_new;
+            y = y_new;
+            cursor.at_end(t, y, options.every_step);
         }
-        ++stats.steps;
-        stats.last_step = std::abs(h);
-        if (!all_finite(y_new)) {
-            result.status = Status::NonFiniteState;
-            result.message = "the state became non-finite (inf/NaN) in the splitting step from t = " + format_number(t, 17);
-            return result;
-        }
-        const State y_start = y;
-        const double t_start = t;
-        auto dense = [&](double time) { return stepper.partial(t_start, time - t_start, y_start); };
-        const double t_stop = events.step(t, t_new, y_new, dense);
-        const bool terminated = !std::isnan(t_stop);
-        if (result.dense) {  // cubic Hermite in s = (t − t_n)/h
-            system.rhs(t, y, f0);
-            system.rhs(t_new, y_new, f1);
-            std::array<State, 4> c;
-            c[0] = y;
-            c[1] = h * f0;
-            c[2] = 3.0 * (y_new - y) - h * (2.0 * f0 + f1);
-            c[3] = 2.0 * (y - y_new) + h * (f0 + f1);
-            result.dense->add(t, terminated ? t_stop : t_new, t, h, 3, c[0].data());
-        }
-        if (cursor.inside(t_new, t_stop, dense)) {
-            mark_terminated(result, t_stop);
-            return result;
-        }
-        t = t_new;
-        y = y_new;
-        cursor.at_end(t, y, options.every_step);
+    } catch (const Interruption&) {  // in the step from t (its outputs are recorded only once it is whole)
+        stop_interrupted();
+        return result;
     }
     if (budget < n_steps) {
         result.status = Status::MaxStepsReached;

@@ -85,51 +85,61 @@ bool drive(const System& system, Stepper& stepper, N_Vector y, double t0, Record
     stepper.set_stop_time(stop);
     Vector interpolated(N_VClone(y));
     Ticker ticker(control, run.t0, t1);
-    while (direction * (t - t1) < 0.0) {
-        if (!ticker.keep_going(t)) {
-            result.stats = stats();
-            mark_interrupted(result, t);
-            keep_last(result, t, state(), result.stats.last_step);
-            return false;
-        }
-        if (before.steps + steps >= options.max_steps) return finish(-1000);
-        const double t_before = t;
-        // tout matters on the first call only (the initial step is sized against it): the first output
-        const int flag = stepper.evolve(cursor.pending() ? cursor.next_time() : t1, y, &t);
-        if (flag < 0 && data.error) std::rethrow_exception(data.error);  // the system's own exception, as thrown
-        if (flag < 0) return finish(flag);
-        ++steps;
-        auto dense = [&](double time) {
-            stepper.interpolate(time, interpolated.get());
-            return State(StateMap<System>(N_VGetArrayPointer(interpolated.get())));
-        };
-        const double t_stop = run.events.step(t_before, t, state(), dense);
-        if (result.dense && t != t_before) {  // y(t') = Σ y⁽ᵏ⁾(t) (t' − t)ᵏ/k!, in s = (t' − t)/h
-            const double h = t - t_before;
-            std::vector<double> coefficients;
-            double factor = 1.0;
-            for (int k = 0; k <= stepper.degree(); ++k) {
-                if (stepper.derivative(t, k, interpolated.get()) < 0) break;
-                const double* d = N_VGetArrayPointer(interpolated.get());
-                for (int i = 0; i < System::dim; ++i) coefficients.push_back(d[i] * factor);
-                factor *= h / (k + 1);
+    // Stopped (Ctrl-C, or a user's function that saw it): the outputs up to the last step kept,
+    // and where that step ended (a step that failed on the exception may leave y as a stage's).
+    double t_done = t;
+    State y_done = state();
+    auto interrupted = [&]() {
+        result.stats = stats();
+        mark_interrupted(result, t_done);
+        keep_last(result, t_done, y_done, result.stats.last_step);
+        return false;
+    };
+    try {
+        while (direction * (t - t1) < 0.0) {
+            if (!ticker.keep_going(t)) return interrupted();
+            if (before.steps + steps >= options.max_steps) return finish(-1000);
+            const double t_before = t;
+            // tout matters on the first call only (the initial step is sized against it): the first output
+            const int flag = stepper.evolve(cursor.pending() ? cursor.next_time() : t1, y, &t);
+            if (flag < 0 && data.error) std::rethrow_exception(data.error);  // as thrown (an Interruption: below)
+            if (flag < 0) return finish(flag);
+            ++steps;
+            auto dense = [&](double time) {
+                stepper.interpolate(time, interpolated.get());
+                return State(StateMap<System>(N_VGetArrayPointer(interpolated.get())));
+            };
+            const double t_stop = run.events.step(t_before, t, state(), dense);
+            if (result.dense && t != t_before) {  // y(t') = Σ y⁽ᵏ⁾(t) (t' − t)ᵏ/k!, in s = (t' − t)/h
+                const double h = t - t_before;
+                std::vector<double> coefficients;
+                double factor = 1.0;
+                for (int k = 0; k <= stepper.degree(); ++k) {
+                    if (stepper.derivative(t, k, interpolated.get()) < 0) break;
+                    const double* d = N_VGetArrayPointer(interpolated.get());
+                    for (int i = 0; i < System::dim; ++i) coefficients.push_back(d[i] * factor);
+                    factor *= h / (k + 1);
+                }
+                result.dense->add(t_before, std::isnan(t_stop) ? t : t_stop, t, h,
+                                  static_cast<int>(coefficients.size()) / System::dim - 1, coefficients.data());
             }
-            result.dense->add(t_before, std::isnan(t_stop) ? t : t_stop, t, h,
-                              static_cast<int>(coefficients.size()) / System::dim - 1, coefficients.data());
+            if (cursor.inside(t, t_stop, dense)) {  // a terminal event inside the step: outputs up to it, then stop
+                result.stats = stats();
+                mark_terminated(result, t_stop);
+                return false;
+            }
+            cursor.at_end(t, state(), options.every_step);
+            t_done = t, y_done = state();
+            if (oscillations) oscillations->after_step(t, state(), std::abs(t - t_before), !(direction * (t - t1) < 0.0), result);
+            if (monitor && direction * (t - t1) < 0.0 && monitor->implicit_step(t, state(), stepper.stats().last_step)) {
+                result.stats = stats();
+                keep_last(result, t, state(), result.stats.last_step);
+                return true;
+            }
+            if (stop != stop_time() && direction * (t - t1) < 0.0) stepper.set_stop_time(stop = stop_time());
         }
-        if (cursor.inside(t, t_stop, dense)) {  // a terminal event inside the step: outputs up to it, then stop
-            result.stats = stats();
-            mark_terminated(result, t_stop);
-            return false;
-        }
-        cursor.at_end(t, state(), options.every_step);
-        if (oscillations) oscillations->after_step(t, state(), std::abs(t - t_before), !(direction * (t - t1) < 0.0), result);
-        if (monitor && direction * (t - t1) < 0.0 && monitor->implicit_step(t, state(), stepper.stats().last_step)) {
-            result.stats = stats();
-            keep_last(result, t, state(), result.stats.last_step);
-            return true;
-        }
-        if (stop != stop_time() && direction * (t - t1) < 0.0) stepper.set_stop_time(stop = stop_time());
+    } catch (const Interruption&) {  // thrown in a right-hand side, a Jacobian or a check after a step
+        return interrupted();
     }
     result.stats = stats();
     keep_last(result, t, state(), result.stats.last_step);

@@ -9,6 +9,7 @@
 #include <vector>
 #include <utility>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -295,10 +296,22 @@ struct GyrostatLanes {
     void taylor(Lanes (*c)[dim]) const {
         euler_taylor_recursion<Order, WithAttitude>(euler, [c](int n, int i) -> Lanes& { return c[n][i]; });
     }
+    /// |q| = 1 in every lane; a lane whose |q|² overflows or underflows (a quaternion given at an
+    /// extreme scale: the first projection) is normalised alone, as the scalar model does
+    /// (normalize_in_place, numeric/unit_vector.hpp).
     void project(Lanes* y) const {
         if constexpr (WithAttitude) {
-            const Lanes norm = (y[3].square() + y[4].square() + y[5].square() + y[6].square()).sqrt();
+            const Lanes squares = y[3].square() + y[4].square() + y[5].square() + y[6].square();
+            const auto normal = squares >= std::numeric_limits<double>::min() && squares <= std::numeric_limits<double>::max();
+            const Lanes norm = normal.select(squares.sqrt(), Lanes::Ones());
             for (int i = 3; i < 7; ++i) y[i] /= norm;
+            if (normal.all()) return;
+            for (int l = 0; l < W; ++l) {
+                if (normal[l]) continue;
+                Eigen::Vector4d q(y[3][l], y[4][l], y[5][l], y[6][l]);
+                normalize_in_place(q);
+                for (int i = 0; i < 4; ++i) y[3 + i][l] = q[i];
+            }
         }
     }
 

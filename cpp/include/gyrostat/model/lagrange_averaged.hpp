@@ -108,7 +108,7 @@ public:
                                         "(p, q, r, q_w, q_x, q_y, q_z)");
         LagrangeTop::State full = given;
         top_.check_state(full);
-        full.segment<4>(3).normalize();
+        normalize_in_place(full.segment<4>(3));
         return top_.first_integrals(full);
     }
 

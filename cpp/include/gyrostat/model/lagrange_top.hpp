@@ -188,7 +188,7 @@ public:
     }
 
     /// Keeps |Q| = 1 to rounding (so |γ| = 1).
-    void project(State& y) const { y.template segment<4>(3).normalize(); }
+    void project(State& y) const { normalize_in_place(y.template segment<4>(3)); }
     void check_state(const State& y) const { check_quaternion(y.template segment<4>(3), "LagrangeTop"); }
 
     /// (G_z, H, r) of a state: the slow variables of the averaged top.

@@ -375,10 +375,12 @@ public:
     /// ω is a vector in body axes (model/frame.hpp).
     static constexpr std::array<int, 1> body_vectors{{0}};
 
-    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step.
+    /// Keeps |q| = 1 to rounding: called by the integrators after each accepted step (and on the
+    /// initial state, which may come at any scale: normalize_in_place neither overflows nor
+    /// underflows).
     template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
     void project(State& y) const {
-        y.template segment<4>(3).normalize();
+        normalize_in_place(y.template segment<4>(3));
     }
     template <bool A = WithAttitude, std::enable_if_t<A, int> = 0>
     void check_state(const State& y) const {

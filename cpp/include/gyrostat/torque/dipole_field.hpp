@@ -3,11 +3,11 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <stdexcept>
 #include <string>
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
+#include "gyrostat/numeric/unit_vector.hpp"
 #include "gyrostat/torque/orbit.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
@@ -56,10 +56,7 @@ struct DipoleFieldTorque {
         require(python_name, parameters[3], d);
         require(python_name, parameters[4], normal);
         require(python_name, parameters[5], phase);
-        if (!(d.norm() > 0.0))
-            throw std::invalid_argument(std::string(python_name) + ": dipole_axis = [" + format_value(d.x()) + ", " +
-                                        format_value(d.y()) + ", " + format_value(d.z()) + "] must not be zero");
-        axis = d.normalized();
+        axis = unit_direction(d, std::string(python_name) + ": dipole_axis", "the direction of the planet's dipole moment");
     }
     static DipoleFieldTorque from(const Values& v) {
         return DipoleFieldTorque(v.vector("dipole"), v.scalar("field_strength"), v.scalar("orbit_rate"),

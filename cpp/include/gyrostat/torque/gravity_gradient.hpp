@@ -7,6 +7,7 @@
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
+#include "gyrostat/numeric/unit_vector.hpp"
 #include "gyrostat/torque/orbit.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
@@ -75,12 +76,12 @@ struct GravityGradient {
     /// body (A, A, C) with angular velocity ω (body axes) and attitude q.
     double precession_rate(const Vec3& moments, const Vec3& omega, const Eigen::Vector4d& quaternion) const {
         const Vec3 G = moments.cwiseProduct(omega);
-        const double norm = G.norm();
-        const double cos_nutation = G.z() / norm;
-        const double cos_inclination = orbit.normal.dot(rotation_matrix(quaternion) * G) / norm;
+        const Vec3 g = scaled_unit(G);  // G/|G| and |G| without overflow or underflow (numeric/unit_vector.hpp)
+        const double cos_nutation = g.z();
+        const double cos_inclination = orbit.normal.dot(rotation_matrix(quaternion) * g);
         const double A = 0.5 * (moments.x() + moments.y()), C = moments.z();
         return -3.0 * orbit.rate * orbit.rate * (C - A) * (3.0 * cos_nutation * cos_nutation - 1.0) * cos_inclination /
-               (4.0 * norm);
+               (4.0 * G.stableNorm());
     }
 };
 

@@ -4,10 +4,10 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/numeric/unit_vector.hpp"
 
 namespace gyrostat::torque {
 
@@ -23,15 +23,14 @@ struct CircularOrbit {
     Vec3 node = Vec3::UnitX();     ///< e1
     Vec3 quadrant = Vec3::UnitY(); ///< e2
 
-    /// Throws std::invalid_argument "<torque>: orbit_normal = [...] must not be zero" for N = 0.
-    CircularOrbit(double n, const Vec3& orbit_normal, double phi0, const char* torque) : rate(n), phase(phi0) {
-        const double length = orbit_normal.norm();
-        if (!(length > 0.0))
-            throw std::invalid_argument(std::string(torque) + ": orbit_normal = [" + format_value(orbit_normal.x()) + ", " +
-                                        format_value(orbit_normal.y()) + ", " + format_value(orbit_normal.z()) +
-                                        "] must not be zero (it is the orbit plane's normal)");
-        normal = orbit_normal / length;
-        const Vec3 ascending = Vec3::UnitZ().cross(normal);
+    /// Throws std::invalid_argument "<torque>: orbit_normal = [...] must not be zero" for N = 0
+    /// (or "must be finite" for a NaN or infinite component); N of any length is normalised
+    /// without overflow or underflow (numeric/unit_vector.hpp).
+    CircularOrbit(double n, const Vec3& orbit_normal, double phi0, const char* torque)
+        : rate(n),
+          normal(unit_direction(orbit_normal, std::string(torque) + ": orbit_normal", "it is the orbit plane's normal")),
+          phase(phi0) {
+        const Vec3 ascending = Vec3::UnitZ().cross(normal);  // |ẑ × N| ≤ 1, and > 1e-12 when used: safe to normalise
         node = ascending.norm() > 1e-12 ? Vec3(ascending.normalized()) : Vec3::UnitX();
         quadrant = normal.cross(node);
     }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <Eigen/Core>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -341,6 +342,10 @@ private:
                 return x(t, omega, moments, attitude);
             } else if constexpr (gyrostat::needs_attitude<T>::value) {
                 if (!attitude) throw std::logic_error(std::string(x.python_name) + ": evaluated without the attitude");
+                // A quaternion that became non-finite in a trial step (ω overflowed and q̇ with it)
+                // is no rotation the user gave: its torque is not finite either, and the integrator
+                // reports the non-finite state (status NonFiniteState), as for any other torque.
+                if (!attitude->allFinite()) return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
                 return x(t, omega, moments, *attitude);
             } else {
                 return x(t, omega, moments);
