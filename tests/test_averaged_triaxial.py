@@ -129,7 +129,7 @@ def test_quadrature_and_the_medium_equal_a_time_average_of_euler_written_here(si
     # trapezoid), M from tests/references.py (the damper's independent series; −D(t)ω), then
     # d|G|²/dt = 2 Σ A_i P_i, dp_b/dt = d|G|²/dt − 2 A_b Σ P_i. Bound 1e-8 of the rates' scale: the
     # damper's series truncation (measured 8.4e-10 and 5.4e-10 on the two sides; the medium 4e-14);
-    # a 1 % error in a contribution is 1e-2 (issue 44: a wrong factor in either fails here).
+    # a 1 % error in a contribution is 1e-2 (a wrong factor in either fails here: tools/mutation_check.py).
     from scipy.integrate import solve_ivp
 
     J = np.asarray(A)
@@ -152,7 +152,7 @@ def test_quadrature_and_the_medium_equal_a_time_average_of_euler_written_here(si
         got = np.asarray(g.TriaxialAveragedModel(g.Body(list(A)), [torque])._core.rhs(2.0, y))[:2]
         scale = np.abs(want).max()
         assert np.all(np.abs(got - want) <= 1e-8 * scale), \
-            f"{torque} {side}: rates {got} against the time average {want} (bound 1e-8 of the scale: the series' truncation)"
+            f"{torque} {side}: rates {got}, time average {want} (bound 1e-8 of the scale: the series' truncation)"
 
 
 @pytest.mark.parametrize("moments", [(4.0, 4.0, 1.5), (2.5, 2.5, 4.0)], ids=["oblate", "prolate"])
