@@ -250,17 +250,9 @@ class StopsOnCall:
         return user.quadratic_drag(t, omega)
 
 
-@pytest.fixture
-def python_sigint_handler():
-    """Python's own SIGINT handler for the test (the suite may run with SIGINT ignored), restored after."""
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
-
-
 @pytest.mark.parametrize("sigint", [False, True], ids=["KeyboardInterrupt", "SIGINT"])
 @pytest.mark.parametrize("method", ["dop853", "cvode_bdf", "arkode_fehlberg8", "splitting", "auto"])
-def test_ctrl_c_in_the_users_function_ends_the_run_interrupted(method, sigint, python_sigint_handler):
+def test_ctrl_c_in_the_users_function_ends_the_run_interrupted(method, sigint, ctrl_c):
     """Ctrl-C while the user's Python torque runs ends the run as Ctrl-C between two steps does:
     status interrupted, the outputs computed up to there kept (the uninterrupted run's, bit for
     bit: the same steps), t_last and y_last to continue from. The run is short (at most 20 s of
@@ -285,7 +277,7 @@ def test_ctrl_c_in_the_users_function_ends_the_run_interrupted(method, sigint, p
 
 
 @pytest.mark.parametrize("sigint", [False, True], ids=["KeyboardInterrupt", "SIGINT"])
-def test_ctrl_c_in_the_users_function_interrupts_an_ensemble(sigint, python_sigint_handler):
+def test_ctrl_c_in_the_users_function_interrupts_an_ensemble(sigint, ctrl_c):
     """In solve_ensemble (one thread: the torque holds the GIL) the member running ends
     interrupted with its outputs so far, the members before it are whole, those after it are
     not started; no KeyboardInterrupt reaches the caller."""

@@ -558,8 +558,9 @@ def _max_steps_case():
 # marker files that refused code is never imported or called, and covers the Python loader,
 # sweeps on worker processes and what a factory returns).
 def _custom_scene(function, parameters="{ c = 0.05 }"):
-    return SCENE.replace("[initial]", f'[[torques]]\ntype = "custom"\nfunction = "{function}"\n'
-                         f"parameters = {parameters}\n[initial]") + "[outputs]\nplots = []\n"
+    given = f"parameters = {parameters}\n" if parameters else ""
+    return SCENE.replace("[initial]", f'[[torques]]\ntype = "custom"\nfunction = "{function}"\n{given}[initial]') \
+        + "[outputs]\nplots = []\n"
 
 
 MARKING_MODULE = """def drag_factory(c):
@@ -603,7 +604,59 @@ def _splitting_floor_case():
     assert 0.5 * error <= sol.error_estimate <= 30 * max(error, 1e-10) and error > 1e-11, (error, sol.error_estimate)
 
 
+def _run_failure(function, code, *words, files):
+    """issue 44: a scene whose user code fails says so in one line (the scene, the torque, the
+    error), exit 2 when it fails as the scene is built, 1 when the run fails; no traceback."""
+    exit_code, _, err, _ = command_line(_custom_scene(function, None), files=files)
+    lines = [line for line in err.splitlines() if line]
+    assert exit_code == code and len(lines) == 1 and "Traceback" not in err, (exit_code, err)
+    _one_line(lines[0], (f"'{function}'", *words))
+
+
+def _sweep_member_failure_case():
+    """issue 44: a member whose Python torque raises fails alone, with its own exception, on one
+    process and on worker processes (tests/test_sweep_failures.py: Dask too, bit-for-bit)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="gyrostat-table-") as name:
+        folder = Path(name)
+        (folder / "limited.py").write_text("def torque(t, omega):\n    if omega[0] > 1.5:\n"
+                                           "        raise ValueError(f'omega[0] = {omega[0]:.2f} too fast')\n"
+                                           "    return [-0.05 * w for w in omega]\n")
+        (folder / "scene.toml").write_text(_custom_scene("limited:torque", None))
+        for workers in (1, 2):
+            ds = g.sweep(folder / "scene.toml", {"initial.omega[0]": [1.0, 1.6, 1.2]}, workers=workers,
+                         chunk_size=3, progress=False)
+            assert list(ds["status"].values.astype(str)) == ["success", "failed", "success"], workers
+            assert str(ds["message"].values[1]) == "ValueError: omega[0] = 1.60 too fast", ds["message"].values
+
+
+def _ctrl_c_in_a_python_torque_case():
+    """issue 44: Ctrl-C inside a Python CustomTorque (here: the torque raises KeyboardInterrupt
+    on its 200th call) ends the run interrupted, with what was computed (tests/test_custom_torque.py:
+    every method, a real SIGINT, resuming)."""
+    calls = [0]
+
+    def torque(t, omega):
+        calls[0] += 1
+        if calls[0] == 200:
+            raise KeyboardInterrupt
+        return [0.0, 0.0, 0.0]
+
+    with pytest.warns(RuntimeWarning, match="interrupted"):  # said, as for any interrupted run
+        sol = g.solve(g.Model(BODY, [g.CustomTorque(torque)]), W0, (0.0, 100.0), method="dop853", n_out=101)
+    assert sol.status == "interrupted" and 0.0 < sol.t_last < 100.0 and 1 < len(sol.t) < 101, (sol.status, sol.t_last)
+
+
 CASES.update({
+    "gyrostat run: a custom torque that raises during the run (was a traceback)": lambda: _run_failure(
+        "raising:bad", 1, "the run failed", "ArithmeticError: too fast",
+        files={"raising.py": "def bad(t, omega):\n    raise ArithmeticError('too fast')\n"}),
+    "gyrostat run: a factory named without its parameters (was a TypeError traceback)": lambda: _run_failure(
+        "factory:drag", 2, "takes (c=0.05)", "give its arguments in `parameters`",
+        files={"factory.py": "def drag(c=0.05):\n    return lambda t, omega: [-c * w for w in omega]\n"}),
+    "sweep: a member whose Python torque raises fails alone (workers 1 and 2)": _sweep_member_failure_case,
+    "Ctrl-C inside a Python CustomTorque (was a KeyboardInterrupt, the run lost)": _ctrl_c_in_a_python_torque_case,
     "splitting at order 4, rtol 1e-11, under damping: its rounding floor (estimate was 400x low)": _splitting_floor_case,
     "scene naming a standard-library callable (subprocess:run with shell = true)": lambda: _refused(
         "subprocess:run", "subprocess"),
