@@ -30,7 +30,8 @@ CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.tor
         "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
 REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")
 GENERIC = ("gyrostat.scene", "gyrostat.runner", "gyrostat.output", "gyrostat.plots", "gyrostat.sweeps",
-           "gyrostat.validity")
+           "gyrostat.sweeps.draws", "gyrostat.sweeps.parameters", "gyrostat.sweeps.plan", "gyrostat.sweeps.chunks",
+           "gyrostat.sweeps.storage", "gyrostat.sweeps.runners", "gyrostat.sweeps.summaries", "gyrostat.validity")
 TOP = ("gyrostat", "gyrostat.__main__", "gyrostat.cli")
 FLOOR_NAMES = ("core", "families", "re-exports", "generic", "command line")
 
