@@ -25,7 +25,8 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
 
-CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.torques",
+CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.schema.messages",
+        "gyrostat.schema.fields", "gyrostat.schema.checks", "gyrostat.schema.reference", "gyrostat.torques",
         "gyrostat.scene_code", "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
         "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
 REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")
