@@ -28,7 +28,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
 CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.schema.messages",
         "gyrostat.schema.fields", "gyrostat.schema.checks", "gyrostat.schema.reference", "gyrostat.torques",
         "gyrostat.scene_code", "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
-        "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
+        "gyrostat.solve", "gyrostat.ladder", "gyrostat.ladder.rungs", "gyrostat.ladder.probe",
+        "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures", "gyrostat.kind")
 REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")
 GENERIC = ("gyrostat.scene", "gyrostat.runner", "gyrostat.output", "gyrostat.plots", "gyrostat.sweeps",
            "gyrostat.sweeps.draws", "gyrostat.sweeps.parameters", "gyrostat.sweeps.plan", "gyrostat.sweeps.chunks",
