@@ -33,8 +33,8 @@ The package, one concern a module: ``rungs`` (:class:`Rung`, :class:`Watch`, :cl
 
 from gyrostat.ladder.choosing import CACHE_SIZE, choose, scene_key
 from gyrostat.ladder.probe import PROBE_SAMPLES, probe
-from gyrostat.ladder.rungs import (ACCURACY, MAX_SWITCHES, PROBE_FRACTION, PROBE_PERIODS, SAFETY, Choice, Estimate, Rung,
-                                   Watch, rates)
+from gyrostat.ladder.rungs import (ACCURACY, MAX_SWITCHES, PROBE_FRACTION, PROBE_PERIODS, SAFETY, Choice, Estimate,
+                                   Rung, Watch, rates)
 from gyrostat.ladder.switching import measure, run
 
 __all__ = ["ACCURACY", "PROBE_PERIODS", "PROBE_FRACTION", "SAFETY", "MAX_SWITCHES", "PROBE_SAMPLES", "CACHE_SIZE",

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gyrostat.modelbase import shown
+from gyrostat.arguments import shown
 from gyrostat.schema import SceneError
 from gyrostat.sweeps.draws import DISTRIBUTIONS, Distribution, LogUniform, Normal, Uniform, _number
 
