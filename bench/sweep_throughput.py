@@ -35,6 +35,7 @@ import numpy as np
 
 import gyrostat as g
 from gyrostat import sweeps
+from gyrostat.sweeps import runners
 
 SCENE = Path(g.__file__).parent / "scenes" / "forced_damped.toml"
 VARY = {"initial.omega[0]": g.Normal(1.0, 0.1), "initial.omega[2]": g.Normal(-0.3, 0.1),
@@ -115,7 +116,7 @@ def main() -> None:
     print(f"Sweep of {n} members (forced_damped, t = 0..10, 11 outputs, dop853), summaries only, "
           f"{os.cpu_count()} cores")
     print(f"  sweep, default             {t_sweep:8.3f} s   {n / t_sweep:10.0f} members/s   "
-          f"({sweeps._processes(None, 0, n)} worker processes)")
+          f"({runners._processes(None, 0, n)} worker processes)")
     print(f"  sweep, workers=1           {t_alone:8.3f} s   {n / t_alone:10.0f} members/s   "
           f"(identical Dataset: {identical})")
     print(f"  solve_ensemble (engine)    {t_ensemble:8.3f} s   {len(members) / t_ensemble:10.0f} members/s   "

@@ -99,11 +99,11 @@ def flat_spin() -> None:
         d["integration"]["model"] = model
         d["outputs"]["plots"] = []
         scene = Scene.from_dict(d, name="explorer1")
-        ladder._CHOICES.clear()  # the ladder's first solve: its probes are paid
+        ladder.choosing._CHOICES.clear()  # the ladder's first solve: its probes are paid
 
         def run():
             from gyrostat.runner import solve_scene
-            ladder._CHOICES.clear()
+            ladder.choosing._CHOICES.clear()
             return solve_scene(scene, progress=False)
 
         seconds, (solutions, report, _) = best(run, 1 if model == "full" else 3)

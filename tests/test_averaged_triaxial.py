@@ -343,7 +343,7 @@ def test_the_ladder_reports_an_estimate_of_omega_at_the_carried_phase_that_bound
         "integration": {"model": "auto", "accuracy": 1e-2, "method": "dop853", "rtol": 1e-12, "atol": 1e-14,
                         "t_span": [0.0, t1], "n_out": 201},
         "outputs": {"plots": ["invariants"]}}, name="triaxial_auto")
-    ladder._CHOICES.clear()
+    ladder.choosing._CHOICES.clear()
     solutions, report, _ = solve_scene(scene, progress=False)
     assert report["model"] == "averaged_triaxial", report["ladder"]["summary"]
     (entry,) = [e for e in report["ladder"]["rungs"] if e["rung"] == "averaged_triaxial"]

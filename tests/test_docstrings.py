@@ -116,7 +116,7 @@ def test_the_walk_covers_the_public_api():
                      "gyrostat._core.Options.rtol", "gyrostat.lagrange.LagrangeTop", "gyrostat.orthogonal.OrthogonalModel",
                      "gyrostat.families.orthogonal_torque.OrthogonalModel.tau_rate", "gyrostat.scene.load",
                      "gyrostat.validity.check", "gyrostat.averaged.lotka_volterra", "gyrostat.attitude.euler_angles",
-                     "gyrostat.sweeps.Plan", "gyrostat.sweeps.Plan.member", "gyrostat.orthogonal.NearlySpherical"):
+                     "gyrostat.sweeps.Plan", "gyrostat.sweeps.plan.Plan.member", "gyrostat.orthogonal.NearlySpherical"):
         assert expected in labels, expected
     assert len(NAMES) > 230
 

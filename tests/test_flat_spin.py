@@ -28,7 +28,7 @@ def scene_at_ten_times_epsilon(model: str) -> Scene:
 
 @pytest.fixture(scope="module")
 def runs():
-    ladder._CHOICES.clear()
+    ladder.choosing._CHOICES.clear()
     full, full_report, _ = solve_scene(scene_at_ten_times_epsilon("full"), progress=False)
     auto, auto_report, _ = solve_scene(scene_at_ten_times_epsilon("auto"), progress=False)
     return full["full"], full_report, auto["averaged"], auto_report

@@ -83,7 +83,7 @@ def test_the_same_scene_again_reuses_its_choice():
 
     doc = _doc("p000_A8_C4_M3-0p1")
     doc["integration"].update(model="auto", accuracy=1e-6)
-    ladder._CHOICES.clear()
+    ladder.choosing._CHOICES.clear()
     _, first, report = _solve(doc)
     _, again, reused = _solve(doc)
     assert report["ladder"]["reused"] is False and reused["ladder"]["reused"] is True
@@ -165,7 +165,7 @@ def test_switching_through_r_zero_matches_the_full_model():
 def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
     """The event that brings a switched run back down the ladder is evaluated in C++ (the lower
     model's watch_event: no call into Python). Unsampled, it is the g of the Python callable it
-    replaces (ladder._trouble): on a run of the top it falls through zero at the same time to the
+    replaces (ladder.switching._trouble): on a run of the top it falls through zero at the same time to the
     last bit. The ladder samples it once per fast period of the lower rung (its ratios change on the
     slow time scale): the switching run then comes back down at the first sample past the exact
     crossing, never before it and at most one period (and one step) after it, and agrees with the
@@ -178,7 +178,7 @@ def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
     choice = ladder.choose(scene.ladder, run.t_span, run.options, doc["integration"]["accuracy"])
     lower, top = choice.chosen, choice.rungs[-1]
     assert lower.name == "averaged" and lower.watches
-    sampled, python = ladder._back_down(lower), ladder._trouble(lower)
+    sampled, python = ladder.switching._back_down(lower), ladder.switching._trouble(lower)
     assert isinstance(sampled, g._core.Event) and sampled.terminal == 1 and sampled.direction == -1
     assert sampled.sample_interval == lower.fast_period > 0
     names = list(lower.model._core.output_names)
@@ -197,8 +197,8 @@ def test_the_way_back_down_is_the_same_in_cpp_as_in_python(monkeypatch):
     assert exact <= seen <= exact + lower.fast_period + runs[2].stats["last_step"] + 1e-9, (exact, seen)
     assert seen == runs[2].t_last  # (placed at a step end)
     _, cpp_run, cpp_report = _solve(doc)
-    monkeypatch.setattr(ladder, "_back_down", ladder._trouble)
-    ladder._CHOICES.clear()
+    monkeypatch.setattr(ladder.switching, "_back_down", ladder.switching._trouble)
+    ladder.choosing._CHOICES.clear()
     _, python_run, python_report = _solve(doc)
     cpp_switches, python_switches = cpp_report["ladder"]["switches"], python_report["ladder"]["switches"]
     assert len(cpp_switches) == len(python_switches) >= 2
@@ -223,7 +223,7 @@ def test_a_switching_run_locates_the_scenes_events_on_every_piece():
     doc = _switching_doc()
     doc["events"] = [{"quantity": "r", "value": 0.0, "direction": 0, "terminal": 0},
                      {"quantity": "p", "value": 0.0, "direction": 1, "terminal": 0}]
-    ladder._CHOICES.clear()
+    ladder.choosing._CHOICES.clear()
     _, run, report = _solve(doc)
     full_doc = copy.deepcopy(doc)
     full_doc["integration"]["model"] = "full"
@@ -245,7 +245,7 @@ def test_a_switching_run_locates_the_scenes_events_on_every_piece():
     assert any("'p' is not a quantity of the averaged model" in note for note in notes), notes
     # terminal: the joined run ends at r = 0
     doc["events"] = [{"quantity": "r", "value": 0.0, "direction": 0, "terminal": 1}]
-    ladder._CHOICES.clear()
+    ladder.choosing._CHOICES.clear()
     _, stopped, stopped_report = _solve(doc)
     assert stopped.terminal_event == 0 and stopped.t_last == stopped.t_events[0][0] < 4000.0
     assert stopped.t_events[0][0] == pytest.approx(t_auto, abs=1e-6)
@@ -489,7 +489,7 @@ def test_a_moving_mass_run_switches_from_the_triaxial_rung_to_the_explicit_mass(
     options = scene.runs[0].options
     # the watches fitted as the ladder fits them when it takes the rung: from the probe's estimate
     estimate = ladder.probe(triaxial, explicit, (0.0, 8000.0), options)
-    fitted, refusal = ladder._fit_watches(triaxial, estimate, 1e-2)
+    fitted, refusal = ladder.choosing._fit_watches(triaxial, estimate, 1e-2)
     assert not refusal, refusal
     run = ladder.run(ladder.Choice(scene.ladder, fitted, 1e-2), (0.0, 8000.0), options)
     assert run.success, run.message

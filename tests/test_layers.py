@@ -3,13 +3,18 @@ inside functions included, must point to the module's own floor or below; the im
 no cycle; the generic layers name no family module and no kind; the old module names that
 re-export a family (``gyrostat.lagrange``, ...) hold no logic.
 
-Floors, bottom up: core → families → re-exports → generic → command line. A new module must be
-placed in FLOORS (an unplaced module fails the test).
+Floors, bottom up (FLOORS): the core (engine → schema → results → models → runs → kinds), the
+families, the re-exports, the generic layers (scenes → output and plots → sweeps → runner) and
+the command line. A new module must be placed in FLOORS (an unplaced module fails the test). A
+family module uses another family only through its public names (no module inside another
+family's package, no private name).
 
 How the checks were seen to fail: ``test_planted_violations_are_caught`` plants each kind of
 violation in a copy of the sources (an upward import closing a cycle, as ``validity.check_scene
 → scene.Scene`` once did; a generic module importing a family module; a kind's name in a
-generic module; logic in a re-export module) and asserts that each is reported. By hand, adding
+generic module; logic in a re-export module; the climbs inside functions ``plots → sweeps`` and
+``solution → modelbase`` that once were there; a family importing another's private model) and
+asserts that each is reported. By hand, adding
 ``from gyrostat.scene import Scene`` inside a function of ``gyrostat/assumptions.py``, or
 ``if scene.kind.name == "lagrange_top": pass`` to ``gyrostat/runner.py``, made
 ``test_floors_and_cycles`` / ``test_generic_layers_name_no_family`` fail with the module, the
@@ -25,25 +30,46 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
 
-CORE = ("gyrostat._core", "gyrostat.modelbase", "gyrostat.schema", "gyrostat.torques",
-        "gyrostat.scene_code", "gyrostat.assumptions", "gyrostat.events", "gyrostat.attitude", "gyrostat.progress", "gyrostat.solution",
-        "gyrostat.solve", "gyrostat.ladder", "gyrostat.figures", "gyrostat.kind")
-REEXPORTS = ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")
-GENERIC = ("gyrostat.scene", "gyrostat.runner", "gyrostat.output", "gyrostat.plots", "gyrostat.sweeps",
-           "gyrostat.validity")
-TOP = ("gyrostat", "gyrostat.__main__", "gyrostat.cli")
-FLOOR_NAMES = ("core", "families", "re-exports", "generic", "command line")
+FLOORS = (  # bottom up: a module imports (anywhere in it, functions included) its own floor or below
+    ("engine", ("gyrostat._core", "gyrostat.arguments", "gyrostat.progress", "gyrostat.events", "gyrostat.attitude",
+                "gyrostat.assumptions")),
+    ("schema", ("gyrostat.schema", "gyrostat.schema.messages", "gyrostat.schema.fields", "gyrostat.schema.checks",
+                "gyrostat.schema.reference", "gyrostat.scene_code")),
+    ("results", ("gyrostat.solution",)),
+    ("models", ("gyrostat.torques", "gyrostat.modelbase")),
+    ("runs", ("gyrostat.solve", "gyrostat.ladder", "gyrostat.ladder.rungs", "gyrostat.ladder.probe",
+              "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures")),
+    ("kinds", ("gyrostat.kind",)),
+    ("families", ("gyrostat.families",)),  # and every module under gyrostat/families/
+    ("re-exports", ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")),
+    ("scenes", ("gyrostat.scene", "gyrostat.validity")),
+    ("output and plots", ("gyrostat.output", "gyrostat.plots")),
+    ("sweeps", ("gyrostat.sweeps", "gyrostat.sweeps.draws", "gyrostat.sweeps.parameters", "gyrostat.sweeps.plan",
+                "gyrostat.sweeps.chunks", "gyrostat.sweeps.storage", "gyrostat.sweeps.runners",
+                "gyrostat.sweeps.summaries")),
+    ("runner", ("gyrostat.runner",)),
+    ("command line", ("gyrostat", "gyrostat.__main__", "gyrostat.cli")),
+)
+FLOOR_NAMES = tuple(name for name, _ in FLOORS)
+CORE = tuple(m for _, members in FLOORS[:FLOOR_NAMES.index("families")] for m in members)
+REEXPORTS = dict(FLOORS)["re-exports"]
+GENERIC = tuple(m for _, members in FLOORS[FLOOR_NAMES.index("scenes"):FLOOR_NAMES.index("command line")]
+                for m in members)
 
 
 def floor(module: str) -> int:
-    if module in CORE:
-        return 0
-    if module == "gyrostat.families" or module.startswith("gyrostat.families."):
-        return 1
-    for index, members in ((2, REEXPORTS), (3, GENERIC), (4, TOP)):
+    if module.startswith("gyrostat.families."):
+        return FLOOR_NAMES.index("families")
+    for index, (_, members) in enumerate(FLOORS):
         if module in members:
             return index
     raise AssertionError(f"{module} is in no floor: add it to FLOORS in tests/test_layers.py")
+
+
+def family_of(module: str) -> str | None:
+    """``gyrostat.families.lagrange_top.models`` → ``lagrange_top`` (None outside a family)."""
+    parts = module.split(".")
+    return parts[2] if len(parts) > 2 and parts[:2] == ["gyrostat", "families"] else None
 
 
 def sources() -> dict[str, str]:
@@ -95,7 +121,7 @@ def violations(modules: dict[str, str], kinds: set[str]) -> dict[str, list[str]]
     """Every broken rule, by rule: floors, cycles, generic (names a family), reexports (logic)."""
     known = set(modules) | {"gyrostat._core"}
     graph = {name: imports(name, source, known) for name, source in modules.items()}
-    found: dict[str, list[str]] = {"floors": [], "cycles": [], "generic": [], "reexports": []}
+    found: dict[str, list[str]] = {"floors": [], "cycles": [], "generic": [], "reexports": [], "families": []}
     for name, edges in graph.items():
         for line, target in edges:
             if floor(target) > floor(name):
@@ -116,6 +142,17 @@ def violations(modules: dict[str, str], kinds: set[str]) -> dict[str, list[str]]
     for name in sorted(graph):
         if name not in state:
             visit(name, [name])
+    for name, source in modules.items():  # a family uses another only through its public names
+        if family_of(name) is None:
+            continue
+        for node in ast.walk(ast.parse(source)):
+            if not isinstance(node, ast.ImportFrom) or family_of(node.module or "") in (None, family_of(name)):
+                continue
+            inside = len(node.module.split(".")) > 3  # a module inside another family's package
+            private = [a.name for a in node.names if a.name.startswith("_")]
+            if inside or private:
+                found["families"].append(f"{name}:{node.lineno} imports the internals of another family: "
+                                         f"{node.module} {', '.join(private)}".rstrip())
     for name in GENERIC:
         if name not in modules:
             continue
@@ -163,17 +200,25 @@ def test_reexport_modules_hold_no_logic(kinds):
     assert not found["reexports"], "\n".join(found["reexports"])
 
 
+def test_no_family_imports_another_familys_internals(kinds):
+    found = violations(sources(), kinds)
+    assert not found["families"], "\n".join(found["families"])
+
+
 def test_every_family_module_registers_a_kind(kinds):
     """A module under families/ is a family: it registers at least one scene kind, and says what a
     family module provides in its docstring (the recipe)."""
     from gyrostat.families import KINDS
 
     modules = {kind.__class__.__module__ for kind in KINDS.values()}
-    for path in (PACKAGE / "families").glob("*.py"):
-        if path.stem == "__init__":
-            continue
-        assert f"gyrostat.families.{path.stem}" in modules, path.stem
-        assert "A family module provides" in ast.get_docstring(ast.parse(path.read_text())), path.stem
+    families = [path for path in sorted((PACKAGE / "families").iterdir())
+                if (path.suffix == ".py" and path.stem != "__init__") or (path / "__init__.py").is_file()]
+    assert len(families) >= 4, families
+    for path in families:  # a module, or a package (its modules: models, scene kind, analyses, plots)
+        name = f"gyrostat.families.{path.stem}"
+        assert any(m == name or m.startswith(name + ".") for m in modules), path.stem
+        source = (path / "__init__.py" if path.is_dir() else path).read_text()
+        assert "A family module provides" in ast.get_docstring(ast.parse(source)), path.stem
 
 
 def test_planted_violations_are_caught(kinds):
@@ -183,7 +228,16 @@ def test_planted_violations_are_caught(kinds):
     planted["gyrostat.assumptions"] += "\n\ndef _planted():\n    from gyrostat.scene import Scene\n"
     planted["gyrostat.runner"] += "\n\nfrom gyrostat.families import rigid_body\n\nif 'lagrange_top':\n    pass\n"
     planted["gyrostat.lagrange"] += "\n\nSEPARATRIX = 2 * 1e-3\n"
+    # the climbs inside functions the finer floors catch (each was once written so)
+    planted["gyrostat.plots"] += "\n\ndef _planted():\n    from gyrostat.sweeps import summary\n"
+    planted["gyrostat.solution"] += "\n\ndef _planted():\n    from gyrostat.modelbase import floats\n"
+    planted["gyrostat.sweeps.storage"] += "\n\ndef _planted():\n    from gyrostat import runner\n"
+    planted["gyrostat.families.moving_mass"] += "\n\nfrom gyrostat.families.lagrange_top.models import _TopModel\n"
     found = violations(planted, kinds)
+    for low, high in (("gyrostat.plots", "gyrostat.sweeps"), ("gyrostat.solution", "gyrostat.modelbase"),
+                      ("gyrostat.sweeps.storage", "gyrostat.runner")):
+        assert any(v.startswith(low + ":") and f"imports {high} " in v for v in found["floors"]), (low, found["floors"])
+    assert any("gyrostat.families.moving_mass" in v and "_TopModel" in v for v in found["families"]), found["families"]
     assert any("gyrostat.assumptions" in v and "gyrostat.scene" in v for v in found["floors"]), found["floors"]
     assert any("gyrostat.assumptions" in v and "gyrostat.scene" in v for v in found["cycles"]), found["cycles"]
     assert any("rigid_body" in v for v in found["generic"]) and any("'lagrange_top'" in v for v in found["generic"])

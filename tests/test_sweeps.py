@@ -15,6 +15,7 @@ import xarray as xr
 
 import gyrostat as g
 from gyrostat import sweeps
+from gyrostat.sweeps import chunks, runners, storage
 from gyrostat.cli import main
 from gyrostat.schema import SceneError
 
@@ -183,7 +184,7 @@ def test_summaries_in_bulk_equal_each_members_own_run():
 
 
 def test_bulk_records_equal_member_by_member_records():
-    """sweeps._record_results (the engine's summaries in bulk: _core.summaries) over members of
+    """chunks._record_results (the engine's summaries in bulk: _core.summaries) over members of
     different lengths (a member stopped by max_steps keeps a shorter trajectory, a refused one
     none) and one member with other names (no attitude) writes what _record writes member by
     member, bit for bit."""
@@ -205,10 +206,10 @@ def test_bulk_records_equal_member_by_member_records():
     assert [(r.status, len(r.t)) for r in results] == [("success", 4), ("max_steps_reached", 1), ("success", 4),
                                                        ("invalid_input", 0), ("success", 4)]
     extrema = plan.output_names[:2] + ("q",)
-    bulk, one = sweeps._blank(plan, 5, False, extrema), sweeps._blank(plan, 5, False, extrema)
-    warnings_ = sweeps._record_results(bulk, list(range(5)), results, models, plan, False, extrema)
+    bulk, one = chunks._blank(plan, 5, False, extrema), chunks._blank(plan, 5, False, extrema)
+    warnings_ = chunks._record_results(bulk, list(range(5)), results, models, plan, False, extrema)
     for j, r in enumerate(results):
-        sweeps._record(one, j, g.Solution(r, models[j]), plan, False, extrema)
+        chunks._record(one, j, g.Solution(r, models[j]), plan, False, extrema)
     assert list(warnings_) == [r.warnings[0] if len(r.warnings) else "" for r in results]
     assert set(bulk) == set(one)
     for name in one:
@@ -300,19 +301,19 @@ def test_worker_processes_give_the_dataset_of_one_process(tmp_path):
 
 
 def test_workers_by_default_and_refused(monkeypatch, tmp_path, capsys):
-    cores = sweeps._cores()
-    monkeypatch.setattr(sweeps, "_forks", lambda: True)
-    assert sweeps._processes(None, 0, sweeps.WORKERS_FROM) == cores  # a large sweep: every core's process
-    assert sweeps._processes(None, 0, sweeps.WORKERS_FROM - 1) == 1  # small: forking costs more than it gains
-    assert sweeps._processes(None, 1, sweeps.WORKERS_FROM) == 1  # threads=1: one core asked for
-    assert sweeps._processes(-1, 1, 5) == cores and sweeps._processes(3, 0, 5) == 3
-    monkeypatch.setattr(sweeps, "_daemon", lambda: True)  # inside a Dask task: a daemon has no children
-    assert sweeps._processes(None, 0, sweeps.WORKERS_FROM) == 1
+    cores = runners._cores()
+    monkeypatch.setattr(runners, "_forks", lambda: True)
+    assert runners._processes(None, 0, sweeps.WORKERS_FROM) == cores  # a large sweep: every core's process
+    assert runners._processes(None, 0, sweeps.WORKERS_FROM - 1) == 1  # small: forking costs more than it gains
+    assert runners._processes(None, 1, sweeps.WORKERS_FROM) == 1  # threads=1: one core asked for
+    assert runners._processes(-1, 1, 5) == cores and runners._processes(3, 0, 5) == 3
+    monkeypatch.setattr(runners, "_daemon", lambda: True)  # inside a Dask task: a daemon has no children
+    assert runners._processes(None, 0, sweeps.WORKERS_FROM) == 1
     with pytest.raises(ValueError, match="workers = 2: this process is a daemon"):
-        sweeps._processes(2, 0, 5)
-    monkeypatch.setattr(sweeps, "_daemon", lambda: False)
-    monkeypatch.setattr(sweeps, "_forks", lambda: False)
-    assert sweeps._processes(None, 0, 10 * sweeps.WORKERS_FROM) == 1  # no fork: no spawned surprise
+        runners._processes(2, 0, 5)
+    monkeypatch.setattr(runners, "_daemon", lambda: False)
+    monkeypatch.setattr(runners, "_forks", lambda: False)
+    assert runners._processes(None, 0, 10 * sweeps.WORKERS_FROM) == 1  # no fork: no spawned surprise
     doc = scene("forced_damped", t_span=[0.0, 1.0], n_out=3)
     for bad in (0, -2, True, 2.5, "2"):
         with pytest.raises(ValueError, match=f"workers = {bad!r} must be"):
@@ -331,7 +332,7 @@ def test_a_failing_worker_process_is_recorded_per_member(monkeypatch):
             raise RuntimeError("disk full")
         return real(plan, start, stop, **options)
 
-    monkeypatch.setattr(sweeps, "solve_chunk", failing)
+    monkeypatch.setattr(runners, "solve_chunk", failing)
     ds = g.sweep(scene("forced_damped", t_span=[0.0, 1.0], n_out=3), {"initial.omega[0]": np.linspace(1, 2, 8)},
                  workers=2, chunk_size=4, progress=False)
     status = ds["status"].values
@@ -350,7 +351,7 @@ def test_a_worker_process_that_dies_fails_its_members_not_the_sweep(monkeypatch)
             os._exit(9)
         return real(plan, start, stop, **options)
 
-    monkeypatch.setattr(sweeps, "solve_chunk", dying)
+    monkeypatch.setattr(runners, "solve_chunk", dying)
     ds = g.sweep(scene("forced_damped", t_span=[0.0, 1.0], n_out=3), {"initial.omega[0]": np.linspace(1, 2, 40)},
                  workers=2, chunk_size=4, progress=False)
     status, message = ds["status"].values, ds["message"].values
@@ -482,7 +483,7 @@ def test_a_chunks_members_share_the_body_and_torques_no_parameter_changes():
 
 def test_memory_is_checked_before_anything_runs(monkeypatch):
     doc = scene("forced_damped", t_span=[0.0, 1.0], n_out=1001)
-    monkeypatch.setattr(sweeps, "MEMORY_LIMIT", 2**20)
+    monkeypatch.setattr(storage, "MEMORY_LIMIT", 2**20)
     with pytest.raises(ValueError, match=r"needs about 0\.\d GiB .*trajectories=False.*path="):
         g.sweep(doc, {"initial.omega[0]": np.linspace(0, 1, 100)}, progress=False)
     summaries = g.sweep(doc, {"initial.omega[0]": np.linspace(0, 1, 100)}, progress=False, trajectories=False)

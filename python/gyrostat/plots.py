@@ -97,14 +97,13 @@ def _axis_label(ds, name: str) -> str:
     return f"{attrs.get('long_name', name)} [{attrs.get('units') or '1'}]"
 
 
-def sweep(ds, expression: str, title: str, path: Path, contour: float | None = None,
+def sweep(ds, values, title: str, path: Path, contour: float | None = None,
           lines: list[dict] | None = None) -> Path:
-    """A sweep's summary against its parameters: a line for one grid parameter, a heat map for
-    two (with the level line ``summary = contour`` and reference lines), a scatter for a
+    """A sweep's summary (``values``, as :func:`gyrostat.sweeps.summary` gives it: named by its
+    expression, with its units) against its parameters: a line for one grid parameter, a heat map
+    for two (with the level line ``summary = contour`` and reference lines), a scatter for a
     dispersion; members that failed are marked x."""
-    from gyrostat.sweeps import summary
-
-    values = summary(ds, expression)
+    expression = values.name
     label = f"{expression} [{values.attrs['units']}]"
     failed = ds["status"] != "success"
     plan = __import__("json").loads(ds.attrs["plan"])

@@ -290,7 +290,7 @@ def run_sweep(path: str | Path | SweepJob, out_dir: str | Path, vary=None, *, sa
     report["unexpected_broken"] = [text for text in report["broken_assumptions"] if not _marker(text, expected)]
     report["expected_parts"] = sorted({m["assumption"] for text in report["broken_assumptions"]
                                        if (m := _marker(text, expected))})
-    files = [target, plots.sweep(ds, expression, f"{scene.title}: sweep", folder / "sweep.png",
+    files = [target, plots.sweep(ds, values, f"{scene.title}: sweep", folder / "sweep.png",
                                  contour=job.contour, lines=job.lines)]
     report["files"] = [str(f) for f in files] + [str(folder / "sweep.json")]
     (folder / "sweep.json").write_text(json.dumps(output.clean(report), indent=2) + "\n")

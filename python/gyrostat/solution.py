@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from gyrostat import _core
+from gyrostat.arguments import floats
 
 from types import SimpleNamespace
 
@@ -500,8 +501,6 @@ class Solution:
         >>> bool(abs(sol(4.0, "kinetic_energy") - sol["kinetic_energy"][4]) < 1e-12)
         True
         """
-        from gyrostat.modelbase import floats
-
         times = floats(t, "t", "a time or times (numbers)")
         if name is not None:
             if name in self._result.state_names:
