@@ -1,5 +1,5 @@
-"""The model families, one module each (a vertical slice: its models, paper helpers and analysis,
-validity checks, ladder rungs, plots and scene kinds):
+"""The model families, one module or package each (a vertical slice: its models, paper helpers and
+analysis, validity checks, ladder rungs, plots and scene kinds):
 
 * :mod:`gyrostat.families.rigid_body`: the gyrostat, its closed form and its averaged system
   (kinds ``rigid_body``, ``averaged``);
