@@ -114,7 +114,7 @@ def test_the_walk_covers_the_public_api():
                      "gyrostat._core.ViscousCavity.p0", "gyrostat._core.ViscousCavity.__call__",
                      "gyrostat._core.Body.moments", "gyrostat.modelbase.ModelBase.units",
                      "gyrostat._core.Options.rtol", "gyrostat.lagrange.LagrangeTop", "gyrostat.orthogonal.OrthogonalModel",
-                     "gyrostat.families.orthogonal_torque.OrthogonalModel.tau_rate", "gyrostat.scene.load",
+                     "gyrostat.families.orthogonal_torque.models.OrthogonalModel.tau_rate", "gyrostat.scene.load",
                      "gyrostat.validity.check", "gyrostat.averaged.lotka_volterra", "gyrostat.attitude.euler_angles",
                      "gyrostat.sweeps.Plan", "gyrostat.sweeps.plan.Plan.member", "gyrostat.orthogonal.NearlySpherical"):
         assert expected in labels, expected
