@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "gyrostat/ensemble.hpp"
-#include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/solve_system.hpp"
 #include "gyrostat/integrate/taylor.hpp"
 #include "gyrostat/model/averaged.hpp"
 #include "gyrostat/model/gyrostat.hpp"

@@ -243,3 +243,48 @@ def test_planted_violations_are_caught(kinds):
     assert any("rigid_body" in v for v in found["generic"]) and any("'lagrange_top'" in v for v in found["generic"])
     assert any("gyrostat.lagrange" in v for v in found["reexports"]), found["reexports"]
     assert not any(violations(clean, kinds).values())
+
+
+# ------------------------------------------------------------------------------------ C++ headers
+CPP_INCLUDE = Path(__file__).resolve().parents[1] / "cpp" / "include"
+
+
+def header_graph() -> dict[str, set[str]]:
+    """Header → the gyrostat headers it includes (``#include "gyrostat/..."``), for every header."""
+    import re
+
+    pattern = re.compile(r'^\s*#\s*include\s*"(gyrostat/[^"]+)"', re.M)
+    return {path.relative_to(CPP_INCLUDE).as_posix(): set(pattern.findall(path.read_text()))
+            for path in sorted(CPP_INCLUDE.rglob("*.hpp"))}
+
+
+def reached(graph: dict[str, set[str]], start: str) -> set[str]:
+    seen, todo = set(), [start]
+    while todo:
+        for header in graph.get(todo.pop(), ()):
+            if header not in seen:
+                seen.add(header)
+                todo.append(header)
+    return seen
+
+
+def test_integrators_include_neither_the_engine_nor_a_cycle():
+    """The integrators (integrate/) know no model family: no header of theirs reaches the engine
+    (engine.hpp, which lists every model) or solve_system.hpp, even through others; and no header
+    reaches itself (a cycle that #pragma once would hide). Seen to fail: integrate/solve.hpp once
+    ended by including solve_system.hpp → engine.hpp → every model (the integrators' layer pulled
+    in every model and sat in a cycle with the engine)."""
+    graph = header_graph()
+    assert "gyrostat/integrate/solve.hpp" in graph and "gyrostat/engine.hpp" in graph, sorted(graph)[:5]
+    for header in graph:
+        if header.startswith("gyrostat/integrate/"):
+            climbs = reached(graph, header) & {"gyrostat/engine.hpp", "gyrostat/solve_system.hpp"}
+            assert not climbs, f"{header} reaches {sorted(climbs)}"
+        assert header not in reached(graph, header), f"{header} includes itself through others"
+
+
+def test_the_header_check_sees_a_planted_cycle():
+    graph = header_graph()
+    graph["gyrostat/integrate/solve.hpp"] = graph["gyrostat/integrate/solve.hpp"] | {"gyrostat/solve_system.hpp"}
+    assert "gyrostat/engine.hpp" in reached(graph, "gyrostat/integrate/solve.hpp")
+    assert "gyrostat/integrate/solve.hpp" in reached(graph, "gyrostat/integrate/solve.hpp")

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/solve_system.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/torque_free.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "gyrostat/engine.hpp"
 #include "gyrostat/ensemble.hpp"
-#include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/solve_system.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/moving_mass.hpp"
 

@@ -14,7 +14,7 @@
 #include "gyrostat/engine.hpp"
 #include "gyrostat/ensemble.hpp"
 #include "gyrostat/integrate/dense.hpp"
-#include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/solve_system.hpp"
 #include "gyrostat/model/averaged.hpp"
 #include "gyrostat/numeric/elliptic.hpp"
 #include "gyrostat/model/gyrostat.hpp"

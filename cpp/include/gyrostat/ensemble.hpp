@@ -14,7 +14,7 @@
 
 #include "gyrostat/integrate/control.hpp"
 #include "gyrostat/integrate/options.hpp"
-#include "gyrostat/integrate/solve.hpp"
+#include "gyrostat/solve_system.hpp"  // the models' integration, compiled once in the core (extern here)
 
 namespace gyrostat {
 

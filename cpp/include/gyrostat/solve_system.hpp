@@ -2,8 +2,10 @@
 // its integration compiled: integrate::solve<Model> and solve_system<Model> are instantiated
 // explicitly for every model GYROSTAT_SOLVED_MODELS lists in one translation unit,
 // src/solve_models.cpp, and declared `extern template` for every other translation unit that
-// includes integrate/solve.hpp (the engine, the C++ tests, the benchmark): they link to that one
-// copy instead of compiling the integrators again. One unit, not one per model: what the models'
+// includes this header (the engine and the ensemble, the C++ tests, the benchmark, a program
+// built against the installed package): they link to that one copy instead of compiling the
+// integrators again. The integrators (integrate/) never include it, nor the engine: they know no
+// model (tests/test_layers.py checks the headers' include graph). One unit, not one per model: what the models'
 // integrations share (Eigen, the torques, the SUNDIALS drivers, the event locator) is then compiled
 // once (-O3, one core: 145 s of CPU for the 11 models against 229 s in four units).
 #pragma once

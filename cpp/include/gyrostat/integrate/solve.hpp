@@ -116,7 +116,3 @@ Result solve(const System& system, double t0, const typename System::State& y0, 
 }
 
 }  // namespace gyrostat::integrate
-
-// The integration of every model of the engine is compiled once, in the core library: declared
-// extern here for the translation units that call integrate::solve on one (solve_system.hpp).
-#include "gyrostat/solve_system.hpp"
