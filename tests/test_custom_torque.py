@@ -260,7 +260,7 @@ def test_ctrl_c_in_the_users_function_ends_the_run_interrupted(method, sigint, c
     options = dict(t_eval=T, method=method, rtol=1e-10, atol=1e-12, **({"step": 0.01} if method == "splitting" else {}))
     counted = StopsOnCall(None)
     model = g.Model(g.Body(J), [g.CustomTorque(counted)])
-    whole = g.solve(model, W0, (0.0, 20.0), **options)
+    whole = g.solve(model, W0, (0.0, 20.0), **options, error_estimate=False)  # the calls of the run alone
     stops = StopsOnCall(counted.calls // 2, sigint)  # Ctrl-C half-way through the run
     started = time.perf_counter()
     with pytest.warns(RuntimeWarning, match="interrupted"):
@@ -283,7 +283,8 @@ def test_ctrl_c_in_the_users_function_interrupts_an_ensemble(sigint, ctrl_c):
     not started; no KeyboardInterrupt reaches the caller."""
     whole = g.solve(python_model(), W0, (0.0, 20.0), t_eval=T)
     stops = StopsOnCall(None, sigint)
-    first = g.solve_ensemble(g.Model(g.Body(J), [g.CustomTorque(stops)]), [W0] * 3, (0.0, 20.0), t_eval=T)
+    first = g.solve_ensemble(g.Model(g.Body(J), [g.CustomTorque(stops)]), [W0] * 3, (0.0, 20.0), t_eval=T,
+                             error_estimate=False)  # the calls of the runs alone
     per_member = stops.calls // 3
     stops.calls, stops.n = 0, per_member + per_member // 2  # Ctrl-C half-way through member 1
     runs = g.solve_ensemble(g.Model(g.Body(J), [g.CustomTorque(stops)]), [W0] * 3, (0.0, 20.0), t_eval=T, threads=2)

@@ -313,7 +313,8 @@ def test_lagrange_top_takes_the_averaged_model_within_its_estimate():
     scene, solution, report = _solve(doc)
     assert report["model"] == "averaged"
     measured = {row["rung"]: row for row in report["ladder"]["measured"]}
-    assert measured["averaged"]["chosen"] and measured["full"]["error"] == 0.0
+    # the full top's point is its own measured error (its companion run), within the accuracy it was run at
+    assert measured["averaged"]["chosen"] and 0 < measured["full"]["error"] == measured["full"]["estimate"] <= 1e-2
     assert 0 < measured["averaged"]["error"] <= measured["averaged"]["estimate"] <= 1e-2
     # asking for θ(t) itself blocks the averaged top
     doc["outputs"]["plots"] = ["nutation"]

@@ -35,7 +35,7 @@ FLOORS = (  # bottom up: a module imports (anywhere in it, functions included) i
                 "gyrostat.assumptions")),
     ("schema", ("gyrostat.schema", "gyrostat.schema.messages", "gyrostat.schema.fields", "gyrostat.schema.checks",
                 "gyrostat.schema.reference", "gyrostat.scene_code")),
-    ("results", ("gyrostat.solution",)),
+    ("results", ("gyrostat.solution", "gyrostat.accuracy")),
     ("models", ("gyrostat.torques", "gyrostat.modelbase")),
     ("runs", ("gyrostat.solve", "gyrostat.ladder", "gyrostat.ladder.rungs", "gyrostat.ladder.probe",
               "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures")),

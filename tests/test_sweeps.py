@@ -197,10 +197,10 @@ def test_bulk_records_equal_member_by_member_records():
     y0 = np.asarray(run.y0)
     refused = y0.copy()
     refused[0] = np.nan
-    _, full = ensemble_results([run.model], np.stack([y0, 1.1 * y0, refused]), run.t_span, **options)
-    _, stopped = ensemble_results([run.model], np.stack([y0]), run.t_span, max_steps=3, **options)
+    _, full, _ = ensemble_results([run.model], np.stack([y0, 1.1 * y0, refused]), run.t_span, **options)
+    _, stopped, _ = ensemble_results([run.model], np.stack([y0]), run.t_span, max_steps=3, **options)
     other = g.Model(run.model.body, run.model.torques)  # the same body without attitude: other names
-    _, unnamed = ensemble_results([other], np.stack([y0[:3]]), run.t_span, **options)
+    _, unnamed, _ = ensemble_results([other], np.stack([y0[:3]]), run.t_span, **options)
     results = [full[0], stopped[0], full[1], full[2], unnamed[0]]
     models = [run.model, run.model, run.model, run.model, other]
     assert [(r.status, len(r.t)) for r in results] == [("success", 4), ("max_steps_reached", 1), ("success", 4),

@@ -219,6 +219,15 @@ def engine_rule(name: str):
     return check
 
 
+class Unstated(float):
+    """A tolerance's default that the scene did not state (``integration.rtol``, ``atol``): with
+    ``integration.accuracy`` given, the run chooses its tolerances instead (a value the scene
+    states is a plain float, and wins)."""
+
+    def __repr__(self) -> str:
+        return repr(float(self))
+
+
 def engine_option(name: str, type_, doc: str, default=None, why: str = "", **extra) -> Field:
     """A scene field for the engine option ``name``: its default (the engine's, unless a family
     gives its own with the reason ``why``, which the field's doc then states) and its rule, both
@@ -227,8 +236,11 @@ def engine_option(name: str, type_, doc: str, default=None, why: str = "", **ext
         default = getattr(_DEFAULT, name)
     elif not why:
         raise ValueError(f"a family's own default for {name} needs its reason")
-    return Field(type_, default=default, doc=doc + (f" (default {default:g}: {why})" if why else ""),
+    made = Field(type_, default=default, doc=doc + (f" (default {default:g}: {why})" if why else ""),
                  check=engine_rule(name), **extra)
+    if name in ("rtol", "atol"):
+        made.default = Unstated(made.default)
+    return made
 
 
 METHOD = Field(Choice(*_core.methods()), default="auto",
@@ -239,9 +251,12 @@ N_OUT = engine_option("n_out", int, "number of evenly spaced output times (0: t0
 MAX_STEPS = engine_option("max_steps", int, "the most steps a run may take (one that needs more stops there, keeps "
                                             "what it computed and says so): raise it for long horizons of the full model")
 T_SPAN = Field(Vector(2), required=True, doc="(t0, t1)", unit="s", check=span_order)
-ACCURACY = Field(float, default=_ladder.ACCURACY, check=positive,
-                 doc="model = 'auto': the largest relative error accepted on the quantities the outputs need; "
-                     "the cheapest model whose measured error estimate is below it is taken")
+ACCURACY = Field(float, default=None, check=positive,
+                 doc="the largest relative error accepted on the quantities the runs report (gyrostat.accuracy): "
+                     "every run then meets it, rtol and atol chosen to meet it unless the scene gives them, and "
+                     "says so when it cannot; model = 'auto' takes the cheapest model whose measured error "
+                     f"estimate is below it (left out: the runs keep rtol and atol, model = 'auto' takes "
+                     f"{_ladder.ACCURACY:g}); each run reports its measured error either way")
 PHASE = Field(float, default=0.0, unit="rad", check=finite,
               doc="model = 'auto': the fast phase at which a switch up the ladder lifts the slow variables")
 
@@ -336,5 +351,9 @@ def integration(doc: dict, kind: Kind, **extra) -> dict:
             raise SceneError(f"[integration] method = 'splitting' is not offered for {kind.name} scenes (their models "
                              f"do not split into the free-body flow and a perturbation; it is for {splits})")
         options.update(step=integ.get("step"), splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
+    if integ.get("accuracy") is not None:
+        options["accuracy"] = integ["accuracy"]
+        if isinstance(integ["rtol"], Unstated) and isinstance(integ["atol"], Unstated) and not integ.get("step"):
+            del options["rtol"], options["atol"]
     options.update(extra)
     return options

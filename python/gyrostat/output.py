@@ -65,6 +65,8 @@ def run_report(solution) -> dict:
               "message": solution.message, "stats": solution.stats, "notes": list(solution.notes),
               "t_last": solution.t_last, "y_last": solution.y_last, "h_next": solution.h_next,  # to continue
               "options": solution.options.to_dict(), "conserved": {}, "changed_by_torques": {}}
+    estimate = getattr(solution, "estimate", None)
+    report["error_estimate"] = estimate.as_dict() if estimate is not None else None
     switches = getattr(solution, "method_switches", [])
     if switches or solution.method == "auto":  # method 'auto': which integrators, switched where
         report["methods_used"] = list(getattr(solution, "methods_used", ()))

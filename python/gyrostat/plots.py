@@ -25,7 +25,7 @@ def draw_scene(scene, solutions: dict[str, Solution], derived: dict, folder: Pat
     files = scene.kind.draw(scene, solutions, derived, folder)
     if "ladder" in derived:
         files.append(ladder(derived["ladder"], f"{scene.title}: the model ladder", folder / "ladder.png",
-                            scene.doc["integration"]["accuracy"]))
+                            derived["ladder_accuracy"]))
     return files
 
 

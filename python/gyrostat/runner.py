@@ -6,6 +6,7 @@ its family module, from the recorded outputs; no physics is recomputed), writes 
 from __future__ import annotations
 
 import json
+import math
 import time
 import warnings
 from collections.abc import Iterable, Mapping
@@ -71,6 +72,7 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
         report["ladder"] = _ladder_report(choice, solutions)
         if "ladder" in scene.plots:
             derived["ladder"] = _ladder.measure(choice, scene.runs[0].t_span, scene.runs[0].options)
+            derived["ladder_accuracy"] = choice.accuracy
             report["ladder"]["measured"] = derived["ladder"]
     scene.kind.analyse(scene, solutions, report, derived)
     # the kind's analysis may add broken assumptions of its own: sorted after it
@@ -130,6 +132,10 @@ def verdict(report: dict) -> str:
     and whether a run doubts its own accuracy."""
     if report["status"] != "success":
         return report["status"]
+    unmet = [name for name, run in report.get("runs", {}).items()
+             if (run.get("error_estimate") or {}).get("met") is False]
+    if unmet:
+        return f"accuracy not met ({', '.join(unmet)}: see accuracy_warnings)"
     notes = []
     if report["unexpected_broken"]:
         notes.append(f"WARNING {len(report['unexpected_broken'])} assumption(s) broken")
@@ -149,7 +155,7 @@ def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Cho
     the one run solved (named as the kind's plots expect it)."""
     template = scene.runs[0]
     integration = scene.doc["integration"]
-    choice = _ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"],
+    choice = _ladder.choose(scene.ladder, template.t_span, template.options, integration.get("accuracy") or _ladder.ACCURACY,
                             key=_ladder.scene_key(scene.doc))
     rung = choice.chosen
     name = rung.run
@@ -158,12 +164,16 @@ def _solve_ladder(scene: Scene, solutions: dict, progress: bool) -> "_ladder.Cho
     options = {**template.options, "events": list(template.options.get("events", ()))}
     bar = _bars.resolve(None if progress else False, description=f"{scene.name}: {rung.name}")
     try:
-        solutions[name] = _ladder.run(choice, template.t_span, options, integration["phase"],
-                                      progress=bar if bar is not None else False)
+        solutions[name] = _ladder.run_estimate(choice, _ladder.run(choice, template.t_span, options,
+                                                                    integration["phase"],
+                                                                    progress=bar if bar is not None else False))
     finally:
         _bars.close(bar)
     scene.runs = [Run(name, rung.model, rung.y0, template.t_span, options)]
     scene.model_choice, scene.model_reason = rung.name, "the model ladder: " + choice.summary
+    measured = solutions[name].error_estimate
+    if math.isfinite(measured):
+        scene.model_reason += f"; the run's measured error {measured:.3g}"
     return choice
 
 

@@ -84,8 +84,8 @@ class Solution:
 
         Examples
         --------
-        >>> sol.notes
-        []
+        >>> sol.notes[0].startswith("error estimate")
+        True
         """,
         "model": """The model that was solved (None when unknown): it evaluates ``sol(t, name)``.
 
@@ -118,6 +118,15 @@ class Solution:
         >>> sol.rung is None
         True
         """,
+        "estimate": """The measured global error (:class:`gyrostat.accuracy.Estimate`: value, per
+        quantity, basis, the accuracy asked and whether it is met); None when not measured.
+
+        Examples
+        --------
+        >>> sol.estimate.met is None  # no accuracy was asked
+        True
+        """,
+        "_doubts": "doubts recorded after the run (:meth:`doubt`)",
     }
 
     def __init__(self, result: _core.Result, model=None):
@@ -128,6 +137,8 @@ class Solution:
         self.pieces: tuple[tuple[str, Solution], ...] = ()
         self.switches: list[tuple] = []
         self.rung: np.ndarray | None = None
+        self.estimate = None
+        self._doubts: list[str] = []
 
     @classmethod
     def join(cls, model, pieces: list[tuple[str, "Solution"]], parts: list[tuple], switches: list[tuple],
@@ -629,25 +640,70 @@ class Solution:
     @property
     def accuracy_warnings(self) -> tuple[str, ...]:
         """What the run doubts about its own answer (each one an :class:`AccuracyWarning` when
-        :func:`gyrostat.solve` returned, and in ``notes``).
+        :func:`gyrostat.solve` returned, and in ``notes``): the accuracy asked not met, with the
+        measured error and what would meet it, and the integrators' own doubts.
 
         Examples
         --------
         >>> sol.accuracy_warnings
         ()
         """
-        return tuple(self._result.warnings)
+        return tuple(self._result.warnings) + tuple(self._doubts)
 
-    @property
-    def error_estimate(self) -> float:
-        """The run's own global error estimate relative to max|y_i| (method ``splitting``); NaN: none.
+    def doubt(self, text: str) -> None:
+        """Records a doubt about the answer (in :attr:`accuracy_warnings` and ``notes``).
+
+        Parameters
+        ----------
+        text : str
+            The doubt, naming the measured values and what would remove it.
 
         Examples
         --------
-        >>> sol.error_estimate
-        nan
+        >>> copy = gyrostat.Solution(sol._result, model)
+        >>> copy.doubt("an example")
+        >>> copy.accuracy_warnings
+        ('an example',)
         """
-        return self._result.error_estimate
+        self._doubts.append(text)
+        self.notes.append(text)
+
+    @property
+    def error_estimate(self) -> float:
+        """The measured global error of the answer: the largest relative error over the compared
+        quantities (:attr:`error_estimates`; how it was measured: :attr:`error_basis`). NaN: not
+        measured (``error_estimate=False``, a failed run), or the splitting's own estimate when
+        only that was made.
+
+        Examples
+        --------
+        >>> bool(0 < sol.error_estimate < 1e-6)
+        True
+        """
+        return self.estimate.value if self.estimate is not None else self._result.error_estimate
+
+    @property
+    def error_estimates(self) -> dict[str, float]:
+        """The measured global error of each compared quantity (:func:`gyrostat.accuracy.quantities`),
+        relative to its largest size.
+
+        Examples
+        --------
+        >>> sorted(sol.error_estimates)
+        ['angular_momentum_norm', 'kinetic_energy', 'omega', 'quaternion']
+        """
+        return dict(self.estimate.per_quantity) if self.estimate is not None else {}
+
+    @property
+    def error_basis(self) -> str:
+        """How :attr:`error_estimate` was measured, in words ("" when it was not).
+
+        Examples
+        --------
+        >>> "tighter" in sol.error_basis or "rtol and atol" in sol.error_basis
+        True
+        """
+        return self.estimate.basis if self.estimate is not None else ""
 
     @property
     def method(self) -> str:

@@ -9,6 +9,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from gyrostat import _core
+from gyrostat import accuracy as _accuracy
 from gyrostat import progress as _bars
 from gyrostat.modelbase import ModelBase, flag, floats, shown
 from gyrostat.solution import AccuracyWarning, Solution
@@ -186,7 +187,7 @@ def _span(t_span) -> tuple[float, float]:
 def _checked(solution: Solution, model, check_validity: bool) -> Solution:
     if solution.status == "interrupted":
         warnings.warn(f"interrupted: {solution.message}", RuntimeWarning, stacklevel=3)
-    for doubt in solution._result.warnings:
+    for doubt in solution.accuracy_warnings:
         warnings.warn(doubt, AccuracyWarning, stacklevel=3)
     if check_validity and type(model).check is not _BASE_CHECK and len(solution):
         from gyrostat.assumptions import ValidityWarning
@@ -198,12 +199,67 @@ def _checked(solution: Solution, model, check_validity: bool) -> Solution:
     return solution
 
 
+def _estimate_mode(error_estimate) -> str:
+    """``error_estimate`` as "window", "full" or "" (off); ValueError naming another value."""
+    if error_estimate is True or error_estimate == "window":
+        return "window"
+    if error_estimate is False:
+        return ""
+    if error_estimate == "full":
+        return "full"
+    raise ValueError(f"error_estimate = {error_estimate!r} must be True, False or 'full'")
+
+
+def _accuracy_asked(accuracy) -> float | None:
+    """The accuracy asked as a float, or a ValueError naming a value that is not in (0, 1)."""
+    if accuracy is None:
+        return None
+    if isinstance(accuracy, bool) or not isinstance(accuracy, (int, float, np.integer, np.floating)) \
+            or not 0 < accuracy < 1:
+        raise ValueError(f"accuracy = {accuracy!r} must be a number in (0, 1): the largest relative error accepted")
+    return float(accuracy)
+
+
+def _measured(results: list, cores: list, run, opts, t0: float, t1: float, mode: str, accuracy: float | None,
+              explicit: bool, size: float) -> tuple[list, list]:
+    """The answers and their estimates: tolerances chosen for ``accuracy`` (:func:`gyrostat.accuracy.meet`)
+    unless they were given (``explicit``), or the given run measured (``mode``)."""
+    if accuracy is not None and not explicit:
+        return _accuracy.meet(run, cores, opts, t0, t1, accuracy, size)
+    if results is None:
+        results = run(opts, t1, list(range(len(cores))))
+    if not mode and accuracy is None:
+        return results, [None] * len(results)
+    estimates = _accuracy.estimate_runs(run, cores, opts, t0, t1, results, full=mode == "full" or not mode)
+    for estimate in estimates:
+        if estimate is not None and accuracy is not None:
+            estimate.accuracy = accuracy
+            if estimate.value > accuracy:
+                estimate.warning = (f"the measured error {estimate.value:.3g} exceeds the accuracy {accuracy:g} at the "
+                                    f"tolerances given (rtol {opts.rtol:g}, atol {opts.atol:g}): leave rtol and atol "
+                                    f"out to have them chosen, or tighten rtol about "
+                                    f"{opts.rtol * _accuracy.MARGIN * accuracy / estimate.value:.2g}")
+    return results, estimates
+
+
+def _attach(solution: Solution, estimate) -> Solution:
+    """The estimate on the solution: its value, its basis among the notes, its warning among the doubts."""
+    if estimate is None:
+        return solution
+    solution.estimate = estimate
+    solution.notes.append(f"error estimate {estimate.value:.3g}: {estimate.basis}")
+    if estimate.warning:
+        solution.doubt(estimate.warning)
+    return solution
+
+
 def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = None, atol: float | None = None,
           t_eval=None, n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
           first_step: float | None = None, max_step: float | None = None, step: float | None = None,
           splitting_order: int | None = None, options: Options | None = None,
           events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
-          check_validity: bool = True) -> Solution:
+          check_validity: bool = True, accuracy: float | None = None,
+          error_estimate: bool | str = True, compare: Callable | None = None) -> Solution:
     """Solves any model from the initial state ``y0`` over ``t_span = (t0, t1)``.
 
     Parameters
@@ -271,6 +327,24 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         None (default): a progress bar on stderr when it is a terminal; ``True``: a bar;
         ``False``: none; or a callable of the fraction done, called from the run at most every
         0.1 s (so a short run never shows a bar). Progress never changes the trajectory.
+    accuracy : float, optional
+        The largest relative error accepted on the quantities the run reports
+        (:func:`gyrostat.accuracy.quantities`: ω, the quaternion, the slow variables, |G|, T, ...)
+        over the whole span. rtol and atol (or the splitting's step) are then chosen to meet it
+        (a probe, then the run and a companion at 4× tighter tolerances over the whole span,
+        repeated tighter when the measured error exceeds it: ~2.5× the cost of the cheapest run
+        that meets it); given with rtol or atol, those win and the run is only measured against
+        it. A run that cannot meet it warns (:class:`gyrostat.AccuracyWarning`) with the
+        measured error and what would meet it.
+    error_estimate : bool or "full", optional
+        Measure the answer's global error (default True): ``solution.error_estimate``,
+        ``error_estimates`` (per quantity) and ``error_basis``. True: from a companion run at 4×
+        tighter tolerances over the first 20 % of the span, grown to its end (~0.45× the run's
+        cost); ``"full"``: the companion covers the whole span; False: not measured.
+    compare : callable, optional
+        ``compare(solution) -> (n, m) array``: the quantities ``accuracy`` and the estimate apply
+        to, instead of :func:`gyrostat.accuracy.quantities` (one quantity, ``"compared"``, relative
+        to its largest row norm): e.g. |G| and T alone when ω's phase does not matter.
     check_validity : bool, optional
         For an averaged model, check its assumptions along the solution; broken ones are warned
         about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.
@@ -320,13 +394,30 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         _warn_loose_atol(atol, y0)
     check_validity = check_validity if check_validity is True else flag(check_validity, "check_validity")
     report = _bars.default() if progress is None else _bars.resolve(progress)
+    mode = _estimate_mode(error_estimate) if error_estimate is not True else "window"
+    asked = _accuracy_asked(accuracy) if accuracy is not None else None
     try:
-        result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates
+        if asked is None:
+            result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates
+            estimate = None
+            if mode and t1 != t0 and result.success:
+                estimate = _measured([result], [_accuracy.Compared(core, compare, model) if compare else core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+                                     opts, t0, t1, mode, None, True, 0.0)[1][0]
+        else:
+            explicit = rtol is not None or atol is not None or step is not None or options is not None
+            size = float(np.max(np.abs(y0))) if y0.size else 1.0
+            measured = [_accuracy.Compared(core, compare, model) if compare else core]
+            results, estimates = _measured(None, measured, lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+                                           opts, t0, t1, mode, asked, explicit, size)
+            result, estimate = results[0], estimates[0]
     finally:
         if report is not None:
             _bars.close(report)
     solution = Solution(result, model)
-    if result.success and (not check_validity or type(model).check is _BASE_CHECK) and not result.warnings:
+    if estimate is not None:
+        _attach(solution, estimate)
+    if result.success and (not check_validity or type(model).check is _BASE_CHECK) and not result.warnings \
+            and not solution._doubts:
         return solution
     return _checked(solution, model, check_validity)
 
@@ -337,7 +428,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
                    first_step: float | None = None, max_step: float | None = None, step: float | None = None,
                    splitting_order: int | None = None, options: Options | None = None,
                    events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
-                   check_validity: bool = True, batch: bool = True) -> list[Solution]:
+                   check_validity: bool = True, batch: bool = True, accuracy: float | None = None,
+                   error_estimate: bool | str = True) -> list[Solution]:
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
 
     ``models`` is one model for every member or a sequence of N (different parameters, or
@@ -410,6 +502,11 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         Check an averaged model's assumptions along each member.
     batch : bool, optional
         Run the members a SIMD batch covers :data:`gyrostat.simd_lanes` at a time (default True).
+    accuracy : float, optional
+        As in :func:`solve`: one rtol for every member, the tightest any member needs (members
+        whose measured error still exceeds it run again, tighter); each member's own estimate.
+    error_estimate : bool or "full", optional
+        As in :func:`solve`: each member's measured error (``error_estimate``), default True.
 
     Returns
     -------
@@ -430,33 +527,36 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     [0.3679, 0.3679, 0.3679]
     """
     check_validity = flag(check_validity, "check_validity")
-    models, results = ensemble_results(models, y0s, t_span, threads=threads, method=method, rtol=rtol, atol=atol,
-                                        t_eval=t_eval, n_out=n_out, every_step=every_step, max_steps=max_steps,
-                                        first_step=first_step, max_step=max_step, step=step,
-                                        splitting_order=splitting_order, options=options, events=events,
-                                        dense_output=dense_output, progress=progress, batch=batch)
-    solutions = [Solution(r, models[0] if len(models) == 1 else models[i]) for i, r in enumerate(results)]
-    return [_checked(s, s.model, check_validity) if s.success or s._result.warnings else s for s in solutions]
+    models, results, estimates = ensemble_results(
+        models, y0s, t_span, threads=threads, method=method, rtol=rtol, atol=atol, t_eval=t_eval, n_out=n_out,
+        every_step=every_step, max_steps=max_steps, first_step=first_step, max_step=max_step, step=step,
+        splitting_order=splitting_order, options=options, events=events, dense_output=dense_output,
+        progress=progress, batch=batch, accuracy=accuracy, error_estimate=error_estimate)
+    solutions = [_attach(Solution(r, models[0] if len(models) == 1 else models[i]), e)
+                 for i, (r, e) in enumerate(zip(results, estimates))]
+    return [_checked(s, s.model, check_validity) if s.success or s.accuracy_warnings else s for s in solutions]
 
 
 def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
                       n_out=None, every_step=None, max_steps=None, first_step=None, max_step=None, step=None,
                       splitting_order=None, options=None, events=None, dense_output=False, progress=None,
-                      batch=True) -> tuple[list, list]:
+                      batch=True, accuracy=None, error_estimate=False) -> tuple[list, list, list]:
     """:func:`solve_ensemble` up to the engine's results, without a :class:`Solution` per member:
     for callers that summarise many members at once (:func:`gyrostat.sweeps.solve_chunk`).
 
     Parameters
     ----------
     models, y0s, t_span, threads, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, \
-step, splitting_order, options, events, dense_output, progress, batch
-        As in :func:`solve_ensemble` (which checks them the same way).
+step, splitting_order, options, events, dense_output, progress, batch, accuracy, error_estimate
+        As in :func:`solve_ensemble` (which checks them the same way); ``error_estimate`` defaults
+        to False here.
 
     Returns
     -------
-    (list, list)
-        The models (one for every member, or one per member) and the engine's ``Result`` of
-        every member, in index order (``Solution(result, model)`` makes a member's Solution).
+    (list, list, list)
+        The models (one for every member, or one per member), the engine's ``Result`` of
+        every member, in index order (``Solution(result, model)`` makes a member's Solution),
+        and each member's :class:`gyrostat.accuracy.Estimate` (None: not measured).
 
     Examples
     --------
@@ -464,7 +564,7 @@ step, splitting_order, options, events, dense_output, progress, batch
     >>> import gyrostat
     >>> from gyrostat.solve import ensemble_results
     >>> model = gyrostat.Model(gyrostat.Body([2.0, 2.0, 1.0]), [gyrostat.LinearDamping(diagonal=[0.1, 0.1, 0.1])])
-    >>> _, results = ensemble_results(model, np.array([[0.1, 0.0, 1.0], [0.1, 0.0, 2.0]]), (0.0, 10.0), n_out=11)
+    >>> _, results, _ = ensemble_results(model, np.array([[0.1, 0.0, 1.0], [0.1, 0.0, 2.0]]), (0.0, 10.0), n_out=11)
     >>> [r.status for r in results], [round(float(r.y[-1, 2] / r.y[0, 2]), 4) for r in results]
     (['success', 'success'], [0.3679, 0.3679])
     """
@@ -503,12 +603,27 @@ step, splitting_order, options, events, dense_output, progress, batch
     batch = flag(batch, "batch")
     outputs = len(opts.t_eval) or opts.n_out
     check_output_memory(cores, count, outputs, f"{count} members x {outputs} output times")
+    mode = _estimate_mode(error_estimate)
+    asked = _accuracy_asked(accuracy)
     report = _bars.resolve(progress, total=count, unit="member")
+
+    def run(o, t_end, members):  # the members' runs (all of them: the answer's, with the progress)
+        if len(members) == count:
+            return _core.solve_ensemble(cores, y0s, t0, t_end, o, int(threads), report, batch=batch)
+        starts = y0s[members] if isinstance(y0s, np.ndarray) else [y0s[m] for m in members]
+        chosen = cores if len(cores) == 1 else [cores[m] for m in members]
+        return _core.solve_ensemble(chosen, starts, t0, t_end, o, int(threads), None, batch=batch)
+
     try:
-        results = _core.solve_ensemble(cores, y0s, t0, t1, opts, int(threads), report, batch=batch)
+        if not mode and asked is None:
+            return models, run(opts, t1, list(range(count))), [None] * count
+        explicit = rtol is not None or atol is not None or step is not None or options is not None
+        size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
+        results, estimates = _measured(None, cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
+                                       asked, explicit, size)
     finally:
         _bars.close(report)
-    return models, results
+    return models, results, estimates
 
 
 RUN_MEMORY_LIMIT = _core.max_output_bytes

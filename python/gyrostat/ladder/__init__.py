@@ -35,7 +35,7 @@ from gyrostat.ladder.choosing import CACHE_SIZE, choose, scene_key
 from gyrostat.ladder.probe import PROBE_SAMPLES, probe
 from gyrostat.ladder.rungs import (ACCURACY, MAX_SWITCHES, PROBE_FRACTION, PROBE_PERIODS, SAFETY, Choice, Estimate,
                                    Rung, Watch, rates)
-from gyrostat.ladder.switching import measure, run
+from gyrostat.ladder.switching import measure, run, run_estimate
 
 __all__ = ["ACCURACY", "PROBE_PERIODS", "PROBE_FRACTION", "SAFETY", "MAX_SWITCHES", "PROBE_SAMPLES", "CACHE_SIZE",
-           "Watch", "Rung", "Estimate", "Choice", "rates", "probe", "scene_key", "choose", "run", "measure"]
+           "Watch", "Rung", "Estimate", "Choice", "rates", "probe", "scene_key", "choose", "run", "run_estimate", "measure"]

@@ -28,6 +28,8 @@ class _PlainPickler(pickle.Pickler):
     def reducer_override(self, value):
         if isinstance(value, (np.ndarray, np.generic)) and value.dtype != object:
             return _plain_array, (value.dtype.str, np.shape(value), value.tobytes())
+        if isinstance(value, float):  # a float's subclass (gyrostat.kind.Unstated): its type and value
+            return type(value), (float(value),)
         if value is _plain_array:
             return NotImplemented  # (by its name)
         raise TypeError(type(value).__name__)
@@ -129,8 +131,10 @@ def _fit_watches(rung: Rung, estimate: Estimate, accuracy: float) -> tuple[Rung,
     rung, and up to 2c·x from lifting at a fixed phase instead of the true one (the slow
     variables' oscillation c·x·f(φ) differs by at most twice its amplitude). The run therefore
     leaves the rung where SAFETY·3c·x reaches the accuracy: limit = min(the assumption's own
-    limit, accuracy / (3 SAFETY c)), and comes back below limit/2; the estimate covers it,
-    SAFETY·3c·limit. ("" or why the rung cannot hold the accuracy even at the start.)"""
+    limit, accuracy / (3 SAFETY c)), and comes back below limit/2. The estimate keeps what the probe
+    measured; the run's (:func:`gyrostat.ladder.switching.run_estimate`) adds SAFETY·c·x at the
+    largest x the run met (3× where it switched). ("" or why the rung cannot hold the accuracy even
+    at the start.)"""
     watches = list(rung.watches)
     scaling = [i for i, w in enumerate(watches) if w.scales_error]
     if not scaling or not math.isfinite(estimate.measured):
@@ -147,10 +151,11 @@ def _fit_watches(rung: Rung, estimate: Estimate, accuracy: float) -> tuple[Rung,
         return rung, (f"the measured error constant c = {c:.3g} of the O({watch.output}) error needs {watch.output} <= "
                       f"{limit:.3g} for the accuracy {accuracy:g}; it is {start:.3g} at the start")
     watches[i] = dataclasses.replace(watch, limit=limit, back=0.5 * limit)
-    estimate.value = max(estimate.value, 3.0 * SAFETY * c * limit)
+    estimate.watched, estimate.constant = watch.output, c
     estimate.basis += (f"; error = c {watch.output} with c = {c:.3g} (measured): the run switches up where "
-                       f"{watch.output} reaches {limit:.3g} and back below {0.5 * limit:.3g}, an error of at most "
-                       f"{SAFETY:g} x 3c x {limit:.3g} = {3.0 * SAFETY * c * limit:.3g} there")
+                       f"{watch.output} reaches {limit:.3g} and back below {0.5 * limit:.3g} (an error of at most "
+                       f"{SAFETY:g} x 3c x {limit:.3g} = {3.0 * SAFETY * c * limit:.3g} there); the run's own "
+                       f"estimate takes the largest {watch.output} it met")
     return dataclasses.replace(rung, watches=tuple(watches)), ""
 
 

@@ -99,12 +99,18 @@ class Estimate:
     basis: str
     fast: Estimate | None = None
     """The error of ω(t) at the phase the rung carries (:attr:`Rung.fast_compare`), when it carries one."""
+    watched: str = ""
+    """The output whose size scales the rung's error (its :class:`Watch` with ``scales_error``)."""
+    constant: float = math.nan
+    """The measured constant c of the error c·(watched output)."""
 
     def as_dict(self) -> dict:
         entry = {"value": self.value, "measured_in_probe": self.measured, "growth_per_unit_time": self.growth,
                  "probe": list(self.probe), "probe_seconds": self.seconds, "basis": self.basis}
         if self.fast is not None:
             entry["fast_motion"] = self.fast.as_dict()
+        if self.watched:
+            entry["error_constant"] = {"output": self.watched, "c": self.constant}
         return entry
 
 

@@ -12,11 +12,15 @@ from collections.abc import Callable
 import numpy as np
 
 from gyrostat import _core
+from gyrostat.accuracy import Estimate as RunEstimate
 from gyrostat.events import Event, labels, terminal_count, to_core
 from gyrostat.ladder.choosing import CACHE_SIZE
 from gyrostat.ladder.probe import _DEFAULT, _segment
 from gyrostat.ladder.rungs import MAX_SWITCHES, Choice, Rung, Watch
 from gyrostat.solution import Solution
+
+INTEGRATION_SHARE = 0.1
+"""A lower rung's integration is asked for this share of the accuracy; the model's error takes the rest."""
 from gyrostat.solve import make_options, solve
 
 
@@ -197,18 +201,21 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
     rung, top = choice.chosen, choice.rungs[-1]
     t0, t1 = span
     kept = {k: v for k, v in options.items() if k not in ("n_out", "t_eval", "events")}
+    if rung is not top and kept.get("accuracy") is not None:
+        kept["accuracy"] = INTEGRATION_SHARE * kept["accuracy"]  # the rest is the model's own error
     n_out = int(options.get("n_out", _DEFAULT.n_out))
     extra_events = list(options.get("events", []))
     if rung is top or not rung.watches:  # one run, asked for as the scene asks for it (n_out: the same times)
         timing = {"t_eval": options["t_eval"]} if options.get("t_eval") is not None else {"n_out": n_out}
         names = set(rung.model.state_names) | set(rung.model.output_names)
         missing = [e for e in extra_events if isinstance(e, Event) and e.quantity not in names]
-        solution = solve(rung.model, rung.y0, span, **kept, **timing,
+        solution = solve(rung.model, rung.y0, span, **kept, **timing, compare=rung.compare,
                          events=[e for e in extra_events if not any(e is m for m in missing)] or None,
                          check_validity=False, progress=progress if progress is not None else False)
         solution.notes += [f"event {e.label!r}: {e.quantity!r} is not a quantity of the {rung.name} model (the "
                            f"ladder's choice): not located" for e in missing]
         return solution
+    kept.pop("accuracy", None)  # a switching run keeps the rungs' tolerances; its estimate is the model's
     grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     # each rung's options made once per run, its events included (each segment sets its output times)
     opts = {False: make_options(**kept), True: make_options(**kept)}
@@ -252,6 +259,32 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
     return _join(rung, segments, switches, wanted)
 
 
+def run_estimate(choice: Choice, solution: Solution) -> Solution:
+    """The chosen rung's run given its whole error: a lower rung's model error (the probe's measured
+    estimate, extrapolated to the horizon) plus its integration's own estimate; the top's is its
+    integration's. (A watch fitted to the accuracy bounds the error where the run switches up,
+    SAFETY·3c·x at the limit: the basis states that bound, which is not a measurement; measured
+    against the full model, the error at the switches was far below it.)"""
+    rung, top, estimate = choice.chosen, choice.rungs[-1], choice.estimate
+    if rung is top or estimate is None:
+        return solution
+    model = estimate.value
+    words = f"the model's error {estimate.value:.3g} (the ladder's probe: {estimate.basis})"
+    own = solution.estimate
+    integration = own.value if own is not None and math.isfinite(own.value) else 0.0
+    if own is not None:
+        words += f"; plus the integration's {integration:.3g} ({own.basis})"
+    per = {name: model + value for name, value in (own.per_quantity if own is not None else {}).items()}
+    combined = RunEstimate(model + integration, per or {"compared": model}, words, choice.accuracy)
+    if combined.value > choice.accuracy:
+        combined.warning = (f"the measured error {combined.value:.3g} of the {rung.name} model exceeds the accuracy "
+                            f"{choice.accuracy:g}: set the scene's model to the top rung ({top.name}) to meet it")
+        solution.doubt(combined.warning)
+    solution.estimate = combined
+    solution.notes.append(f"error estimate {combined.value:.3g}: {words}")
+    return solution
+
+
 # ------------------------------------------------------------------------------------ the chart
 def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[dict]:
     """Every rung that can answer, run over the whole span (switching where it would), timed, and
@@ -269,6 +302,7 @@ def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[di
         solution = run(Choice(choice.rungs, rung, choice.accuracy), span, options)
         runs[rung.name] = (time.perf_counter() - started, solution)
     seconds_top, reference = runs[top.name]
+    own = reference.error_estimate  # the top's own error, measured by its companion run
     expected = top.compare(reference)
     scale = float(np.max(np.linalg.norm(expected, axis=1))) or 1.0
     rows = []
@@ -278,9 +312,13 @@ def measure(choice: Choice, span: tuple[float, float], options: dict) -> list[di
         seconds, solution = runs[rung.name]
         n = min(len(solution), len(reference))
         compare = rung.compare if rung.compare is not None else top.compare
-        error = 0.0 if rung is top else float(np.max(np.linalg.norm(compare(solution)[:n] - expected[:n], axis=1))) / scale
-        estimate = next((e.get("estimate") for e in choice.entries if e["rung"] == rung.name), None)
+        if rung is top:
+            error = float(own) if math.isfinite(own) else 0.0
+            estimate = {"value": error} if math.isfinite(own) else None
+        else:
+            error = float(np.max(np.linalg.norm(compare(solution)[:n] - expected[:n], axis=1))) / scale
+            estimate = next((e.get("estimate") for e in choice.entries if e["rung"] == rung.name), None)
         rows.append({"rung": rung.name, "seconds": seconds, "error": error, "chosen": rung is choice.chosen,
                      "estimate": estimate["value"] if estimate else None, "steps": int(solution.stats["steps"]),
-                     "switches": len(solution.switches), "reference": rung is top})
+                     "switches": len(solution.switches), "reference": rung is top and not math.isfinite(own)})
     return rows + skipped

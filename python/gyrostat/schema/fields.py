@@ -297,7 +297,9 @@ class Table(_Type):
         out: dict = {}
         for key, spec in self.fields.items():
             where = path / key
-            if key in value:
+            if key in value and value[key] is None and spec.default is None:  # an optional value left unset
+                out[key] = None
+            elif key in value:
                 out[key] = spec.validate(value[key], where)
             elif spec.required:
                 if isinstance(spec.type, ArrayOf):

@@ -31,6 +31,7 @@ def _blank(plan: Plan, count: int, trajectories: bool, extrema: tuple[str, ...])
         "broken_assumptions": np.zeros(count, dtype=np.int64),
         "first_broken_assumption": np.full(count, "", dtype=object),
         "accuracy_warning": np.full(count, "", dtype=object),
+        "error_estimate": np.full(count, np.nan),
     }
     for name in STATS:
         arrays[name] = np.zeros(count, dtype=np.int64)
@@ -225,17 +226,24 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
             starts = np.stack(starts)  # one (members, dim) array: converted once, not member by member
         with _interruptible():
             try:
-                _, results = ensemble_results(models, starts, span, threads=threads,
-                                               events=list(events) or None,
-                                               progress=report if progress is not None else False, **dict(options))
+                _, results, estimates = ensemble_results(models, starts, span, threads=threads,
+                                                          events=list(events) or None, error_estimate=True,
+                                                          progress=report if progress is not None else False,
+                                                          **dict(options))
             except Exception:  # a member's run raised (a user's torque): each member solved alone
                 members, results = _one_by_one(arrays, members, span, events, options, threads,
                                                report if progress is not None else None)
+                estimates = [None] * len(results)
                 models = [run.model for _, run in members]
         rows = [j for j, _ in members]
         if rows:
             arrays["accuracy_warning"][rows] = _record_results(arrays, rows, results, models, plan, trajectories,
                                                                extrema)
+            for j, estimate in zip(rows, estimates):
+                if estimate is not None:
+                    arrays["error_estimate"][j] = estimate.value
+                    if estimate.warning and not arrays["accuracy_warning"][j]:
+                        arrays["accuracy_warning"][j] = estimate.warning
         checked = {kind: check_validity and kind.check is not ModelBase.check for kind in {type(m) for m in models}}
         for (j, run), result in zip(members, results):
             if checked[type(run.model)] and len(result.t):
@@ -267,7 +275,7 @@ def _one_by_one(arrays: dict, members: list, span, events, options, threads: int
     solved, results = [], []
     for k, (j, run) in enumerate(members):
         try:
-            _, (result,) = ensemble_results([run.model], [run.y0], span, threads=threads,
+            _, (result,), _ = ensemble_results([run.model], [run.y0], span, threads=threads,
                                             events=list(events) or None, progress=False, **dict(options))
         except Exception as error:  # this member's own: recorded, the others go on
             arrays["status"][j], arrays["message"][j] = "failed", _said(error)

@@ -76,7 +76,7 @@ class Plan:
             from gyrostat.scene import Scene
 
             template = scene.runs[0]
-            choice = ladder.choose(scene.ladder, template.t_span, template.options, integration["accuracy"])
+            choice = ladder.choose(scene.ladder, template.t_span, template.options, integration.get("accuracy") or ladder.ACCURACY)
             integration["model"] = choice.chosen.name
             scene = Scene.from_dict(copy.deepcopy(doc), scene.name)
             self.model_choice, self.model_reason = choice.chosen.name, "the model ladder: " + choice.summary

@@ -109,8 +109,11 @@ def _attributes(plan: Plan, name: str) -> dict:
              "broken_assumptions": {"description": "how many of the model's assumptions (an averaged model's "
                                                    "validity checks) fail along the member's run"},
              "first_broken_assumption": {"description": "the first of them, in words (empty: all hold)"},
-             "accuracy_warning": {"description": "the first doubt the run had about its own answer (the splitting's "
-                                                 "estimated error above rtol, BDF over oscillations); empty: none"}}
+             "accuracy_warning": {"description": "the first doubt the run had about its own answer (the accuracy "
+                                                 "asked not met, the splitting's estimated error above rtol, BDF over "
+                                                 "oscillations); empty: none"},
+             "error_estimate": {"units": "1", "description": "the member's measured global error, relative "
+                                                             "(gyrostat.accuracy; NaN: not measured)"}}
     if name in fixed:
         return fixed[name]
     if name in STATS:
