@@ -65,8 +65,11 @@ SAMPLES = 201
 """Window and probe compare their runs at this many evenly spaced times."""
 WINDOW_TIMES = 16
 """The window compares the run's own output times when it holds at least this many of them."""
-MARGIN = 0.5
+MARGIN = 0.6
 """rtol is chosen for this fraction of the accuracy asked."""
+PROBE_LEAST_GROWTH = 0.5
+"""The probe grows its error to the horizon at least as t^0.5 (a damped error may level off: the
+whole-span check catches a probe that was too hopeful, at the cost of one more run)."""
 ROUNDS = 3
 """The most runs tighter than the first that :func:`meet` makes before it warns."""
 ATOL_RATIO = 1e-3
@@ -244,16 +247,17 @@ Runner = Callable[[object, float, list], list]
 """run(options, t_end, members) -> the engine's Result of each member (in that order)."""
 
 
-def _grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float) -> tuple[float, float]:
+def _grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float,
+          least: float = 1.0) -> tuple[float, float]:
     """The running maximum of a difference over a window grown to ``horizon`` as t^k, k fitted over
-    the window's second half and kept within [1, 2]; (value, k). (Distances from t0: a backward
+    the window's second half and kept within [least, 2]; (value, k). (Distances from t0: a backward
     run grows the same way.)"""
     last = float(running[-1])
     end, middle, far = abs(times[-1] - t0), abs(times[len(times) // 2] - t0), abs(horizon - t0)
     if far <= end or last == 0.0:
         return last, 1.0
     half = float(running[len(running) // 2])
-    k = 1.0 if half <= 0 else min(2.0, max(1.0, math.log(last / half) / math.log(end / middle)))
+    k = 1.0 if half <= 0 else min(2.0, max(least, math.log(last / half) / math.log(end / middle)))
     return last * (far / end) ** k, k
 
 
@@ -408,7 +412,7 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
             continue
         curves = [np.maximum.accumulate(np.max(list(differences(reference, r, core).values()), axis=0))
                   for r in (loose, middle)]
-        at_horizon, _ = _grow(curves[0], grid, t0, t1)
+        at_horizon, _ = _grow(curves[0], grid, t0, t1, least=PROBE_LEAST_GROWTH)
         if not at_horizon > 0:
             continue
         alpha = 1.0 if not curves[1][-1] > 0 else min(2.0, max(0.7, math.log(curves[0][-1] / curves[1][-1]) /
@@ -427,14 +431,17 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
     count = len(cores)
     atol_of = lambda r: r * ATOL_RATIO * (size if size > 0 else 1.0)  # noqa: E731
     first = min(LOOSEST_RTOL, max(TIGHTEST_RTOL, 0.1 * accuracy))
-    rtol, alphas = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of) if t1 != t0 else (first, {})
+    rtol, _ = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of) if t1 != t0 else (first, {})
     swappable = not opts.events and not opts.dense_output and not opts.every_step
     made: list = [None] * count
     estimates: list = [None] * count
-    members, previous = list(range(count)), {}
+    members, previous, carried = list(range(count)), {}, {}
     for round_ in range(ROUNDS + 1):
         tried = with_tolerances(opts, rtol, atol_of(rtol))
-        answers = dict(zip(members, run(tried, t1, members)))
+        if carried:  # the last round's companions, run at this rtol: not run again
+            answers, carried = carried, {}
+        else:
+            answers = dict(zip(members, run(tried, t1, members)))
         if any(a.status == "interrupted" for a in answers.values()):  # Ctrl-C: what was computed, no more runs
             for i, answer in answers.items():
                 made[i] = answer
@@ -455,8 +462,7 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
             if estimate is None or not math.isfinite(estimate.value) or estimate.met:
                 continue
             value = estimate.value
-            taken = _companion_answer(estimate, companions.get(i), answer, tried, alphas.get(i, 1.0), accuracy) \
-                if swappable else None
+            taken = _companion_answer(estimate, companions.get(i), answer, tried, accuracy) if swappable else None
             if taken is not None:
                 made[i], estimates[i] = taken
                 continue
@@ -476,6 +482,13 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
             tighter_rtol.append(max(TIGHTEST_RTOL, rtol * MARGIN * accuracy / value))
         if not again:
             break
+        rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
+        reuse = swappable and rho >= 2.0 and min(tighter_rtol) >= tried.rtol / rho and \
+            all(i in companions and companions[i].success for i in again)
+        if reuse and round_ < ROUNDS:  # the companion is tight enough by the measured ratio: it is the next answer
+            members, rtol = again, tried.rtol / rho
+            carried = {i: companions[i] for i in again}
+            continue
         if round_ == ROUNDS:
             for i in again:
                 estimates[i].warning = (f"the measured error {estimates[i].value:.3g} exceeds the accuracy "
@@ -492,24 +505,24 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
     return made, estimates
 
 
-def _companion_answer(estimate: Estimate, companion, answer, tried, alpha: float, accuracy: float):
-    """(The companion's result, its estimate) when the companion run (ρ times tighter, its output
-    times the answer's) meets the accuracy by its own error, the difference over ρ^α − 1 with the
-    probe's α; None otherwise (its times differ, it failed, or it misses too)."""
+def _companion_answer(estimate: Estimate, companion, answer, tried, accuracy: float):
+    """(The companion's result, its estimate) when the companion run (ρ ≥ 2 times tighter, its
+    output times the answer's) meets the accuracy by a bound of its own error: the difference of
+    the two runs (the companion's error is the difference over ρ^α − 1, at most the difference
+    wherever α ≥ log 2 / log ρ; the probe's α proved too uncertain to divide by). None otherwise."""
     if companion is None or not companion.success or len(companion.t) != len(answer.t):
         return None
     rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
     if rho < 2.0:
         return None
-    gain = rho / (rho - 1.0)
-    shrink = 1.0 / (gain * (rho ** alpha - 1.0))
+    shrink = (rho - 1.0) / rho  # back from the answer's estimate (difference x rho/(rho-1)) to the difference
     value = estimate.value * shrink
     if value > accuracy:
         return None
     per = {name: v * shrink for name, v in estimate.per_quantity.items()}
     return companion, Estimate(value, per, f"the companion run (rtol {tried.rtol / rho:.3g}) taken as the answer: "
-                                             f"its error is the difference over rho^alpha - 1 = {rho ** alpha - 1:.3g} "
-                                             f"(alpha = {alpha:.2g} measured by the probe); {estimate.basis}", accuracy)
+                                             f"its error is at most the difference of the two runs; "
+                                             f"{estimate.basis}", accuracy)
 
 
 class _Empty:
