@@ -85,6 +85,7 @@ def solve_scene(scene: Scene, progress: bool = True) -> tuple[dict[str, Solution
     statuses = {s.status for s in solutions.values()}
     report["status"] = ("success" if statuses == {"success"} else
                         "interrupted" if "interrupted" in statuses else "failed")
+    report["error_estimates"] = {name: s.error_estimate for name, s in solutions.items()}
     report["agreement"] = agreement(report)
     report["verdict"] = verdict(report)
     return solutions, report, derived
@@ -114,7 +115,8 @@ def _marker(text: str, expected: list[dict]) -> dict | None:
 
 def agreement(report: dict) -> str:
     """What the scene measured against a reference, in one line: the kind's analysis' maximum
-    differences (``averaged_vs_full*``, ``max_error_vs_closed_form``) as the report holds them."""
+    differences (``averaged_vs_full*``, ``max_error_vs_closed_form``) as the report holds them, and
+    beside them each run's own estimate (``error_estimates``)."""
     parts = []
     for key, value in report.items():
         if key.startswith("averaged_vs_full") and isinstance(value, dict):
@@ -123,6 +125,9 @@ def agreement(report: dict) -> str:
                 parts.append(f"{key.replace('_', ' ')}: {numbers}")
         elif key == "max_error_vs_closed_form":
             parts.append(f"max |omega - closed form| {value:.2g}")
+    if parts and report.get("error_estimates"):  # the runs' own estimates beside what was measured
+        parts.append("estimated: " + ", ".join(f"{name} {value:.2g}" for name, value in report["error_estimates"].items()
+                                             if value == value))
     return "; ".join(parts)
 
 

@@ -80,7 +80,8 @@ def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy
         entry = {"rung": rung.name, "model": rung.description}
         entries.append(entry)
         if rung.blocked:
-            entry.update(taken=False, reason=rung.blocked)
+            entry.update(taken=False, reason=rung.blocked + _carried_phase_miss(rung, top, span, options, accuracy,
+                                                                                entry))
             continue
         broken = [a for a in rung.start_checks() if not a.holds]
         if broken:
@@ -112,6 +113,22 @@ def choose(rungs: list[Rung], span: tuple[float, float], options: dict, accuracy
     entries.append({"rung": top.name, "model": top.description, "taken": True,
                     "reason": "the scene's most complete model (the reference of the rungs below)"})
     return Choice(rungs, top, accuracy, entries)
+
+
+def _carried_phase_miss(rung: Rung, top: Rung, span, options: dict, accuracy: float, entry: dict) -> str:
+    """For a rung blocked because the outputs need ω(t) (:attr:`Rung.probe_when_blocked`): its
+    probe's estimate of ω at the carried phase against the accuracy, in words ("" otherwise)."""
+    t0, t1 = span
+    if not rung.probe_when_blocked or rung.model is None or rung.fast_compare is None or \
+            PROBE_PERIODS * rung.fast_period > PROBE_FRACTION * (t1 - t0):
+        return ""
+    estimate = probe(rung, top, span, options)
+    if estimate.fast is None or not math.isfinite(estimate.fast.value):
+        return ""
+    entry["estimate"] = estimate.as_dict()
+    verdict = "above" if estimate.fast.value > accuracy else "within"
+    return (f"; omega at the carried phase would err by {estimate.fast.value:.3g} (the probe's estimate), {verdict} "
+            f"the accuracy {accuracy:g}; |G| and T alone by {estimate.value:.3g}")
 
 
 def _copied(value):

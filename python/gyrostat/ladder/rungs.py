@@ -57,6 +57,9 @@ class Rung:
     """The quantities compared with the top, (n, m), from a solution of this rung."""
     blocked: str = ""
     """Why this rung cannot answer the scene ("" when it can)."""
+    probe_when_blocked: bool = False
+    """Blocked because the outputs need ω(t), yet probed all the same: the report then says by how
+    much ω at the carried phase (:attr:`fast_compare`) would miss the accuracy."""
     fast_period: float = math.inf
     """The period of the motion the rung averages or reduces (sets the probe's length)."""
     watches: tuple[Watch, ...] = ()
@@ -83,7 +86,7 @@ class Rung:
     fast_compare: Callable[[Solution], np.ndarray] | None = None
     """ω(t) as this rung gives it (an averaged rung carrying the fast phase: the free motion at
     that phase), (n, 3): the probe compares it with the top's ω (:func:`rates`) and extrapolates
-    its error quadratically (the phase's error integrates the frequency's); reported beside the
+    its error linearly (the carried phase runs at the averaged frequency); reported beside the
     estimate (``fast_motion``), not used for the choice, which rests on ``compare``."""
 
 

@@ -99,8 +99,11 @@ def triaxial_rung(doc: dict, body, torques, omega, attitude: bool = False) -> _l
     blocked = (f"a nearly symmetric body (|A2 - A1|/A1 = {asymmetry:.3g} <= {SMALL:g}): the (a, r) rung averages it"
                if asymmetry <= SMALL else
                "the scene integrates the attitude: the averaged model has none" if attitude else
-               f"the plots {needs} need omega(t): the averaged model carries its phase only to O(1) at t ~ 1/eps"
-               if needs else "the closed-form reference is of omega(t)" if doc["outputs"].get("reference") else "")
+               "the closed-form reference is of omega(t)" if doc["outputs"].get("reference") else "")
+    # the plots need omega(t): the rung is built and probed all the same, so that the report can say
+    # by how much omega at the carried phase would miss the accuracy (ladder.choose)
+    omega_needed = (f"the plots {needs} need omega(t): the averaged model carries its phase only to O(1) at "
+                    "t ~ 1/eps") if needs and not blocked else ""
     model, y0 = None, np.asarray(omega, float)
     if not blocked:
         try:
@@ -119,5 +122,5 @@ def triaxial_rung(doc: dict, body, torques, omega, attitude: bool = False) -> _l
     return _ladder.Rung("averaged_triaxial", model, y0, description, compare=invariant_columns, fast_period=period,
                         watches=watches, fast_compare=lambda solution: carried_omega(model, solution),
                         start_checks=lambda: [a for a in check(model, y0, warn=False) if a.part == "averaged model"],
-                        run="averaged")
+                        run="averaged", blocked=omega_needed, probe_when_blocked=bool(omega_needed))
 
