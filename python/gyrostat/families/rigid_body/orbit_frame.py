@@ -102,7 +102,7 @@ def libration_frequencies(moments, rate: float) -> dict[str, float]:
     --------
     >>> f = libration_frequencies([2.0, 2.5, 1.0], 1.0)
     >>> round(f["pitch"], 6), round(f["roll_yaw_low"], 6), round(f["roll_yaw_high"], 6)
-    (1.341641, 0.547331, 1.931851)
+    (1.095445, 0.690219, 1.774429)
     """
     a, b, c = (float(x) for x in moments)
     k_r, k_p, k_y = (b - c) / a, (a - c) / b, (b - a) / c
