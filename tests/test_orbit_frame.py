@@ -177,3 +177,24 @@ def test_ensemble_members_equal_their_single_runs():
     for model, y0, run in zip(models, y0s, runs):
         alone = g.solve(model, y0, (0.0, 10.0), n_out=11, method="dop853", rtol=1e-10)
         assert np.array_equal(run["pitch"], alone["pitch"]) and np.array_equal(run["q_orbit_w"], alone["q_orbit_w"])
+
+
+def test_stability_scene_finds_the_lagrange_and_debra_delp_regions():
+    """The shipped sweep gravity_gradient_stability on a coarse grid of its own parameters: a member
+    stays near the orbit frame (1 - min q_orbit_w < 0.01, the scene's contour: within 16°) exactly
+    where the linear theory written here says it is stable: k_P > 0, k_R k_Y > 0,
+    b = 1 + 3 k_R + k_R k_Y > 0, b² > 16 k_R k_Y. The points are away from the boundaries, where 30
+    orbits at 0.02 rad decide (measured: stable ones below 1.6e-3, unstable ones above 0.7; at
+    k_R = -0.05, k_P = 0.9, 0.004 inside the linear DeBra-Delp boundary, the member tumbles)."""
+    from gyrostat.scene import SCENES
+    k_roll, k_pitch = [-0.3, -0.025, 0.3, 0.75], [-0.3, 0.4, 0.9]
+    ds = g.sweep(SCENES / "gravity_gradient_stability.toml",
+                 {"body.inertia_ratios[0]": k_roll, "body.inertia_ratios[1]": k_pitch}, trajectories=False,
+                 progress=False)
+    for i, k_r in enumerate(k_roll):
+        for j, k_p in enumerate(k_pitch):
+            k_y = (k_r - k_p) / (1 - k_r * k_p)
+            b = 1 + 3 * k_r + k_r * k_y
+            stable = k_p > 0 and k_r * k_y > 0 and b > 0 and b * b > 16 * k_r * k_y
+            away = 1 - float(ds["min_q_orbit_w"].values[i, j])
+            assert (away < 0.01) == stable, f"k_R = {k_r}, k_P = {k_p}: 1 - min q_w = {away:.3g}, theory stable: {stable}"
