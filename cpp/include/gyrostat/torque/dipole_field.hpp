@@ -19,7 +19,8 @@ namespace gyrostat::torque {
 ///   B_I(t) = B0 [3 (d·ĉ) ĉ − d],     M = m × R(q)ᵀ B_I(t),
 ///
 /// d the unit direction of the planet's dipole moment (inertial axes, fixed: the planet's own
-/// rotation is left out), ĉ(t) the unit vector planet → body on the orbit (torque/orbit.hpp),
+/// rotation is left out), ĉ(t) the unit vector planet → body on the orbit (torque/orbit.hpp: its
+/// own, or the model's when it is given none),
 /// B0 = μ0 |m_planet| / (4π r³) the field's magnitude at the magnetic equator at the orbit's
 /// radius (about 2.4e-5 T in a low Earth orbit; the Earth's d is near −ẑ, tilted by about 10°).
 /// Needs the attitude; ∂M/∂ω = 0; no averaged contribution.

@@ -19,7 +19,8 @@ namespace gyrostat::torque {
 ///
 ///   M = 3 n² ĉ × (J ĉ),    ĉ = R(q)ᵀ ĉ_I(t)  the unit vector planet → body in body axes,
 ///
-/// J = diag(A1, A2, A3), R(q) body → inertial, ĉ_I(t) on the orbit (torque/orbit.hpp). It needs
+/// J = diag(A1, A2, A3), R(q) body → inertial, ĉ_I(t) on the orbit (torque/orbit.hpp): its own
+/// (orbit_rate, orbit_normal, phase) or, given none, the model's (TorqueSet::on_orbit). It needs
 /// the attitude (models with the quaternion), and does not depend on ω (∂M/∂ω = 0).
 ///
 /// Averaged over the orbit (⟨ĉ ĉᵀ⟩ = (I − N Nᵀ)/2) and over the free motion of a symmetric body

@@ -19,8 +19,8 @@ namespace gyrostat::torque {
 
 /// A circular orbit of rate n (rad/s) in the plane normal to the unit vector N (inertial axes):
 ///   ĉ(t) = cos u e1 + sin u e2,   u = n t + φ0 (the argument of latitude),
-///   e1 = ẑ × N / |ẑ × N|  (the ascending node on the inertial x-y plane; x̂ when N ∥ ẑ, and −x̂
-///                          when N ∥ −ẑ: e1 = x̂ whenever N is along ±ẑ),   e2 = N × e1,
+///   e1 = ẑ × N / |ẑ × N|  (the ascending node on the inertial x-y plane; x̂ when N is along ±ẑ),
+///   e2 = N × e1,
 /// ĉ the unit vector from the planet to the body. So the default N = ẑ, φ0 = 0 is the inertial
 /// x-y plane with the body at ĉ(0) = x̂ moving towards ŷ: ĉ turns about N (prograde), its
 /// velocity is n N × ĉ. N need not be given with unit length.

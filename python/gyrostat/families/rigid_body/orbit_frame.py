@@ -184,7 +184,8 @@ def analyse(solution: Solution, report: dict) -> None:
     orbit = solution.model.orbit
     found = {f"max_abs_{name}": float(np.max(np.abs(solution[name]))) for name in ("roll", "pitch", "yaw")}
     theory = libration_frequencies(solution.model.body.moments, orbit.rate)
-    period = crossing_period(solution.t, solution["pitch"])
+    # a libration to time: pitch well above what rounding moves a body at rest (1e-8 rad over a run)
+    period = crossing_period(solution.t, solution["pitch"]) if found["max_abs_pitch"] > 1e-6 else math.nan
     if math.isfinite(period) and math.isfinite(theory["pitch"]):
         found["pitch_period"] = period
         found["pitch_period_linear_theory"] = 2 * math.pi / theory["pitch"]
