@@ -28,7 +28,7 @@ def site(tmp_path_factory, examples):
 
 
 def test_every_page_is_built(site):
-    pages = ["install", "tutorial", "coming_from", "choosing", "scenes", "python_api", "architecture", "integrators",
+    pages = ["install", "tutorial", "coming_from", "orbit_frame", "choosing", "scenes", "python_api", "architecture", "integrators",
              "_generated/gallery", "_generated/cpp_api", "_generated/paper_000_002_cavity_and_medium",
              "_generated/paper_001_moving_mass", "_generated/paper_003_lagrange_top",
              "_generated/paper_004_orthogonal_torque"]

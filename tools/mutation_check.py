@@ -52,6 +52,7 @@ MODEL = "cpp/include/gyrostat/model/"
 T = "tests/test_torques.py::"
 TRI = "tests/test_averaged_triaxial.py::"
 ATT = "tests/test_attitude_torques.py::"
+ORB = "tests/test_orbit_frame.py::"
 LAG = "tests/test_lagrange.py::"
 # the (a, r) model's: the phase average of the torques written in the test, SciPy on the printed and
 # derived averaged systems, the full model integrated (O(ε)), the paper's closed forms
@@ -187,6 +188,18 @@ MUTATIONS = [
      "file": TORQUE + "inertial.hpp", "old": "rotation_matrix(quaternion).transpose() * moment", "factor": 1.05,
      "tests": [ATT + "test_attitude_torque_against_scipy", ATT + "test_torque_value_against_the_written_formula",
                ATT + "test_inertial_torque_grows_the_inertial_momentum_linearly"]},
+    # --- the orbit and the attitude relative to it (torque/orbit.hpp, model/orbiting.hpp) ----------
+    {"name": "orbit_position", "what": "the body's place on the orbit: the e2 term of ĉ(t) × 1.05",
+     "file": TORQUE + "orbit.hpp", "old": "std::sin(u) * quadrant", "factor": 1.05,
+     "tests": [ORB + "test_orbit_frame_outputs_equal_the_tests_own_formulas", ATT + "test_attitude_torque_against_scipy"]},
+    {"name": "orbit_relative_rate", "what": "ω relative to the orbit frame: n Rᵀ N × 1.05",
+     "file": MODEL + "orbiting.hpp", "old": "omega - orbit_.rate * (R.transpose() * orbit_.normal)",
+     "expr": "orbit_.rate * (R.transpose() * orbit_.normal)", "factor": 1.05,
+     "tests": [ORB + "test_orbit_frame_outputs_equal_the_tests_own_formulas"]},
+    {"name": "orbit_frame_start", "what": "a state given relative to the orbit frame: n Rᵀ N × 1.05",
+     "file": MODEL + "orbiting.hpp", "old": "omega_rel + orbit_.rate * (R.transpose() * orbit_.normal)",
+     "expr": "orbit_.rate * (R.transpose() * orbit_.normal)", "factor": 1.05,
+     "tests": [ORB + "test_large_pitch_libration_has_the_pendulums_exact_period"]},
     # --- each model's right-hand side -------------------------------------------------------------
     {"name": "euler_gyroscopic", "what": "Euler's equations (gyrostat.hpp rhs): ω × (Jω + k) × 1.05",
      "file": MODEL + "gyrostat.hpp", "old": "omega.cross(momentum)", "factor": 1.05,

@@ -197,11 +197,22 @@ std::string torque_repr(const Torque& x) {
     std::string s = std::string(Torque::python_name) + "(";
     bool first = true;
     for (const auto& p : Torque::parameters) {
-        if (!p.stored) continue;
+        if (!p.stored || !kept.has(p.name)) continue;  // an optional parameter left out (an orbit torque on the model's orbit)
         s += (first ? "" : ", ") + std::string(p.name) + "=" + value_text(kept.all().at(p.name));
         first = false;
     }
     return s + ")";
+}
+
+/// One declared parameter as the dict Python reads (name, label, shape, unit, description,
+/// constraint, choice, stored, default).
+py::dict parameter_entry(const torque::Parameter& p) {
+    py::dict entry;
+    entry["name"] = p.name, entry["label"] = p.label, entry["shape"] = shape_name(p.shape), entry["unit"] = p.unit;
+    entry["description"] = p.description, entry["constraint"] = constraint_name(p.constraint);
+    entry["choice"] = p.choice, entry["stored"] = p.stored;
+    entry["default"] = p.default_value ? py::object(py::str(p.default_value)) : py::object(py::none());
+    return entry;
 }
 
 /// The Python class of one torque, generated from its declaration (torque/parameter.hpp): the
@@ -221,12 +232,7 @@ void expose_torque(py::module_& m) {
         doc += std::string(p.name) + " : " + numpydoc_type(p.shape) + "\n    " + sentence(p.description) + ", in " + p.unit +
                " (" + torque::constraint_text(p.constraint) + (p.choice ? "; give exactly one of its choice" : "") +
                (p.default_value ? std::string("; optional, default ") + p.default_value : std::string()) + ").\n";
-        py::dict entry;
-        entry["name"] = p.name, entry["label"] = p.label, entry["shape"] = shape_name(p.shape), entry["unit"] = p.unit;
-        entry["description"] = p.description, entry["constraint"] = constraint_name(p.constraint);
-        entry["choice"] = p.choice, entry["stored"] = p.stored;
-        entry["default"] = p.default_value ? py::object(py::str(p.default_value)) : py::object(py::none());
-        parameters.append(entry);
+        parameters.append(parameter_entry(p));
     }
     doc += "\nAttributes\n----------\nkind : str\n    Its type in a scene's ``[[torques]]`` table (``\"" + std::string(Torque::name) +
            "\"``).\ndescription : str\n    What it is, in one line.\nparameters : tuple of dict\n    Its declaration: one dict "
@@ -316,7 +322,10 @@ void expose_torque(py::module_& m) {
         const std::string key = p.name;
         const auto kept = instance.values().all();
         const std::string shown = kept.count(key) ? source(python_value(kept.at(key))) : "";
-        cls.def_property_readonly(p.name, [key](const Torque& x) { return python_value(x.values().all().at(key)); },
+        cls.def_property_readonly(p.name, [key](const Torque& x) {
+                                      const torque::Values kept = x.values();
+                                      return kept.has(key) ? python_value(kept.all().at(key)) : py::object(py::none());
+                                  },
                                   (sentence(p.description) + ", in " + p.unit + ".\n\nExamples\n--------\n" + example +
                                    ">>> torque." + key + "\n" + shown + "\n")
                                       .c_str());
@@ -346,6 +355,114 @@ py::class_<T> bound(py::module_& m) {
     return py::reinterpret_borrow<py::class_<T>>(m.attr(T::python_name));
 }
 }  // namespace
+
+/// torque/orbit.hpp: the circular orbit a model is given (its parameters declared there).
+static void expose_orbit(py::module_& m) {
+    using torque::CircularOrbit;
+    py::list parameters;
+    for (const auto& p : CircularOrbit::parameters) parameters.append(parameter_entry(p));
+    py::class_<CircularOrbit> cls(m, "Orbit", R"doc(A circular orbit, given once to a model (``gyrostat.Model(..., orbit=...)``, a scene's ``[orbit]`` table):
+every orbit torque of the model (GravityGradient, DipoleFieldTorque) reads it, and the model reports the
+attitude relative to its orbit frame (docs/orbit_frame.md).
+
+The body is at c(t) = cos u e1 + sin u e2, u = n t + phase, from the planet, with e1 = z x N / |z x N|
+(x when N is along z) and e2 = N x e1: it moves about N. The orbit frame (LVLH) has x along track
+(N x c), y = -N, z nadir (-c).
+
+Parameters
+----------
+rate : float
+    The orbit's mean motion n = sqrt(mu / r^3), in rad/s (finite and positive).
+normal : array_like, shape (3,), optional
+    The orbit plane's normal N in inertial axes, any length (default [0, 0, 1]).
+phase : float, optional
+    The body's angle u(0) on the orbit from e1 at t = 0, in rad (default 0).
+
+Attributes
+----------
+description : str
+    What it is, in one line.
+parameters : tuple of dict
+    Its declaration: one dict per parameter (name, label, shape, unit, description, constraint,
+    choice, stored, default), for the scene schema and the docs.
+
+Examples
+--------
+>>> import gyrostat
+>>> orbit = gyrostat.Orbit(rate=0.001)
+>>> orbit
+Orbit(rate=0.001, normal=[0, 0, 1], phase=0)
+>>> orbit.position(0.0), orbit.frame(0.0)[:, 0]
+(array([1., 0., 0.]), array([0., 1., 0.]))
+)doc");
+    cls.def(py::init([](const py::args& args, const py::kwargs& kwargs) {
+           return CircularOrbit::from(values_from<CircularOrbit>(args, kwargs));
+       }))
+        .def_property_readonly("rate", [](const CircularOrbit& o) { return o.rate; }, R"doc(The orbit rate n, in rad/s.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Orbit(0.001).rate
+0.001
+)doc")
+        .def_property_readonly("normal", [](const CircularOrbit& o) { return o.normal; }, R"doc(The unit normal N of the orbit plane, in inertial axes.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Orbit(0.001, normal=[0.0, 0.0, 2.0]).normal
+array([0., 0., 1.])
+)doc")
+        .def_property_readonly("phase", [](const CircularOrbit& o) { return o.phase; }, R"doc(The body's angle on the orbit at t = 0 from e1, in rad.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Orbit(0.001, phase=0.5).phase
+0.5
+)doc")
+        .def("position", [](const CircularOrbit& o, const py::object& t) { return o.position(scalar(t, "Orbit.position: t")); },
+             py::arg("t"), R"doc(The unit vector c(t) from the planet to the body, in inertial axes.
+
+Parameters
+----------
+t : float
+    Time, in s.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Orbit(1.0).position(0.5 * 3.141592653589793).round(12)
+array([0., 1., 0.])
+)doc")
+        .def("frame", [](const CircularOrbit& o, const py::object& t) { return o.frame(scalar(t, "Orbit.frame: t")); },
+             py::arg("t"), R"doc(The orbit frame's axes (x along track, y = -N, z nadir) as the columns of a matrix, in inertial axes.
+
+Parameters
+----------
+t : float
+    Time, in s.
+
+Returns
+-------
+numpy.ndarray, shape (3, 3)
+    The rotation orbit frame to inertial axes.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Orbit(1.0).frame(0.0)
+array([[ 0.,  0., -1.],
+       [ 1.,  0.,  0.],
+       [ 0., -1.,  0.]])
+)doc")
+        .def("__eq__", [](const CircularOrbit& a, const CircularOrbit& b) { return a.same_as(b); })
+        .def("__repr__", &CircularOrbit::text);
+    cls.attr("__hash__") = py::none();
+    cls.attr("description") = std::string(CircularOrbit::description);
+    cls.attr("parameters") = py::tuple(parameters);
+}
 
 void expose_body(py::module_& m) {
     py::class_<Body>(m, "Body", R"doc(A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -472,6 +589,8 @@ False
     m.attr("small") = torque::kSmall;
     m.attr("large") = torque::kLarge;
 
+    expose_orbit(m);
+
     // Every alternative of AnyTorque, from its declaration: a new torque needs nothing here.
     m.attr("torque_types") = expose_torques(m, static_cast<AnyTorque*>(nullptr));
 
@@ -544,12 +663,15 @@ Examples
 )doc");
     bound<torque::GravityGradient>(m).def(
         "precession_rate",
-        [](const torque::GravityGradient& x, const py::object& moments, const py::object& omega, const py::object& quaternion) {
-            return x.precession_rate(vec3(moments, "GravityGradient.precession_rate: moments"),
-                                     vec3(omega, "GravityGradient.precession_rate: omega"),
-                                     unit_quaternion(vec4(quaternion, "GravityGradient.precession_rate: quaternion")));
+        [](const torque::GravityGradient& x, const py::object& moments, const py::object& omega, const py::object& quaternion,
+           const py::object& orbit) {
+            const Vec3 J = vec3(moments, "GravityGradient.precession_rate: moments");
+            const Vec3 w = vec3(omega, "GravityGradient.precession_rate: omega");
+            const Eigen::Vector4d q = unit_quaternion(vec4(quaternion, "GravityGradient.precession_rate: quaternion"));
+            if (orbit.is_none()) return x.precession_rate(J, w, q);
+            return torque::GravityGradient::precession_rate(J, w, q, orbit.cast<const torque::CircularOrbit&>());
         },
-        py::arg("moments"), py::arg("omega"), py::arg("quaternion"),
+        py::arg("moments"), py::arg("omega"), py::arg("quaternion"), py::arg("orbit") = py::none(),
         R"doc(The rate at which G precesses about the orbit normal, averaged over the orbit and the free motion.
 
 For a symmetric body (A, A, C): -3 n^2 (C - A)(3 cos^2 nutation - 1) cos i / (4 |G|), with the
@@ -563,6 +685,8 @@ omega : array_like, shape (3,)
     Angular velocity in body axes, in rad/s.
 quaternion : array_like, shape (4,)
     The attitude (w, x, y, z), body to inertial.
+orbit : gyrostat.Orbit, optional
+    The orbit (the model's); default: the torque's own (orbit_rate, orbit_normal, phase).
 
 Returns
 -------
@@ -573,6 +697,8 @@ Examples
 --------
 >>> import gyrostat as g
 >>> g.GravityGradient(0.01).precession_rate([1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0])
+-7.5e-05
+>>> g.GravityGradient().precession_rate([1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0], orbit=g.Orbit(0.01))
 -7.5e-05
 )doc");
     bound<torque::DipoleFieldTorque>(m).def(

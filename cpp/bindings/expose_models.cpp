@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "convert.hpp"
@@ -132,6 +133,21 @@ void expose_models(py::module_& m) {
              "g(t, y) = the largest (o_i - back_i) / (limit_i - back_i) of this model's outputs o = outputs_at(t, y) "
              "(y mapped down as initial_state maps it) at the indices ``outputs`` (1 where one is not finite). It falls through 0 where every "
              "watched output is back below its ``back``.")
+        // the gyrostat on an orbit
+        .def_property_readonly("orbit",
+                               [](const BoundModel& b) -> py::object {
+                                   if (const auto* s = either<model::OrbitingGyrostat>(b.model)) return py::cast(s->orbit());
+                                   return py::none();
+                               },
+                               "The model's orbit (gyrostat.Orbit), or None.")
+        .def("from_orbit_frame",
+             [](const BoundModel& b, double t, const Eigen::Vector4d& q_ob, const Vec3& omega_rel) -> Eigen::VectorXd {
+                 return as<model::OrbitingGyrostat>(b.model, "from_orbit_frame is for a model with an orbit (orbit=...)")
+                     .from_orbit_frame(t, q_ob, omega_rel);
+             },
+             py::arg("t"), py::arg("attitude"), py::arg("omega"),
+             "The state (omega, q) at t of a body with this attitude (body to orbit frame) and this angular velocity "
+             "relative to the orbit frame (body axes).")
         // averaged symmetric system
         .def("fast_frequency",
              [](const BoundModel& b, double r) {
@@ -177,12 +193,19 @@ void expose_models(py::module_& m) {
 
     m.def(
         "gyrostat_model",
-        [](const Body& body, const py::iterable& torques, bool attitude) -> BoundModel {
+        [](const Body& body, const py::iterable& torques, bool attitude, const py::object& orbit) -> BoundModel {
             TorqueSet set(torques_from(torques));
+            std::optional<torque::CircularOrbit> given;
+            if (!orbit.is_none()) given = orbit.cast<const torque::CircularOrbit&>();
+            const std::optional<torque::CircularOrbit> shared = set.common_orbit(given);
+            if (given && !attitude)
+                throw py::value_error("Model(orbit=...) needs the attitude (attitude=True): the orbit frame's outputs "
+                                      "and the orbit torques read it");
+            if (attitude && shared) return {model::OrbitingGyrostat(body, set, *shared)};
             if (attitude) return {model::Gyrostat<true>(body, set)};
             return {model::Gyrostat<false>(body, set)};
         },
-        py::arg("body"), py::arg("torques"), py::arg("attitude"));
+        py::arg("body"), py::arg("torques"), py::arg("attitude"), py::arg("orbit") = py::none());
     m.def(
         "averaged_model",
         [](const Body& body, const py::iterable& torques) -> BoundModel {

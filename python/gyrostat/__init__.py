@@ -14,7 +14,7 @@ over a grid or a seeded dispersion of its entries (locally or on Dask) into an x
 import os as _os
 
 from gyrostat import _core
-from gyrostat._core import Body, TorqueFreeSolution
+from gyrostat._core import Body, Orbit, TorqueFreeSolution
 from gyrostat.assumptions import ValidityWarning
 from gyrostat.families.moving_mass import MovingMassModel
 from gyrostat.families.rigid_body import AveragedModel, Model, TorqueFreeModel, TriaxialAveragedModel, torque_free
@@ -30,6 +30,7 @@ globals().update({cls.__name__: cls for cls in _core.torque_types})
 
 __all__ = [
     "Body",
+    "Orbit",
     *(cls.__name__ for cls in _core.torque_types),
     "TorqueFreeSolution",
     "ModelBase",

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector']
 class Body:
     """
     A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -164,6 +164,121 @@ class TorqueAssumption:
     @property
     def value(self) -> float:
         ...
+class Orbit:
+    """
+    A circular orbit, given once to a model (``gyrostat.Model(..., orbit=...)``, a scene's ``[orbit]`` table):
+    every orbit torque of the model (GravityGradient, DipoleFieldTorque) reads it, and the model reports the
+    attitude relative to its orbit frame (docs/orbit_frame.md).
+    
+    The body is at c(t) = cos u e1 + sin u e2, u = n t + phase, from the planet, with e1 = z x N / |z x N|
+    (x when N is along z) and e2 = N x e1: it moves about N. The orbit frame (LVLH) has x along track
+    (N x c), y = -N, z nadir (-c).
+    
+    Parameters
+    ----------
+    rate : float
+        The orbit's mean motion n = sqrt(mu / r^3), in rad/s (finite and positive).
+    normal : array_like, shape (3,), optional
+        The orbit plane's normal N in inertial axes, any length (default [0, 0, 1]).
+    phase : float, optional
+        The body's angle u(0) on the orbit from e1 at t = 0, in rad (default 0).
+    
+    Attributes
+    ----------
+    description : str
+        What it is, in one line.
+    parameters : tuple of dict
+        Its declaration: one dict per parameter (name, label, shape, unit, description, constraint,
+        choice, stored, default), for the scene schema and the docs.
+    
+    Examples
+    --------
+    >>> import gyrostat
+    >>> orbit = gyrostat.Orbit(rate=0.001)
+    >>> orbit
+    Orbit(rate=0.001, normal=[0, 0, 1], phase=0)
+    >>> orbit.position(0.0), orbit.frame(0.0)[:, 0]
+    (array([1., 0., 0.]), array([0., 1., 0.]))
+    """
+    __hash__: typing.ClassVar[None] = None
+    description: typing.ClassVar[str] = "a circular orbit: its rate, its plane's normal and the body's angle on it at t = 0 (docs/orbit_frame.md)"
+    parameters: typing.ClassVar[tuple] = ({'name': 'rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes (the sense of motion)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle u(0) on the orbit at t = 0 from e1 = z x N / |z x N| (x when N is along z)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
+    def __eq__(self, arg0: Orbit) -> bool:
+        ...
+    def __init__(self, *args, **kwargs) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def frame(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        The orbit frame's axes (x along track, y = -N, z nadir) as the columns of a matrix, in inertial axes.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        
+        Returns
+        -------
+        numpy.ndarray, shape (3, 3)
+            The rotation orbit frame to inertial axes.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Orbit(1.0).frame(0.0)
+        array([[ 0.,  0., -1.],
+               [ 1.,  0.,  0.],
+               [ 0., -1.,  0.]])
+        """
+    def position(self, t: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The unit vector c(t) from the planet to the body, in inertial axes.
+        
+        Parameters
+        ----------
+        t : float
+            Time, in s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Orbit(1.0).position(0.5 * 3.141592653589793).round(12)
+        array([0., 1., 0.])
+        """
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The unit normal N of the orbit plane, in inertial axes.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Orbit(0.001, normal=[0.0, 0.0, 2.0]).normal
+        array([0., 0., 1.])
+        """
+    @property
+    def phase(self) -> float:
+        """
+        The body's angle on the orbit at t = 0 from e1, in rad.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Orbit(0.001, phase=0.5).phase
+        0.5
+        """
+    @property
+    def rate(self) -> float:
+        """
+        The orbit rate n, in rad/s.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Orbit(0.001).rate
+        0.001
+        """
 class ConstantTorque:
     """
     A constant torque in body axes (scene type ``"constant"``): a torque in body axes acting on the body it is given to.
@@ -982,11 +1097,11 @@ class GravityGradient:
     Parameters
     ----------
     orbit_rate : float
-        The orbit's mean motion n = sqrt(mu / r^3), in rad/s (finite and positive).
+        The orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit, in rad/s (finite and positive; optional, default the model's orbit).
     orbit_normal : array_like, shape (3,)
-        The orbit plane's normal in inertial axes, in 1 (finite; optional, default [0, 0, 1]).
+        The orbit plane's normal in inertial axes (needs orbit_rate), in 1 (finite; optional, default [0, 0, 1]).
     phase : float
-        The body's angle on the orbit from the ascending node at t = 0, in rad (finite; optional, default 0).
+        The body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md), in rad (finite; optional, default 0).
     
     Attributes
     ----------
@@ -1014,7 +1129,7 @@ class GravityGradient:
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'gravity_gradient'
     needs_attitude: typing.ClassVar[bool] = True
-    parameters: typing.ClassVar[tuple] = ({'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
+    parameters: typing.ClassVar[tuple] = ({'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': "the model's orbit"}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes (needs orbit_rate)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments and this attitude.
@@ -1068,7 +1183,7 @@ class GravityGradient:
         >>> len(torque.assumptions(motion))
         0
         """
-    def precession_rate(self, moments: typing.Any, omega: typing.Any, quaternion: typing.Any) -> float:
+    def precession_rate(self, moments: typing.Any, omega: typing.Any, quaternion: typing.Any, orbit: typing.Any = None) -> float:
         """
         The rate at which G precesses about the orbit normal, averaged over the orbit and the free motion.
         
@@ -1083,6 +1198,8 @@ class GravityGradient:
             Angular velocity in body axes, in rad/s.
         quaternion : array_like, shape (4,)
             The attitude (w, x, y, z), body to inertial.
+        orbit : gyrostat.Orbit, optional
+            The orbit (the model's); default: the torque's own (orbit_rate, orbit_normal, phase).
         
         Returns
         -------
@@ -1094,11 +1211,13 @@ class GravityGradient:
         >>> import gyrostat as g
         >>> g.GravityGradient(0.01).precession_rate([1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0])
         -7.5e-05
+        >>> g.GravityGradient().precession_rate([1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0], orbit=g.Orbit(0.01))
+        -7.5e-05
         """
     @property
     def orbit_normal(self) -> typing.Any:
         """
-        The orbit plane's normal in inertial axes, in 1.
+        The orbit plane's normal in inertial axes (needs orbit_rate), in 1.
         
         Examples
         --------
@@ -1110,7 +1229,7 @@ class GravityGradient:
     @property
     def orbit_rate(self) -> typing.Any:
         """
-        The orbit's mean motion n = sqrt(mu / r^3), in rad/s.
+        The orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit, in rad/s.
         
         Examples
         --------
@@ -1122,7 +1241,7 @@ class GravityGradient:
     @property
     def phase(self) -> typing.Any:
         """
-        The body's angle on the orbit from the ascending node at t = 0, in rad.
+        The body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md), in rad.
         
         Examples
         --------
@@ -1257,13 +1376,13 @@ class DipoleFieldTorque:
     field_strength : float
         B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius, in T (finite and positive).
     orbit_rate : float
-        The orbit's mean motion n = sqrt(mu / r^3), in rad/s (finite and positive).
+        The orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit, in rad/s (finite and positive; optional, default the model's orbit).
     dipole_axis : array_like, shape (3,)
         The direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole), in 1 (finite; optional, default [0, 0, -1]).
     orbit_normal : array_like, shape (3,)
-        The orbit plane's normal in inertial axes, in 1 (finite; optional, default [0, 0, 1]).
+        The orbit plane's normal in inertial axes (needs orbit_rate), in 1 (finite; optional, default [0, 0, 1]).
     phase : float
-        The body's angle on the orbit from the ascending node at t = 0, in rad (finite; optional, default 0).
+        The body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md), in rad (finite; optional, default 0).
     
     Attributes
     ----------
@@ -1291,7 +1410,7 @@ class DipoleFieldTorque:
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'dipole_field'
     needs_attitude: typing.ClassVar[bool] = True
-    parameters: typing.ClassVar[tuple] = ({'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field_strength', 'label': 'field strength B0', 'shape': 'scalar', 'unit': 'T', 'description': "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3)", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'dipole_axis', 'label': 'dipole axis d', 'shape': 'vector3', 'unit': '1', 'description': "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, -1]'}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit from the ascending node at t = 0", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
+    parameters: typing.ClassVar[tuple] = ({'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field_strength', 'label': 'field strength B0', 'shape': 'scalar', 'unit': 'T', 'description': "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': "the model's orbit"}, {'name': 'dipole_axis', 'label': 'dipole axis d', 'shape': 'vector3', 'unit': '1', 'description': "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, -1]'}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes (needs orbit_rate)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
     def __call__(self, t: typing.Any, omega: typing.Any, moments: typing.Any, quaternion: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
         The torque in body axes at (t, omega) on a body with these moments and this attitude.
@@ -1404,7 +1523,7 @@ class DipoleFieldTorque:
     @property
     def orbit_normal(self) -> typing.Any:
         """
-        The orbit plane's normal in inertial axes, in 1.
+        The orbit plane's normal in inertial axes (needs orbit_rate), in 1.
         
         Examples
         --------
@@ -1416,7 +1535,7 @@ class DipoleFieldTorque:
     @property
     def orbit_rate(self) -> typing.Any:
         """
-        The orbit's mean motion n = sqrt(mu / r^3), in rad/s.
+        The orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit, in rad/s.
         
         Examples
         --------
@@ -1428,7 +1547,7 @@ class DipoleFieldTorque:
     @property
     def phase(self) -> typing.Any:
         """
-        The body's angle on the orbit from the ascending node at t = 0, in rad.
+        The body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md), in rad.
         
         Examples
         --------
@@ -1718,6 +1837,10 @@ class Model:
         """
     def fast_frequency(self, r: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
+    def from_orbit_frame(self, t: typing.SupportsFloat | typing.SupportsIndex, attitude: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"], omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        The state (omega, q) at t of a body with this attitude (body to orbit frame) and this angular velocity relative to the orbit frame (body axes).
+        """
     def full_state(self, slow: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], phase: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     def initial_state(self, given: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -1756,6 +1879,11 @@ class Model:
     @property
     def family(self) -> str:
         ...
+    @property
+    def orbit(self) -> typing.Any:
+        """
+        The model's orbit (gyrostat.Orbit), or None.
+        """
     @property
     def output_names(self) -> list[str]:
         ...
@@ -2324,7 +2452,7 @@ def euler_angles(q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], con
     convention 'zxz' (R = Rz(psi) Rx(theta) Rz(phi)) or 'zyx' (R = Rz(psi) Ry(theta) Rx(phi)).
     At a singular theta the free rotation is in psi and phi = 0. Returns shape (3,) or (n, 3).
     """
-def gyrostat_model(body: Body, torques: collections.abc.Iterable, attitude: bool) -> Model:
+def gyrostat_model(body: Body, torques: collections.abc.Iterable, attitude: bool, orbit: typing.Any = None) -> Model:
     ...
 def jacobi_sn_cn_dn(u: typing.SupportsFloat | typing.SupportsIndex, m: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[list[float], "FixedSize(3)"]:
     """

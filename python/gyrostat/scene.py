@@ -174,7 +174,7 @@ class Scene:
         >>> Scene.from_dict({"body": {}})
         Traceback (most recent call last):
         ...
-        gyrostat.schema.SceneError: [body] needs exactly one of 'moments' or 'inertia'; none is given
+        gyrostat.schema.SceneError: [body] needs exactly one of 'moments', 'inertia' or 'inertia_ratios'; none is given
         """
         scene = cls.checked(data, name, allow_import=allow_import, folder=folder)
         if not scene.names_code:

@@ -20,6 +20,7 @@
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/lagrange_top.hpp"
 #include "gyrostat/model/moving_mass.hpp"
+#include "gyrostat/model/orbiting.hpp"
 #include "gyrostat/model/orthogonal.hpp"
 #include "gyrostat/model/torque_free.hpp"
 
@@ -431,7 +432,7 @@ int main() {
         CHECK(same, "every family through the engine; ensemble of mixed families equals single runs");
         CHECK(ensemble[1].y[3] == 1.0 && ensemble[1].state_names[3] == "q_w", "omega alone starts at the identity");
         CHECK(ensemble[6].y[3] == 0.0 && ensemble[6].state_names[3] == "tau", "tau starts at 0");
-        CHECK(ensemble[8].method == "closed_form", "the torque-free model needs no integration");
+        CHECK(ensemble.back().method == "closed_form", "the torque-free model needs no integration");
         CHECK(std::abs(ensemble[5].y[0] - output(ensemble[4], "G_z", 0)) < 1e-15,
               "the averaged top starts from the full top's G_z");
         CHECK(throws_invalid([&] {
@@ -440,6 +441,39 @@ int main() {
                   solve(models[1], 0.0, zero_attitude, 1.0, o);
               }),
               "a zero quaternion is refused");
+    }
+
+    // The orbit belongs to the model: an orbit torque without an orbit takes the model's, one with
+    // another orbit is refused naming both, one with none anywhere is refused naming it; a body at
+    // rest in the orbit frame with its axes on the frame's (an equilibrium of the gravity gradient,
+    // stable for moments (2, 2.5, 1): the Lagrange region) keeps roll = pitch = yaw = 0 and
+    // ω_rel = 0, and starts with ω = (0, −n, 0).
+    {
+        const torque::CircularOrbit orbit(0.5, Vec3(0.0, 1.0, 1.0), 0.3, "test");
+        const TorqueSet bare({torque::GravityGradient(torque::OrbitOfTorque{})});
+        const model::OrbitingGyrostat on_orbit(Body(Vec3(2.0, 2.5, 1.0)), bare, orbit);
+        std::string message;
+        try {
+            (void)model::OrbitingGyrostat(body, TorqueSet({torque::GravityGradient(0.4, Vec3::UnitZ(), 0.0)}), orbit);
+        } catch (const std::invalid_argument& e) {
+            message = e.what();
+        }
+        CHECK(message.find("GravityGradient has its own orbit Orbit(rate=0.4") == 0 &&
+                  message.find("differs from the model's orbit Orbit(rate=0.5") != std::string::npos,
+              "a torque's other orbit is refused naming both: " + message);
+        CHECK(throws_invalid([&] { (void)model::Gyrostat<true>(body, bare); }), "an orbit torque with no orbit is refused");
+        const auto y0 = on_orbit.from_orbit_frame(0.0, Eigen::Vector4d(1.0, 0.0, 0.0, 0.0), Vec3::Zero());
+        CHECK((y0.head<3>() - Vec3(0.0, -0.5, 0.0)).norm() < 1e-15, "at rest in the orbit frame: omega = (0, -n, 0)");
+        integrate::Options o;
+        o.rtol = 1e-12, o.atol = 1e-14, o.n_out = 21;
+        const auto r = solve(AnyModel(on_orbit), 0.0, y0, 20.0, o);
+        double worst = 0.0;
+        for (std::size_t row = 0; row < r.t.size(); ++row)
+            for (const char* name : {"roll", "pitch", "yaw", "omega_rel_x", "omega_rel_y", "omega_rel_z"})
+                worst = std::max(worst, std::abs(output(r, name, row)));
+        char shown[64];
+        std::snprintf(shown, sizeof shown, "%.3g (%s)", worst, r.message.c_str());
+        CHECK(r.success() && worst < 1e-10, std::string("at rest in the orbit frame it stays: ") + shown);
     }
 
     // Control: progress does not change the trajectory; a poll returning false interrupts the

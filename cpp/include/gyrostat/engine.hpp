@@ -15,6 +15,7 @@
 #include "gyrostat/model/lagrange_averaged.hpp"
 #include "gyrostat/model/lagrange_top.hpp"
 #include "gyrostat/model/moving_mass.hpp"
+#include "gyrostat/model/orbiting.hpp"
 #include "gyrostat/model/orthogonal.hpp"
 #include "gyrostat/model/torque_free.hpp"
 
@@ -27,7 +28,7 @@ namespace gyrostat {
 using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, model::AveragedSymmetric,
                               model::MovingMass, model::LagrangeTop, model::LagrangeAveraged,
                               model::OrthogonalTorque<false>, model::OrthogonalTorque<true>, model::TorqueFree,
-                              model::TorqueFreeAttitude, model::AveragedTriaxial>;
+                              model::TorqueFreeAttitude, model::AveragedTriaxial, model::OrbitingGyrostat>;
 
 /// Every alternative of AnyModel as X(Model): src/solve_models.cpp compiles their integration. A
 /// new model: one line here, beside its alternative above (solve_system.hpp's static_assert says
@@ -36,7 +37,8 @@ using AnyModel = std::variant<model::Gyrostat<false>, model::Gyrostat<true>, mod
     X(model::Gyrostat<false>) X(model::Gyrostat<true>) X(model::AveragedSymmetric)     \
     X(model::MovingMass) X(model::LagrangeTop) X(model::LagrangeAveraged)              \
     X(model::OrthogonalTorque<false>) X(model::OrthogonalTorque<true>)                 \
-    X(model::TorqueFree) X(model::TorqueFreeAttitude) X(model::AveragedTriaxial)
+    X(model::TorqueFree) X(model::TorqueFreeAttitude) X(model::AveragedTriaxial)       \
+    X(model::OrbitingGyrostat)
 
 /// The family of a model: "gyrostat", "averaged_symmetric", "averaged_triaxial", "moving_mass",
 /// "lagrange_top", "lagrange_averaged", "orthogonal_torque", "torque_free".

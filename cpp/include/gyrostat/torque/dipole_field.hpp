@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <utility>
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
@@ -18,7 +19,8 @@ namespace gyrostat::torque {
 ///   B_I(t) = B0 [3 (d·ĉ) ĉ − d],     M = m × R(q)ᵀ B_I(t),
 ///
 /// d the unit direction of the planet's dipole moment (inertial axes, fixed: the planet's own
-/// rotation is left out), ĉ(t) the unit vector planet → body on the orbit (torque/orbit.hpp),
+/// rotation is left out), ĉ(t) the unit vector planet → body on the orbit (torque/orbit.hpp: its
+/// own, or the model's when it is given none),
 /// B0 = μ0 |m_planet| / (4π r³) the field's magnitude at the magnetic equator at the orbit's
 /// radius (about 2.4e-5 T in a low Earth orbit; the Earth's d is near −ẑ, tilted by about 10°).
 /// Needs the attitude; ∂M/∂ω = 0; no averaged contribution.
@@ -31,52 +33,51 @@ struct DipoleFieldTorque {
         {"dipole", "dipole m", Shape::Vector3, "A m^2", "the body's magnetic dipole moment m in body axes"},
         {"field_strength", "field strength B0", Shape::Scalar, "T",
          "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", Constraint::Positive},
-        {"orbit_rate", "orbit rate n", Shape::Scalar, "rad/s", "the orbit's mean motion n = sqrt(mu / r^3)",
-         Constraint::Positive},
+        orbit_rate_parameter,
         {"dipole_axis", "dipole axis d", Shape::Vector3, "1",
          "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)",
          Constraint::Finite, 0, true, "[0, 0, -1]", Axes::Inertial},
-        {"orbit_normal", "orbit normal N", Shape::Vector3, "1", "the orbit plane's normal in inertial axes",
-         Constraint::Finite, 0, true, "[0, 0, 1]", Axes::Inertial},
-        {"phase", "orbit phase", Shape::Scalar, "rad", "the body's angle on the orbit from the ascending node at t = 0",
-         Constraint::Finite, 0, true, "0"},
+        orbit_normal_parameter,
+        orbit_phase_parameter,
     }};
     static constexpr bool needs_attitude = true;
+    /// Reads the orbit: its own, or the model's (TorqueSet::on_orbit).
+    static constexpr bool on_orbit = true;
 
     Vec3 dipole = Vec3::Zero();
     double field_strength = 0.0;
     Vec3 axis = -Vec3::UnitZ();
-    CircularOrbit orbit;
+    OrbitOfTorque orbit;
 
-    DipoleFieldTorque(const Vec3& m, double b0, double n, const Vec3& d, const Vec3& normal, double phase)
-        : dipole(m), field_strength(b0), orbit(n, normal, phase, python_name) {
+    DipoleFieldTorque(const Vec3& m, double b0, const Vec3& d, OrbitOfTorque o)
+        : dipole(m), field_strength(b0), orbit(std::move(o)) {
         require(python_name, parameters[0], m);
         require(python_name, parameters[1], b0);
-        require(python_name, parameters[2], n);
         require(python_name, parameters[3], d);
-        require(python_name, parameters[4], normal);
-        require(python_name, parameters[5], phase);
         axis = unit_direction(d, std::string(python_name) + ": dipole_axis", "the direction of the planet's dipole moment");
     }
+    DipoleFieldTorque(const Vec3& m, double b0, double n, const Vec3& d, const Vec3& normal, double phase)
+        : DipoleFieldTorque(m, b0, d, OrbitOfTorque(CircularOrbit(n, normal, phase, python_name))) {
+        require(python_name, parameters[4], normal);
+    }
     static DipoleFieldTorque from(const Values& v) {
-        return DipoleFieldTorque(v.vector("dipole"), v.scalar("field_strength"), v.scalar("orbit_rate"),
-                                 v.vector_or("dipole_axis", -Vec3::UnitZ()), v.vector_or("orbit_normal", Vec3::UnitZ()),
-                                 v.scalar_or("phase", 0.0));
+        return DipoleFieldTorque(v.vector("dipole"), v.scalar("field_strength"), v.vector_or("dipole_axis", -Vec3::UnitZ()),
+                                 OrbitOfTorque::from(v, python_name));
     }
     Values values() const {
         Values v;
         v.set("dipole", dipole);
         v.set("field_strength", field_strength);
-        v.set("orbit_rate", orbit.rate);
         v.set("dipole_axis", axis);
-        v.set("orbit_normal", orbit.normal);
-        v.set("phase", orbit.phase);
+        orbit.add_to(v);
         return v;
     }
+    /// The same torque on the orbit o (the model's).
+    DipoleFieldTorque with_orbit(const CircularOrbit& o) const { return DipoleFieldTorque(dipole, field_strength, axis, OrbitOfTorque(o)); }
 
     /// B_I(t) = B0 [3 (d·ĉ) ĉ − d] in inertial axes.
     Vec3 field(double t) const {
-        const Vec3 c = orbit.position(t);
+        const Vec3 c = orbit->position(t);
         return field_strength * (3.0 * axis.dot(c) * c - axis);
     }
     /// M = m × R(q)ᵀ B_I(t).

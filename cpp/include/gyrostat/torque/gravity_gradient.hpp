@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "gyrostat/attitude.hpp"
 #include "gyrostat/body.hpp"
@@ -18,7 +19,8 @@ namespace gyrostat::torque {
 ///
 ///   M = 3 n² ĉ × (J ĉ),    ĉ = R(q)ᵀ ĉ_I(t)  the unit vector planet → body in body axes,
 ///
-/// J = diag(A1, A2, A3), R(q) body → inertial, ĉ_I(t) on the orbit (torque/orbit.hpp). It needs
+/// J = diag(A1, A2, A3), R(q) body → inertial, ĉ_I(t) on the orbit (torque/orbit.hpp): its own
+/// (orbit_rate, orbit_normal, phase) or, given none, the model's (TorqueSet::on_orbit). It needs
 /// the attitude (models with the quaternion), and does not depend on ω (∂M/∂ω = 0).
 ///
 /// Averaged over the orbit (⟨ĉ ĉᵀ⟩ = (I − N Nᵀ)/2) and over the free motion of a symmetric body
@@ -35,46 +37,43 @@ struct GravityGradient {
     static constexpr const char* name = "gravity_gradient";
     static constexpr const char* python_name = "GravityGradient";
     static constexpr const char* description = "the gravity-gradient torque on a circular orbit (needs the attitude)";
-    static constexpr std::array<Parameter, 3> parameters{{
-        {"orbit_rate", "orbit rate n", Shape::Scalar, "rad/s", "the orbit's mean motion n = sqrt(mu / r^3)",
-         Constraint::Positive},
-        {"orbit_normal", "orbit normal N", Shape::Vector3, "1", "the orbit plane's normal in inertial axes",
-         Constraint::Finite, 0, true, "[0, 0, 1]", Axes::Inertial},
-        {"phase", "orbit phase", Shape::Scalar, "rad", "the body's angle on the orbit from the ascending node at t = 0",
-         Constraint::Finite, 0, true, "0"},
-    }};
+    static constexpr std::array<Parameter, 3> parameters{{orbit_rate_parameter, orbit_normal_parameter, orbit_phase_parameter}};
     static constexpr bool needs_attitude = true;
+    /// Reads the orbit: its own, or the model's (TorqueSet::on_orbit).
+    static constexpr bool on_orbit = true;
 
-    CircularOrbit orbit;
+    OrbitOfTorque orbit;
 
-    GravityGradient(double n, const Vec3& normal, double phase) : orbit(n, normal, phase, python_name) {
-        require(python_name, parameters[0], n);
+    explicit GravityGradient(OrbitOfTorque o) : orbit(std::move(o)) {}
+    GravityGradient(double n, const Vec3& normal, double phase) : orbit(CircularOrbit(n, normal, phase, python_name)) {
         require(python_name, parameters[1], normal);
-        require(python_name, parameters[2], phase);
     }
-    static GravityGradient from(const Values& v) {
-        return GravityGradient(v.scalar("orbit_rate"), v.vector_or("orbit_normal", Vec3::UnitZ()), v.scalar_or("phase", 0.0));
-    }
+    static GravityGradient from(const Values& v) { return GravityGradient(OrbitOfTorque::from(v, python_name)); }
     Values values() const {
         Values v;
-        v.set("orbit_rate", orbit.rate);
-        v.set("orbit_normal", orbit.normal);
-        v.set("phase", orbit.phase);
+        orbit.add_to(v);
         return v;
     }
+    /// The same torque on the orbit o (the model's).
+    GravityGradient with_orbit(const CircularOrbit& o) const { return GravityGradient(OrbitOfTorque(o)); }
 
     /// M = 3 n² ĉ × (J ĉ).
     Vec3 operator()(double t, const Vec3& /*omega*/, const Vec3& moments, const Eigen::Vector4d& quaternion) const {
-        const Vec3 c = rotation_matrix(quaternion).transpose() * orbit.position(t);
-        return 3.0 * orbit.rate * orbit.rate * c.cross(moments.cwiseProduct(c));
+        const Vec3 c = rotation_matrix(quaternion).transpose() * orbit->position(t);
+        return 3.0 * orbit->rate * orbit->rate * c.cross(moments.cwiseProduct(c));
     }
     /// ∂M/∂ω = 0.
     void add_jacobian(double, const Vec3&, const Vec3&, Mat3&) const {}
     bool axisymmetric() const { return false; }
 
     /// Ω (rad/s, about the orbit normal) of the averaged precession of G, above, for a symmetric
-    /// body (A, A, C) with angular velocity ω (body axes) and attitude q.
+    /// body (A, A, C) with angular velocity ω (body axes) and attitude q, on the torque's own orbit.
     double precession_rate(const Vec3& moments, const Vec3& omega, const Eigen::Vector4d& quaternion) const {
+        return precession_rate(moments, omega, quaternion, orbit.required("GravityGradient.precession_rate: the torque"));
+    }
+    /// The same on the orbit o (the model's).
+    static double precession_rate(const Vec3& moments, const Vec3& omega, const Eigen::Vector4d& quaternion,
+                                  const CircularOrbit& orbit) {
         const Vec3 G = moments.cwiseProduct(omega);
         const Vec3 g = scaled_unit(G);  // G/|G| and |G| without overflow or underflow (numeric/unit_vector.hpp)
         const double cos_nutation = g.z();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <Eigen/Core>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -80,6 +81,14 @@ bool uses_attitude(const T& x) {
     else
         return needs_attitude<T>::value;
 }
+
+/// A torque that reads the body's place on a circular orbit (`static constexpr bool on_orbit =
+/// true`, a member `orbit` (torque::OrbitOfTorque: its own orbit or none) and `T
+/// with_orbit(const CircularOrbit&) const`): the model gives it its orbit (TorqueSet::on_orbit).
+template <class T, class = void>
+struct on_orbit : std::false_type {};
+template <class T>
+struct on_orbit<T, std::enable_if_t<T::on_orbit>> : std::true_type {};
 
 template <class T, class = void>
 struct has_averaged : std::false_type {};
@@ -187,6 +196,7 @@ public:
     /// compute once for the body it acts on: the moving-mass damper's coefficients). Every model
     /// applies it to the torques it is given.
     TorqueSet in_principal_axes(const Body& body) const {
+        require_orbits();
         const bool any_prepared = std::any_of(parts_.begin(), parts_.end(), [](const AnyTorque& part) {
             return std::visit([](const auto& x) { return has_prepared<std::decay_t<decltype(x)>>::value; }, part);
         });
@@ -240,6 +250,52 @@ public:
                 return true;
         return false;
     }
+    /// The one orbit of a model with these torques: `model_orbit` when given, else the orbit the
+    /// orbit torques were given (none: no orbit at all). Throws std::invalid_argument naming both
+    /// when a torque's own orbit differs from the model's or from another torque's: one body is
+    /// in one place.
+    std::optional<torque::CircularOrbit> common_orbit(const std::optional<torque::CircularOrbit>& model_orbit) const {
+        std::optional<torque::CircularOrbit> found = model_orbit;
+        std::string owner = "the model's orbit";
+        for (const auto& part : parts_)
+            std::visit([&](const auto& x) {
+                using T = std::decay_t<decltype(x)>;
+                if constexpr (gyrostat::on_orbit<T>::value) {
+                    if (!x.orbit.given()) return;
+                    if (!found) {
+                        found = *x.orbit, owner = std::string(T::python_name) + "'s orbit";
+                    } else if (!found->same_as(*x.orbit)) {
+                        throw std::invalid_argument(std::string(T::python_name) + " has its own orbit " + x.orbit->text() +
+                                                    ", which differs from " + owner + " " + found->text() +
+                                                    ": one body is on one orbit; give it once, to the model (orbit=...), "
+                                                    "and leave it out of the torques");
+                    }
+                }
+            }, part);
+        return found;
+    }
+    /// The same torques, each orbit torque on `orbit` (after common_orbit: those with an orbit of
+    /// their own have this one).
+    TorqueSet on_orbit(const torque::CircularOrbit& orbit) const {
+        std::vector<AnyTorque> placed;
+        for (const auto& part : parts_)
+            placed.push_back(std::visit([&](const auto& x) -> AnyTorque {
+                if constexpr (gyrostat::on_orbit<std::decay_t<decltype(x)>>::value)
+                    return x.with_orbit(orbit);
+                else
+                    return x;
+            }, part));
+        return TorqueSet(std::move(placed));
+    }
+    /// Throws std::invalid_argument naming the first orbit torque that has no orbit (neither its
+    /// own nor the model's).
+    void require_orbits() const {
+        for (const auto& part : parts_)
+            std::visit([](const auto& x) {
+                if constexpr (gyrostat::on_orbit<std::decay_t<decltype(x)>>::value) (void)x.orbit.required(x.python_name);
+            }, part);
+    }
+
     /// The first torque without an averaged contribution (nullptr: every one has it).
     const char* without_averaged() const {
         for (const auto& part : parts_) {

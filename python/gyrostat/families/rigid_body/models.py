@@ -23,7 +23,12 @@ class Model(ModelBase):
     State ω = (p, q, r) in body axes, in rad/s (with ``attitude=True`` also the quaternion
     (q_w, q_x, q_y, q_z), body → inertial). Outputs: ``angular_momentum_norm`` |G| (kg m^2/s),
     ``kinetic_energy`` T (J) and, with attitude, the z-x-z Euler angles ``psi``, ``theta``,
-    ``phi`` (rad).
+    ``phi`` (rad). On an orbit (``orbit=``, or the orbit its orbit torques were given) also the
+    attitude relative to the orbit frame (LVLH: x along track, y minus the orbit normal, z
+    nadir; docs/orbit_frame.md): the quaternion ``q_orbit_w`` … ``q_orbit_z`` body → orbit
+    frame, ``roll``, ``pitch``, ``yaw`` (the 3-2-1 sequence, singular at pitch = ±π/2),
+    ``omega_rel_x`` … ``omega_rel_z`` (ω relative to the orbit frame, body axes), and the
+    azimuth and inclination of G about the orbit normal.
 
     Parameters
     ----------
@@ -35,7 +40,13 @@ class Model(ModelBase):
         :class:`gyrostat.MovingMassDamper`); they add up. Default: none.
     attitude : bool, optional
         Integrate the attitude quaternion as well (state size 7 instead of 3). Only needed when
-        an output or a torque depends on the orientation; it costs four more equations.
+        an output or a torque depends on the orientation; it costs four more equations. Default:
+        True with an orbit, else False.
+    orbit : gyrostat.Orbit, optional
+        The circular orbit the body is on: every orbit torque (:class:`gyrostat.GravityGradient`,
+        :class:`gyrostat.DipoleFieldTorque`) given without its own orbit reads this one, and one
+        given with its own must have this one (ValueError naming both otherwise). Needs the
+        attitude.
 
     Examples
     --------
@@ -46,14 +57,69 @@ class Model(ModelBase):
     >>> sol = gyrostat.solve(model, [0.0, 0.0, 1.0], (0.0, 10.0))
     >>> round(float(sol["r"][-1]), 6)  # r = 1 + 0.1 t / A3
     2.0
+
+    On an orbit, at rest in the orbit frame, under the gravity gradient (its axes are the orbit
+    frame's: the body stays there):
+
+    >>> orbiting = gyrostat.Model(gyrostat.Body([2.0, 3.0, 1.0]), [gyrostat.GravityGradient()],
+    ...                           orbit=gyrostat.Orbit(rate=0.001))
+    >>> y0 = orbiting.state_in_orbit_frame()
+    >>> sol = gyrostat.solve(orbiting, y0, (0.0, 6000.0))
+    >>> bool(abs(sol["pitch"]).max() < 1e-6), y0[:3]  # at rtol 1e-6
+    (True, array([ 0.   , -0.001,  0.   ]))
     """
 
     kind = "full"
 
-    def __init__(self, body: _core.Body, torques: Sequence = (), attitude: bool = False):
+    def __init__(self, body: _core.Body, torques: Sequence = (), attitude: bool | None = None,
+                 orbit: _core.Orbit | None = None):
         self.body = check_body(body)
         self.torques = check_torques(torques)
-        self._core = _core.gyrostat_model(body, self.torques, flag(attitude, "attitude"))
+        if orbit is not None and not isinstance(orbit, _core.Orbit):
+            raise TypeError(f"orbit must be a gyrostat.Orbit, not {type(orbit).__name__}")
+        attitude = orbit is not None if attitude is None else flag(attitude, "attitude")
+        self._core = _core.gyrostat_model(body, self.torques, attitude, orbit)
+
+    @property
+    def orbit(self) -> _core.Orbit | None:
+        """The model's orbit: the one given, or the one its orbit torques were given (None: none).
+
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Model(gyrostat.Body([2.0, 3.0, 1.0]), [gyrostat.GravityGradient(0.001)], attitude=True).orbit
+        Orbit(rate=0.001, normal=[0, 0, 1], phase=0)
+        """
+        return self._core.orbit
+
+    def state_in_orbit_frame(self, attitude=(1.0, 0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarray:
+        """The state (ω, q) at ``t`` of a body given relative to the orbit frame (a model on an orbit).
+
+        Parameters
+        ----------
+        attitude : array_like, shape (4,), optional
+            The quaternion (w, x, y, z) body → orbit frame (default: the body's axes on the
+            orbit frame's: x along track, y minus the orbit normal, z nadir).
+        omega : array_like, shape (3,), optional
+            The angular velocity relative to the orbit frame, in body axes, in rad/s (default:
+            at rest in the orbit frame, ω = n Rᵀ N).
+        t : float, optional
+            The time the state is for, in s (default 0).
+
+        Returns
+        -------
+        numpy.ndarray, shape (7,)
+            ω (rad/s, body axes) and the quaternion body → inertial.
+
+        Examples
+        --------
+        >>> import gyrostat
+        >>> model = gyrostat.Model(gyrostat.Body([2.0, 3.0, 1.0]), orbit=gyrostat.Orbit(rate=0.5))
+        >>> model.state_in_orbit_frame().round(12)
+        array([ 0. , -0.5,  0. ,  0.5, -0.5, -0.5,  0.5])
+        """
+        return np.asarray(self._core.from_orbit_frame(number(t, "t"), floats(attitude, "attitude"),
+                                                      floats(omega, "omega")))
 
     @property
     def is_torque_free_rigid_body(self) -> bool:
@@ -68,7 +134,8 @@ class Model(ModelBase):
         return not self.torques and not any(self.body.rotor)
 
     def __repr__(self) -> str:
-        return f"Model({self.body!r}, torques={list(self.torques)!r}, attitude={self.attitude})"
+        orbit = f", orbit={self.orbit!r}" if self.orbit is not None else ""
+        return f"Model({self.body!r}, torques={list(self.torques)!r}, attitude={self.attitude}{orbit})"
 
 
 class TorqueFreeModel(ModelBase):

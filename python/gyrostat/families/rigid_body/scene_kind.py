@@ -13,6 +13,7 @@ from gyrostat import _core
 from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL, check
 from gyrostat.families.rigid_body.analyses import analyse
+from gyrostat.families.rigid_body import orbit_frame
 from gyrostat.families.rigid_body.models import AveragedModel, Model, TorqueFreeModel
 from gyrostat.families.rigid_body.plots import draw
 from gyrostat.families.rigid_body.rungs import (averaged_rung, initial_assumptions, invariant_columns, nearly_symmetric,
@@ -28,7 +29,8 @@ class RigidBody(Kind):
     name = "rigid_body"
     doc = ("A rigid body or gyrostat under perturbation torques: the full model, its closed form when nothing "
            "perturbs it, or the system averaged over the symmetric Euler-Poinsot motion in (a, r).")
-    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase", "nutation", "ladder")
+    plots = ("omega", "invariants", "euler_angles", "error", "xy", "slow", "phase", "nutation", "ladder", "orbit_angles",
+             "precession")
     models = ("auto", "full", "closed_form", "averaged", "averaged_triaxial", "compare")
     default = True
     splits = True
@@ -37,13 +39,20 @@ class RigidBody(Kind):
     def schema(self) -> Table:
         return Table({
             **title_fields(),
-            "body": Field(BODY, required=True, doc="the body"),
+            "body": Field(Table({**BODY.fields, "inertia_ratios": orbit_frame.INERTIA_RATIOS},
+                                one_of=[("moments", "inertia", "inertia_ratios")]), required=True, doc="the body"),
             "torques": Field(ArrayOf(TORQUE), default=[], doc="perturbation torques; they add up"),
+            "orbit": orbit_frame.ORBIT,
             "initial": Field(Table({
-                "omega": Field(Vector(3), required=True, doc="angular velocity in body axes", unit="rad/s",
-                               check=all_finite),
-                "attitude": Field(Vector(4), doc="attitude quaternion (w, x, y, z), body to inertial; "
-                                                 "giving it integrates the attitude", check=nonzero_quaternion),
+                "omega": Field(Vector(3), required=True, doc="angular velocity in body axes (frame = 'orbit': relative "
+                                                             "to the orbit frame)", unit="rad/s", check=all_finite),
+                "attitude": Field(Vector(4), doc="attitude quaternion (w, x, y, z), body to inertial (frame = 'orbit': "
+                                                 "body to orbit frame); giving it integrates the attitude",
+                                  check=nonzero_quaternion),
+                "frame": Field(Choice("inertial", "orbit"), default="inertial",
+                               doc="what omega and attitude are relative to: inertial axes, or the orbit frame of "
+                                   "[orbit] (x along track, y minus the orbit normal, z nadir; omega = [0, 0, 0] "
+                                   "with the default attitude: at rest in it)"),
             }), required=True, doc="the initial state"),
             "integration": Field(Table({
                 "model": Field(Choice(*self.models), default="auto",
@@ -60,14 +69,14 @@ class RigidBody(Kind):
         })
 
     def needs_attitude(self, doc: dict) -> bool:
-        """The attitude is integrated only when the scene asks for it (an initial quaternion or
-        an Euler-angle plot)."""
-        return "attitude" in doc["initial"] or "euler_angles" in doc["outputs"]["plots"]
+        """The attitude is integrated only when the scene asks for it (an initial quaternion, an
+        Euler-angle plot, or an orbit)."""
+        return "attitude" in doc["initial"] or "euler_angles" in doc["outputs"]["plots"] or "orbit" in doc
 
     def choose(self, doc: dict, body, torques) -> tuple[str, str]:
         """The cheapest model that answers the scene, and the reason for the choice."""
         choice = doc["integration"]["model"]
-        free = not torques and not np.any(np.asarray(body.rotor))
+        free = not torques and not np.any(np.asarray(body.rotor)) and "orbit" not in doc
         attitude = self.needs_attitude(doc)
         if choice == "closed_form":
             if not free:
@@ -81,32 +90,41 @@ class RigidBody(Kind):
         reasons = [f"{len(torques)} torque(s)"] if torques else []
         if np.any(np.asarray(body.rotor)):
             reasons.append("a rotor (k != 0)")
-        if attitude:
+        if "orbit" in doc:
+            reasons.append("an orbit (the attitude relative to its frame)")
+        elif attitude:
             reasons.append("attitude asked for")
         return "full", "full model: " + ", ".join(reasons)
 
     # plots an averaged model can draw: functions of its slow variables
     slow_plots = ("xy", "slow", "phase", "invariants", "ladder")
 
-    def start(self, doc: dict, attitude: bool) -> np.ndarray:
+    def start(self, doc: dict, attitude: bool, model=None) -> np.ndarray:
         """The full model's initial state: ω, followed with ``attitude`` by the initial quaternion
-        normalised (the identity when the scene gives none)."""
+        normalised (the identity when the scene gives none); with ``frame = "orbit"`` both given
+        relative to the orbit frame of ``model`` (a :class:`Model` on an orbit) at t0."""
         initial = doc["initial"]
+        if initial.get("frame") == "orbit":
+            if model is None or getattr(model, "orbit", None) is None:
+                raise SceneError("[initial] frame = 'orbit' needs an [orbit] table (or an orbit torque with its orbit)")
+            return model.state_in_orbit_frame(initial.get("attitude", (1.0, 0.0, 0.0, 0.0)), initial["omega"],
+                                              doc["integration"]["t_span"][0])
         if not attitude:
             return np.array(initial["omega"], float)
         q = _core.unit_vector(initial.get("attitude", (1.0, 0.0, 0.0, 0.0)), "[initial] attitude")
         return np.array([*initial["omega"], *q], float)
 
     def ladder(self, doc):
-        body, torques = make_body(doc), make_torques(doc)
+        body, torques = orbit_frame.body_of(doc, make_body), make_torques(doc)
         omega = np.asarray(doc["initial"]["omega"], float)
         attitude = self.needs_attitude(doc)
-        y0 = self.start(doc, attitude)
-        free = not torques and not np.any(np.asarray(body.rotor))
+        model = build("torques", Model, body, torques, attitude, orbit_frame.make_orbit(doc))
+        y0 = self.start(doc, attitude, model)
+        free = not torques and not np.any(np.asarray(body.rotor)) and model.orbit is None
         closed = _ladder.Rung("closed_form", TorqueFreeModel(body, attitude) if free else None, y0,
                               "the exact torque-free flow (elliptic functions)",
-                              blocked="" if free else "torques or a rotor perturb the body", run="closed_form")
-        full = _ladder.Rung("full", build("torques", Model, body, torques, attitude), y0,
+                              blocked="" if free else "torques, a rotor or an orbit frame", run="closed_form")
+        full = _ladder.Rung("full", model, y0,
                             "Euler's equations" + (" with the attitude" if attitude else ""),
                             compare=slow_columns)
         triaxial = triaxial_rung(doc, body, torques, omega, attitude)
@@ -115,7 +133,7 @@ class RigidBody(Kind):
         return [closed, averaged_rung(doc, body, torques, omega, self.slow_plots, attitude), triaxial, full]
 
     def runs(self, doc):
-        body, torques = make_body(doc), make_torques(doc)
+        body, torques = orbit_frame.body_of(doc, make_body), make_torques(doc)
         choice, reason = self.choose(doc, body, torques)
         omega = np.asarray(doc["initial"]["omega"], float)
         t_span = tuple(doc["integration"]["t_span"])
@@ -126,8 +144,8 @@ class RigidBody(Kind):
             runs.append(Run("closed_form", build("body", TorqueFreeModel, body, attitude), self.start(doc, attitude),
                             t_span, options))
         if choice in ("full", "compare"):
-            model = build("torques", Model, body, torques, attitude)
-            runs.append(Run("full", model, self.start(doc, attitude), t_span, options))
+            model = build("torques", Model, body, torques, attitude, orbit_frame.make_orbit(doc))
+            runs.append(Run("full", model, self.start(doc, attitude, model), t_span, options))
         triaxial = choice == "averaged_triaxial" or (choice == "compare" and nearly_symmetric(body) > SMALL)
         if triaxial:
             model = build("torques", TriaxialAveragedModel, body, torques)
@@ -145,11 +163,21 @@ class RigidBody(Kind):
 
     def analyse(self, scene, solutions, report, derived):
         analyse(scene, solutions, report, derived)
+        full = solutions.get("full")
+        if full is not None and getattr(full.model, "orbit", None) is not None:
+            orbit_frame.analyse(full, report)
 
     def draw(self, scene, solutions, derived, folder):
-        return draw(scene, solutions, derived, folder)
+        full = solutions.get("full")
+        on_orbit = full is not None and getattr(full.model, "orbit", None) is not None
+        own = {"orbit_angles": lambda sol, title, path: orbit_frame.orbit_angles(sol, title, path),
+               "precession": lambda sol, title, path: orbit_frame.precession(
+                   sol, orbit_frame.precession_rate(sol)[1], title, path)} if on_orbit else None
+        return draw(scene, solutions, derived, folder, own)
 
     def why_not_drawn(self, doc, plot):
+        if plot in ("orbit_angles", "precession") and "orbit" not in doc:
+            return "it needs an [orbit] table: the angles are relative to the orbit frame"
         if plot == "error" and doc["outputs"].get("reference") is None:
             return ("it needs a reference: [outputs] reference = \"closed_form\" (a rigid body with neither torques "
                     "nor a rotor)")
