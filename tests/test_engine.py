@@ -5,6 +5,7 @@ References written here: SciPy solve_ivp (DOP853, rtol 1e-12) on right-hand side
 file, and the quantities each model records recomputed here from the recorded states."""
 
 import math
+import sys
 import threading
 import time
 
@@ -178,8 +179,13 @@ def test_solution_guards_and_names():
 
 
 def test_bad_calls_name_what_is_wrong():
-    with pytest.raises(TypeError, match="model must be a gyrostat model"):
+    with pytest.raises(TypeError, match="model must be a gyrostat model") as refused:
         g.solve("not a model", W0, (0, 1))
+    named = set(str(refused.value).split("(", 1)[1].split(")", 1)[0].split(", "))  # from ModelBase's subclasses
+    assert named >= {"Model", "AveragedModel", "TriaxialAveragedModel", "MovingMassModel", "TorqueFreeModel",
+                     "LagrangeTop", "LagrangeAveraged", "OrthogonalModel"}
+    with pytest.raises(TypeError, match="TriaxialAveragedModel"):
+        g.solve_ensemble([object()], [W0], (0, 1))
     with pytest.raises(ValueError, match=r"initial state has 5 components; this model needs 7 \(p, q, r, q_w"):
         g.solve(g.Model(BODY, attitude=True), np.ones(5), (0, 1))
     with pytest.raises(ValueError, match=r"t_span must be \(t0, t1\)"):
@@ -204,6 +210,45 @@ def test_options_are_one_object_with_the_defaults():
     o.rtol, o.n_out = 1e-12, 5
     tight = g.solve(g.Model(BODY), W0, (0, 1), options=o)
     assert len(tight) == 5 and g.Options().rtol == 1e-8  # a user's Options never changes the defaults
+
+
+def test_the_option_names_are_written_once(monkeypatch):
+    """``gyrostat.options.OPTIONS`` is the one list of integration options: it holds every option of
+    the C++ ``Options`` (its scalars, ``t_eval``; events and dense output are keywords of their
+    own), and the keywords that solve, solve_ensemble and ensemble_results spell out for their
+    readers are exactly its names, so that a new option added to the list and not to a signature
+    (or the other way round) fails here."""
+    import inspect
+
+    from gyrostat import accuracy, options
+    from gyrostat.solve import ensemble_results
+
+    assert set(options.OPTIONS) == set(g.Options().to_dict()) - {"dense_output"} | {"t_eval"}
+    for name, kind in options.OPTIONS.items():
+        if name != "t_eval":
+            assert type(getattr(g.Options(), name)) is kind, name
+    others = {"model", "models", "y0", "y0s", "t_span", "threads", "options", "events", "dense_output", "progress",
+              "check_validity", "batch", "accuracy", "error_estimate", "compare"}
+    for function in (g.solve, g.solve_ensemble, ensemble_results):
+        keywords = set(inspect.signature(function).parameters) - others
+        assert keywords == set(options.OPTION_NAMES), function.__name__
+    assert "_OPTION_NAMES" not in vars(accuracy)  # the companions copy the options by the one list
+    # each function hands its option keywords on in the order of OPTIONS (solve names them for speed)
+    seen = []
+
+    def caught(opts, values):
+        seen.append(dict(zip(options.OPTION_NAMES, values)))
+        raise KeyboardInterrupt
+
+    distinct = {name: f"<{name}>" for name in options.OPTION_NAMES}
+    for module in ("gyrostat.solve", "gyrostat.ensemble"):
+        monkeypatch.setattr(sys.modules[module], "options_of", caught)
+    for function in (g.solve, g.solve_ensemble, ensemble_results):
+        with pytest.raises(KeyboardInterrupt):
+            function(g.Model(BODY), [W0], (0, 1), **distinct)
+    assert seen == [distinct] * 3
+    with pytest.raises(TypeError, match="options are method, rtol, atol, t_eval, n_out"):
+        options.make_options(tolerance=1e-9)
 
 
 def test_t_eval_lists_reuse_their_options_and_keep_every_check():

@@ -32,13 +32,13 @@ PACKAGE = Path(__file__).resolve().parents[1] / "python" / "gyrostat"
 
 FLOORS = (  # bottom up: a module imports (anywhere in it, functions included) its own floor or below
     ("engine", ("gyrostat._core", "gyrostat.arguments", "gyrostat.progress", "gyrostat.events", "gyrostat.attitude",
-                "gyrostat.assumptions")),
+                "gyrostat.assumptions", "gyrostat.options")),
     ("schema", ("gyrostat.schema", "gyrostat.schema.messages", "gyrostat.schema.fields", "gyrostat.schema.checks",
                 "gyrostat.schema.reference", "gyrostat.scene_code")),
-    ("results", ("gyrostat.solution", "gyrostat.accuracy")),
+    ("results", ("gyrostat.solution", "gyrostat.solution_views", "gyrostat.solution_join", "gyrostat.accuracy")),
     ("models", ("gyrostat.torques", "gyrostat.modelbase")),
-    ("runs", ("gyrostat.solve", "gyrostat.ladder", "gyrostat.ladder.rungs", "gyrostat.ladder.probe",
-              "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures")),
+    ("runs", ("gyrostat.solve", "gyrostat.answer", "gyrostat.ensemble", "gyrostat.ladder", "gyrostat.ladder.rungs",
+              "gyrostat.ladder.probe", "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures")),
     ("kinds", ("gyrostat.kind",)),
     ("families", ("gyrostat.families",)),  # and every module under gyrostat/families/
     ("re-exports", ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")),

@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from gyrostat import _core
+from gyrostat.options import OPTION_NAMES
 
 TIGHTER = 4.0
 """ρ: the companion run's tolerances are this many times smaller than the run's (:data:`TIGHTER_BY_METHOD`)."""
@@ -228,16 +229,13 @@ def tighter(opts) -> tuple[object, float, str]:
     return made, rho / (rho - 1.0), f"rtol and atol / {rho:g}"
 
 
-_OPTION_NAMES = ("method", "rtol", "atol", "n_out", "every_step", "max_steps", "first_step", "max_step", "step",
-                 "splitting_order")
-
-
 def _copy(opts, t_eval=None):
     """A copy of the options without events, dense output or every step (a companion records only
     its output times), at ``t_eval`` when given."""
     made = _core.Options()
-    for name in _OPTION_NAMES:
-        setattr(made, name, getattr(opts, name))
+    for name in OPTION_NAMES:
+        if name != "t_eval":
+            setattr(made, name, getattr(opts, name))
     made.every_step = False
     made.t_eval = opts.t_eval if t_eval is None else np.asarray(t_eval, float)
     return made

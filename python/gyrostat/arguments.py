@@ -1,7 +1,8 @@
 """A value a user passed, checked and shown with one-line errors: :func:`floats` (numbers as an
-array of floats, never cast from strings or complex numbers) and :func:`shown` (a value on one
-line, cut short, for a message). Below every floor that checks arguments (the results, the
-models, the runs); :mod:`gyrostat.modelbase` builds its constructors' helpers on them."""
+array of floats, never cast from strings or complex numbers), :func:`flag` (True or False, never
+a truthy value) and :func:`shown` (a value on one line, cut short, for a message). Below every
+floor that checks arguments (the options, the results, the models, the runs);
+:mod:`gyrostat.modelbase` builds its constructors' helpers on them."""
 
 from __future__ import annotations
 
@@ -25,3 +26,11 @@ def floats(value, name: str, what: str = "real numbers") -> np.ndarray:
     if array is None or array.dtype.kind not in "iuf":
         raise ValueError(f"{name} must be {what}, got {shown(value)}")
     return array.astype(float, copy=False)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` as a bool, or a ValueError naming ``name``: only True and False are booleans
+    (``bool("no")`` is True; 0 and 1 are numbers)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} = {shown(value)} must be True or False")

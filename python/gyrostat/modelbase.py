@@ -1,7 +1,9 @@
 """What every model is: :class:`ModelBase` (a C++ model with named state components and named
 outputs, solved by :func:`gyrostat.solve` and :func:`gyrostat.solve_ensemble`), and the argument
 helpers every constructor uses (numbers, flags, bodies and torques checked with one-line
-errors). Each family's models derive from it in their family module (``gyrostat/families/``).
+errors). Each family's models derive from it in their family module (``gyrostat/families/``);
+:func:`model_names` reads them from its subclasses, so that a message naming the models is
+written once (:func:`core_of`).
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.arguments import floats, shown
+from gyrostat.arguments import flag, floats, shown  # noqa: F401 (flag: the constructors' helper, from here)
 from gyrostat.torques import TORQUE_TYPES
 
 
@@ -20,14 +22,6 @@ def number(value, name: str) -> float:
     if array.ndim:
         raise ValueError(f"{name} must be a number, got {shown(value)}")
     return float(array)
-
-
-def flag(value, name: str) -> bool:
-    """``value`` as a bool, or a ValueError naming ``name``: only True and False are booleans
-    (``bool("no")`` is True; 0 and 1 are numbers)."""
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    raise ValueError(f"{name} = {shown(value)} must be True or False")
 
 
 def check_torques(torques) -> tuple:
@@ -226,3 +220,25 @@ class ModelBase:
         []
         """
         return []
+
+
+def model_names() -> tuple[str, ...]:
+    """The names of the model classes, read from the subclasses of :class:`ModelBase` (every
+    family's models, and any a user derives): the one list the error messages name, so that a new
+    model needs no message changed. A private class (``_TopModel``) is left out, its subclasses not."""
+    names, waiting = [], list(ModelBase.__subclasses__())
+    while waiting:
+        cls = waiting.pop(0)
+        if not cls.__name__.startswith("_") and cls.__name__ not in names:
+            names.append(cls.__name__)
+        waiting += cls.__subclasses__()
+    return tuple(names)
+
+
+def core_of(model):
+    """The C++ model of ``model``, or a TypeError naming every model class (:func:`model_names`)."""
+    try:
+        return model._core
+    except AttributeError:
+        raise TypeError(f"model must be a gyrostat model ({', '.join(model_names())}), not "
+                        f"{type(model).__name__}") from None

@@ -1,6 +1,11 @@
 """The result of a run of any model: times, states and named outputs, statistics, status. One
 type for every run: a run joined from pieces (the model ladder's switches) is a
-:class:`Solution` too (:meth:`Solution.join`, ``pieces``, ``switches``, ``rung``)."""
+:class:`Solution` too (:meth:`Solution.join`, ``pieces``, ``switches``, ``rung``).
+
+Here: the Solution's arrays, names, events, dense output, run information and the accuracy it
+measured; its labelled-data and attitude views (``units``, ``columns``, ``to_xarray``, ``omega``,
+``quaternion``, ``euler_angles``, ``invariants``) come from :mod:`gyrostat.solution_views`, and
+:meth:`Solution.join` from :mod:`gyrostat.solution_join` (its bases)."""
 
 from __future__ import annotations
 
@@ -8,15 +13,8 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat.arguments import floats
-
-from types import SimpleNamespace
-
-_RATES = ("p", "q", "r")
-_QUATERNION = ("q_w", "q_x", "q_y", "q_z")
-
-
-def _no_dense_output(times):
-    raise ValueError("a run joined from pieces keeps no dense output: evaluate its pieces (solution.pieces)")
+from gyrostat.solution_join import SolutionJoin
+from gyrostat.solution_views import SolutionViews
 
 
 class AccuracyWarning(UserWarning):
@@ -37,7 +35,7 @@ class AccuracyWarning(UserWarning):
     """
 
 
-class Solution:
+class Solution(SolutionViews, SolutionJoin):
     """A trajectory of any model, as recorded by the engine: what :func:`gyrostat.solve` returns.
 
     Times ``t``, states ``y`` (columns named by ``state_names``), the named outputs the engine
@@ -140,70 +138,6 @@ class Solution:
         self.estimate = None
         self._doubts: list[str] = []
 
-    @classmethod
-    def join(cls, model, pieces: list[tuple[str, "Solution"]], parts: list[tuple], switches: list[tuple],
-             y_last, event_names: tuple = (), t_events: list | None = None, y_events: list | None = None,
-             terminal_event: int = -1, notes: tuple = ()) -> "Solution":
-        """One solution of ``model`` from the pieces of a run that switched models.
-
-        The statistics add up; status, message and the step to continue with are the last
-        piece's; no output is marked conserved (the pieces' models differ). The model ladder
-        (``model = "auto"`` in a scene) makes these; a joined run keeps no dense output.
-
-        Parameters
-        ----------
-        model : gyrostat.ModelBase
-            The model whose state and outputs the joined solution has.
-        pieces : list of (str, Solution)
-            The pieces in order, each with the name of its model.
-        parts : list of (t, y, outputs, index)
-            Each non-empty piece already in ``model``'s state and outputs (index: 0 where
-            ``model`` itself ran).
-        switches : list of (t, from, to, reason)
-            Where the run switched models and why.
-        y_last : array_like
-            The last state, in ``model``'s variables.
-        event_names, t_events, y_events, terminal_event : optional
-            The caller's events over the pieces (the crossings' states in ``model``'s variables;
-            ``terminal_event`` the index of the one that ended the run, -1: none).
-        notes : tuple of str, optional
-            What the run notes besides (an event not located on a piece whose model lacks its quantity).
-
-        Examples
-        --------
-        >>> t = sol.t[:3]
-        >>> part = (t, sol.y[:3], sol._result.outputs[:3], 0)
-        >>> joined = gyrostat.Solution.join(model, [("full", sol)], [part], [], sol.y[2])
-        >>> len(joined), joined.rung.tolist()
-        (3, [0.0, 0.0, 0.0])
-        """
-        core = model._core
-        dim, n_out = len(core.state_names), len(core.output_names)
-        quantities = core.quantities  # made by the core on each call: once
-        last = pieces[-1][1]
-        each = [sol.stats for _, sol in pieces]  # a dict made on each call: once per piece
-        stats = {k: sum(piece[k] for piece in each) for k in each[-1] if k != "last_step"}
-        result = SimpleNamespace(
-            t=np.concatenate([p[0] for p in parts]) if parts else np.zeros(0),
-            y=np.vstack([p[1] for p in parts]) if parts else np.zeros((0, dim)),
-            outputs=np.vstack([p[2] for p in parts]) if parts else np.zeros((0, n_out)),
-            state_names=tuple(core.state_names), output_names=tuple(core.output_names),
-            state_units=tuple(q["unit"] for q in quantities if q["role"] == "state"),
-            output_units=tuple(q["unit"] for q in quantities if q["role"] == "output"),
-            output_conserved=(False,) * n_out, output_kept=(False,) * n_out, options=last._result.options,
-            stats=SimpleNamespace(**stats, last_step=each[-1]["last_step"]),
-            t_last=last.t_last, y_last=y_last, h_next=last.h_next, status=last.status,
-            message=(f"terminal event {terminal_event} ('{event_names[terminal_event]}') at t = {last.t_last:.17g}"
-                     if terminal_event >= 0 else last.message),
-            success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
-            methods_used=(), switches=[], warnings=(), notes=tuple(notes), t_events=list(t_events or []),
-            y_events=list(y_events or []), event_names=tuple(event_names), terminal_event=terminal_event,
-            error_estimate=float("nan"), dense=_no_dense_output)
-        joined = cls(result, model)
-        joined.pieces, joined.switches = tuple(pieces), list(switches)
-        joined.rung = np.concatenate([np.full(len(p[0]), float(p[3])) for p in parts]) if parts else np.zeros(0)
-        return joined
-
     # ---- arrays
     @property
     def t(self) -> np.ndarray:
@@ -286,18 +220,6 @@ class Solution:
         flags = getattr(self._result, "output_kept", self._result.output_conserved)
         return tuple(n for n, c in zip(self._result.output_names, flags) if c)
 
-    @property
-    def invariants(self) -> dict[str, np.ndarray]:
-        """The conserved outputs by name (a subset of :attr:`outputs`).
-
-        Examples
-        --------
-        >>> sorted(sol.invariants)
-        ['angular_momentum_norm', 'kinetic_energy']
-        """
-        outputs = self.outputs
-        return {name: outputs[name] for name in self.conserved}
-
     def __getitem__(self, name: str) -> np.ndarray:
         """A state component, an output or ``"t"`` by name: its (n,) values at the output times.
 
@@ -340,22 +262,6 @@ class Solution:
         return name in self._result.state_names or name in self._result.output_names
 
     @property
-    def units(self) -> dict[str, str]:
-        """The SI unit of every column (t, each state component, each output; "1":
-        dimensionless), as the C++ model declares them.
-
-        Examples
-        --------
-        >>> sol.units["t"], sol.units["r"], sol.units["kinetic_energy"]
-        ('s', 'rad/s', 'J')
-        """
-        r = self._result
-        units = {"t": "s", **dict(zip(r.state_names, r.state_units)), **dict(zip(r.output_names, r.output_units))}
-        if self.rung is not None:
-            units["rung"] = "1"
-        return units
-
-    @property
     def options(self):
         """The options the run was made with (:class:`gyrostat.Options`, without t_eval and events).
 
@@ -365,74 +271,6 @@ class Solution:
         ('dop853', 1e-08)
         """
         return self._result.options
-
-    def columns(self) -> dict[str, np.ndarray]:
-        """t, every state component and every output, by name (what the CSV/NPZ writers save).
-
-        Examples
-        --------
-        >>> list(sol.columns())[:4]
-        ['t', 'p', 'q', 'r']
-        """
-        columns = {"t": self.t}
-        y = self.y
-        columns.update({name: y[:, i] for i, name in enumerate(self._result.state_names)})
-        columns.update(self.outputs)
-        if self.rung is not None:
-            columns["rung"] = self.rung
-        return columns
-
-    @property
-    def omega(self) -> np.ndarray:
-        """(n, 3) angular velocity in body axes, in rad/s (a ValueError for a model without it).
-
-        Examples
-        --------
-        >>> sol.omega.shape
-        (11, 3)
-        """
-        if tuple(self._result.state_names[:3]) != _RATES:
-            raise ValueError(f"this solution has no angular velocity in its state ({', '.join(self.state_names)})")
-        return self.y[:, :3]
-
-    @property
-    def quaternion(self) -> np.ndarray:
-        """(n, 4) attitude quaternion (w, x, y, z), body → inertial (a ValueError for a model without
-        attitude).
-
-        Examples
-        --------
-        >>> sol.quaternion.shape
-        (11, 4)
-        """
-        names = self._result.state_names
-        if "q_w" not in names:
-            raise ValueError(f"this solution has no attitude: its state is ({', '.join(names)}); "
-                             "solve a model with attitude (e.g. Model(..., attitude=True))")
-        first = names.index("q_w")
-        return self.y[:, first:first + 4]
-
-    def euler_angles(self, convention: str = "zxz") -> np.ndarray:
-        """(n, 3) Euler angles of the attitude, in rad.
-
-        At the singular angles the free rotation is put in ψ and φ = 0 (see :mod:`gyrostat.attitude`).
-
-        Parameters
-        ----------
-        convention : {"zxz", "zyx"}
-            ``"zxz"``: ψ precession, θ nutation, φ proper rotation (recorded by the engine);
-            ``"zyx"``: yaw, pitch, roll.
-
-        Examples
-        --------
-        >>> sol.euler_angles("zyx").shape
-        (11, 3)
-        """
-        if convention == "zxz" and "psi" in self._result.output_names:
-            return np.column_stack([self["psi"], self["theta"], self["phi"]])
-        from gyrostat import attitude
-
-        return attitude.euler_angles(self.quaternion, convention)
 
     # ---- events and dense output
     @property
@@ -530,38 +368,6 @@ class Solution:
             return values[0] if times.ndim == 0 else values.reshape(times.shape)
         values = self._result.dense(times.ravel())
         return values[0] if times.ndim == 0 else values.reshape(times.shape + (values.shape[1],))
-
-    # ---- labelled data
-    def to_xarray(self):
-        """The solution as an ``xarray.Dataset``: dimension ``time`` (its coordinate, in s), the
-        state components and outputs as variables with their units, each event's crossing
-        times (``t_event_<name>``), and the method (the methods used and the switches of
-        ``"auto"``), status, message and statistics as attributes; ``to_netcdf`` writes it.
-
-        Examples
-        --------
-        >>> sol.to_xarray()["r"].attrs["units"]
-        'rad/s'
-        """
-        import xarray as xr
-
-        from gyrostat.events import variable_name
-
-        units = self.units
-        variables = {name: ("time", values, {"units": units[name]}) for name, values in self.columns().items()
-                     if name != "t"}
-        for label, times in zip(self.event_names, self.t_events):
-            key = variable_name(label)
-            variables[f"t_event_{key}"] = (f"crossing_{key}", np.asarray(times),
-                                           {"units": "s", "long_name": f"crossings of {label}"})
-        attrs = {"method": self.method, "methods_used": ", ".join(self.methods_used),
-                 "method_switches": "\n".join(f"t = {t!r}: {to} ({why})" for t, to, why in self.method_switches),
-                 "status": self.status, "message": self.message,
-                 **{name: value for name, value in self.stats.items()},
-                 "terminal_event": "" if self.terminal_event is None else self.event_names[self.terminal_event]}
-        if self.notes:
-            attrs["notes"] = "\n".join(self.notes)
-        return xr.Dataset(variables, {"time": ("time", np.asarray(self.t), {"units": "s"})}, attrs)
 
     # ---- run information
     @property

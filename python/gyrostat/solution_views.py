@@ -1,0 +1,157 @@
+"""The labelled-data and attitude views of a :class:`gyrostat.Solution`: every column by name
+with its unit (:meth:`~SolutionViews.columns`, :attr:`~SolutionViews.units`), the whole run as an
+``xarray.Dataset`` (:meth:`~SolutionViews.to_xarray`), the angular velocity, the attitude
+quaternion and its Euler angles. Made from what the Solution holds, without physics recomputed
+(the Euler angles of a convention the engine did not record come from :mod:`gyrostat.attitude`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+_RATES = ("p", "q", "r")
+
+
+class SolutionViews:
+    """What :class:`gyrostat.Solution` shows of its run as labelled data and as attitude (a base of
+    Solution: these are its methods and properties).
+
+    Examples
+    --------
+    The examples of the attributes below use this solution (a triaxial body with attitude, 11
+    output times):
+
+    >>> import gyrostat
+    >>> model = gyrostat.Model(gyrostat.Body([2.0, 1.5, 1.0]), attitude=True)
+    >>> sol = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 10.0), n_out=11)
+    >>> isinstance(sol, gyrostat.solution_views.SolutionViews)
+    True
+    """
+
+    __slots__ = ()
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The SI unit of every column (t, each state component, each output; "1":
+        dimensionless), as the C++ model declares them.
+
+        Examples
+        --------
+        >>> sol.units["t"], sol.units["r"], sol.units["kinetic_energy"]
+        ('s', 'rad/s', 'J')
+        """
+        r = self._result
+        units = {"t": "s", **dict(zip(r.state_names, r.state_units)), **dict(zip(r.output_names, r.output_units))}
+        if self.rung is not None:
+            units["rung"] = "1"
+        return units
+
+    @property
+    def invariants(self) -> dict[str, np.ndarray]:
+        """The conserved outputs by name (a subset of :attr:`outputs`).
+
+        Examples
+        --------
+        >>> sorted(sol.invariants)
+        ['angular_momentum_norm', 'kinetic_energy']
+        """
+        outputs = self.outputs
+        return {name: outputs[name] for name in self.conserved}
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """t, every state component and every output, by name (what the CSV/NPZ writers save).
+
+        Examples
+        --------
+        >>> list(sol.columns())[:4]
+        ['t', 'p', 'q', 'r']
+        """
+        columns = {"t": self.t}
+        y = self.y
+        columns.update({name: y[:, i] for i, name in enumerate(self._result.state_names)})
+        columns.update(self.outputs)
+        if self.rung is not None:
+            columns["rung"] = self.rung
+        return columns
+
+    @property
+    def omega(self) -> np.ndarray:
+        """(n, 3) angular velocity in body axes, in rad/s (a ValueError for a model without it).
+
+        Examples
+        --------
+        >>> sol.omega.shape
+        (11, 3)
+        """
+        if tuple(self._result.state_names[:3]) != _RATES:
+            raise ValueError(f"this solution has no angular velocity in its state ({', '.join(self.state_names)})")
+        return self.y[:, :3]
+
+    @property
+    def quaternion(self) -> np.ndarray:
+        """(n, 4) attitude quaternion (w, x, y, z), body → inertial (a ValueError for a model without
+        attitude).
+
+        Examples
+        --------
+        >>> sol.quaternion.shape
+        (11, 4)
+        """
+        names = self._result.state_names
+        if "q_w" not in names:
+            raise ValueError(f"this solution has no attitude: its state is ({', '.join(names)}); "
+                             "solve a model with attitude (e.g. Model(..., attitude=True))")
+        first = names.index("q_w")
+        return self.y[:, first:first + 4]
+
+    def euler_angles(self, convention: str = "zxz") -> np.ndarray:
+        """(n, 3) Euler angles of the attitude, in rad.
+
+        At the singular angles the free rotation is put in ψ and φ = 0 (see :mod:`gyrostat.attitude`).
+
+        Parameters
+        ----------
+        convention : {"zxz", "zyx"}
+            ``"zxz"``: ψ precession, θ nutation, φ proper rotation (recorded by the engine);
+            ``"zyx"``: yaw, pitch, roll.
+
+        Examples
+        --------
+        >>> sol.euler_angles("zyx").shape
+        (11, 3)
+        """
+        if convention == "zxz" and "psi" in self._result.output_names:
+            return np.column_stack([self["psi"], self["theta"], self["phi"]])
+        from gyrostat import attitude
+
+        return attitude.euler_angles(self.quaternion, convention)
+
+    def to_xarray(self):
+        """The solution as an ``xarray.Dataset``: dimension ``time`` (its coordinate, in s), the
+        state components and outputs as variables with their units, each event's crossing
+        times (``t_event_<name>``), and the method (the methods used and the switches of
+        ``"auto"``), status, message and statistics as attributes; ``to_netcdf`` writes it.
+
+        Examples
+        --------
+        >>> sol.to_xarray()["r"].attrs["units"]
+        'rad/s'
+        """
+        import xarray as xr
+
+        from gyrostat.events import variable_name
+
+        units = self.units
+        variables = {name: ("time", values, {"units": units[name]}) for name, values in self.columns().items()
+                     if name != "t"}
+        for label, times in zip(self.event_names, self.t_events):
+            key = variable_name(label)
+            variables[f"t_event_{key}"] = (f"crossing_{key}", np.asarray(times),
+                                           {"units": "s", "long_name": f"crossings of {label}"})
+        attrs = {"method": self.method, "methods_used": ", ".join(self.methods_used),
+                 "method_switches": "\n".join(f"t = {t!r}: {to} ({why})" for t, to, why in self.method_switches),
+                 "status": self.status, "message": self.message,
+                 **{name: value for name, value in self.stats.items()},
+                 "terminal_event": "" if self.terminal_event is None else self.event_names[self.terminal_event]}
+        if self.notes:
+            attrs["notes"] = "\n".join(self.notes)
+        return xr.Dataset(variables, {"time": ("time", np.asarray(self.t), {"units": "s"})}, attrs)
