@@ -160,3 +160,21 @@ def test_the_ladders_full_model_meets_the_accuracy_on_what_the_ladder_compares()
     mine = np.column_stack([solution["angular_momentum_norm"], solution["kinetic_energy"]])
     true = float(np.max(np.linalg.norm(mine - invariants, axis=1)) / np.max(np.linalg.norm(invariants, axis=1)))
     assert true <= 1e-7 and 0.5 <= solution.error_estimate / true <= 30, (solution.error_estimate, true)
+
+
+@pytest.mark.parametrize("name", ["p004_triaxial", "p001_xy_ratio_map", "p003_case1_theta0_5deg",
+                                  "p001_explicit_moving_mass", "p000_A1p3_C1_M3-0p1"])
+def test_every_familys_scenes_take_the_accuracy(name):
+    """integration.accuracy is a key of every scene kind (one [integration] table for all:
+    gyrostat.kind.integration_table): given without rtol and atol, each run of a shipped scene of
+    every family chooses its tolerances for it and reports met = True with its measured estimate."""
+    with open(SCENES / f"{name}.toml", "rb") as handle:
+        doc = tomllib.load(handle)
+    doc["integration"]["accuracy"] = 1e-6
+    for key in ("rtol", "atol"):
+        doc["integration"].pop(key, None)
+    _, report = _solve(doc)
+    for run, entry in report["runs"].items():
+        estimate = entry["error_estimate"]
+        assert estimate["met"] is True and 0 < estimate["value"] <= 1e-6, (run, estimate)
+        assert "chosen for the accuracy 1e-06" in estimate["basis"], (run, estimate["basis"])

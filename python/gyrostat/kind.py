@@ -28,7 +28,7 @@ from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, Matrix, SceneError,
 from gyrostat import torques as _torques
 
 __all__ = ["Kind", "Run", "KINDS", "register", "default_kind", "title_fields", "outputs_field", "build",
-           "make_body", "make_torques", "reusing", "integration", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
+           "make_body", "make_torques", "reusing", "integration", "integration_table", "BODY", "METHOD", "RTOL", "ATOL", "N_OUT", "T_SPAN", "ACCURACY", "PHASE",
            "SPLITTING_FIELDS", "engine_option", "engine_rule", "MAX_STEPS"]
 
 
@@ -278,6 +278,26 @@ SPLITTING_FIELDS = {
     "splitting_order": engine_option("splitting_order", int, "order of the splitting composition: 2, 4 or 6"),
 }
 
+
+
+def integration_table(model: Field | None = None, *, rtol: Field = RTOL, atol: Field = ATOL, n_out: Field = N_OUT,
+                      max_steps: bool = False, splitting: bool = False, required: bool = True, doc: str = "the run",
+                      **own: Field) -> Field:
+    """A kind's [integration] table, written once: ``model`` (a kind with a model ladder: its
+    choices, with ``phase``), ``accuracy`` (every kind: the contract of :mod:`gyrostat.accuracy`),
+    ``method``, ``rtol``, ``atol`` (a family's own defaults given as fields), the kind's ``own``
+    fields in order (``t_span``, ``tau_end``, ...), ``n_out``, then ``max_steps`` and the splitting's
+    fields where the kind offers them."""
+    fields = {"model": model} if model is not None else {}
+    fields["accuracy"] = ACCURACY
+    if model is not None:
+        fields["phase"] = PHASE
+    fields.update(method=METHOD, rtol=rtol, atol=atol, **own, n_out=n_out)
+    if max_steps:
+        fields["max_steps"] = MAX_STEPS
+    if splitting:
+        fields.update(SPLITTING_FIELDS)
+    return Field(Table(fields), required=required, doc=doc) if required else Field(Table(fields), default={}, doc=doc)
 
 
 def outputs_field(plots: tuple[str, ...], default: list[str], **extra: Field) -> Field:

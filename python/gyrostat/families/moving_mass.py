@@ -26,8 +26,8 @@ from gyrostat.assumptions import SMALL, Assumption, check
 from gyrostat.families.rigid_body import (Model, averaged_rung, draw, initial_assumptions, invariant_columns, slow_columns,
                                           triaxial_rung)
 from gyrostat.figures import curves, unit_label
-from gyrostat.kind import (ACCURACY, ATOL, BODY, METHOD, N_OUT, PHASE, RTOL, T_SPAN, Kind, Run, build, integration,
-                           make_body, make_torques, outputs_field, register, title_fields)
+from gyrostat.kind import (BODY, T_SPAN, Kind, Run, build, integration, integration_table, make_body, make_torques,
+                           outputs_field, register, title_fields)
 from gyrostat.modelbase import ModelBase, check_body, check_torques, floats
 from gyrostat.schema import ArrayOf, Choice, Field, SceneError, Table, Vector, all_finite
 from gyrostat.solution import Solution
@@ -170,17 +170,12 @@ class MovingMass(Kind):
                 "start": Field(Choice("quasi_static", "at_rest"), default="quasi_static",
                                doc="quasi_static: the mass on its forced motion; at_rest: u = v = 0"),
             }), required=True, doc="the initial state"),
-            "integration": Field(Table({"model": Field(Choice("auto", "explicit", "reduced", "averaged",
-                                                              "averaged_triaxial"), default="auto",
-                                                       doc="auto: the cheapest model that meets the accuracy; "
-                                                           "averaged: (a, r); averaged_triaxial: (|G|^2, p_b, s, phase) "
-                                                           "for a body far from symmetric; reduced: the quasi-static "
-                                                           "damper torque; "
-                                                           "explicit: the mass, spring and damper"),
-                                        "accuracy": ACCURACY, "phase": PHASE,
-                                        "method": METHOD,
-                                        "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT}),
-                                 required=True, doc="the run"),
+            "integration": integration_table(
+                Field(Choice("auto", "explicit", "reduced", "averaged", "averaged_triaxial"), default="auto",
+                      doc="auto: the cheapest model that meets the accuracy; averaged: (a, r); averaged_triaxial: "
+                          "(|G|^2, p_b, s, phase) for a body far from symmetric; reduced: the quasi-static damper "
+                          "torque; explicit: the mass, spring and damper"),
+                t_span=T_SPAN),
             "outputs": outputs_field(self.plots, ["omega", "invariants", "mass"]),
         })
 

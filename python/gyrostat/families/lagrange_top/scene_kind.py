@@ -9,8 +9,8 @@ import numpy as np
 
 from gyrostat import ladder as _ladder
 from gyrostat.assumptions import SMALL
-from gyrostat.kind import (ACCURACY, METHOD, PHASE, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration,
-                           outputs_field, register, title_fields)
+from gyrostat.kind import (Kind, Run, build, engine_option, integration, integration_table, outputs_field, register,
+                           title_fields)
 from gyrostat.schema import Choice, Field, ListOf, SceneError, Table, Vector, all_finite, finite, positive
 from gyrostat.families.lagrange_top.analyses import analyse, top_slow_variables
 from gyrostat.families.lagrange_top.models import (SEPARATRIX_LIMIT, LagrangeAveraged, LagrangeTop, check, initial_state, nutation_table,
@@ -53,20 +53,17 @@ class LagrangeTopKind(Kind):
                 "phi_deg": Field(float, default=0.0, doc="proper rotation angle", unit="deg", check=finite),
                 "psi_deg": Field(float, default=0.0, doc="precession angle", unit="deg", check=finite),
             }), required=True, doc="the initial state (z-x-z Euler angles)"),
-            "integration": Field(Table({"model": Field(Choice("compare", "auto", "full", "averaged"), default="compare",
-                                                       doc="compare: the full and the averaged top side by side; auto: "
-                                                           "the cheapest that meets the accuracy (the model ladder)"),
-                                        "accuracy": ACCURACY, "phase": PHASE,
-                                        "method": METHOD,
-                                        "rtol": engine_option("rtol", float, "relative tolerance", 1e-10, WHY_TOLERANCES),
-                                        "atol": engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
-                                        "tau_end": Field(float, required=True, doc="end of the slow time tau = eps t",
-                                                         unit="s", check=positive),
-                                        "n_out": engine_option("n_out", int, "number of output times", 4001,
-                                                               "enough points per nutation period over the paper's "
-                                                               "slow-time span to draw the nutation"),
-                                        **SPLITTING_FIELDS}),
-                                 required=True, doc="the run"),
+            "integration": integration_table(
+                Field(Choice("compare", "auto", "full", "averaged"), default="compare",
+                      doc="compare: the full and the averaged top side by side; auto: the cheapest that meets the "
+                          "accuracy (the model ladder)"),
+                rtol=engine_option("rtol", float, "relative tolerance", 1e-10, WHY_TOLERANCES),
+                atol=engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
+                tau_end=Field(float, required=True, doc="end of the slow time tau = eps t", unit="s", check=positive),
+                n_out=engine_option("n_out", int, "number of output times", 4001,
+                                    "enough points per nutation period over the paper's slow-time span to draw the "
+                                    "nutation"),
+                splitting=True),
             "outputs": outputs_field(self.plots, ["slow", "roots", "nutation", "validity"]),
         })
 

@@ -13,7 +13,7 @@ from gyrostat.families.orthogonal_torque.models import OrthogonalModel
 from gyrostat.families.orthogonal_torque.nearly_spherical import NearlySpherical
 from gyrostat.families.orthogonal_torque.plots import draw
 from gyrostat.families.orthogonal_torque.tau import g_zero
-from gyrostat.kind import (BODY, METHOD, SPLITTING_FIELDS, Kind, Run, build, engine_option, integration, make_body,
+from gyrostat.kind import (BODY, Kind, Run, build, engine_option, integration, integration_table, make_body,
                            outputs_field, register, title_fields)
 from gyrostat.schema import (ArrayOf, Choice, Field, ListOf, OneOf, SceneError, Table, Variants, Vector, all_finite,
                              increasing, nonzero_quaternion, positive, span_order)
@@ -70,17 +70,14 @@ class OrthogonalTorqueKind(Kind):
                                          "law": Field(OneOf(float, LAW), required=True,
                                                       doc="L(t): a number, or a table with its kind")})),
                           required=True, doc="one run per magnitude law"),
-            "integration": Field(Table({"method": METHOD,
-                                        "rtol": engine_option("rtol", float, "relative tolerance", 1e-10, WHY_TOLERANCES),
-                                        "atol": engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
-                                        "t_span": Field(Vector(2), default=[0.0, 60.0], doc="(t0, t1)", unit="s",
-                                                        check=span_order),
-                                        "n_out": engine_option("n_out", int, "number of output times", 1201,
-                                                               "20 points per second over the default 60 s span"),
-                                        "eta": Field(float, default=ETA,
-                                                     doc="regularisation: delta = eta |omega| |G|", check=positive),
-                                        **SPLITTING_FIELDS}),
-                                 default={}, doc="the runs' integration"),
+            "integration": integration_table(
+                rtol=engine_option("rtol", float, "relative tolerance", 1e-10, WHY_TOLERANCES),
+                atol=engine_option("atol", float, "absolute tolerance", 1e-12, WHY_TOLERANCES),
+                t_span=Field(Vector(2), default=[0.0, 60.0], doc="(t0, t1)", unit="s", check=span_order),
+                eta=Field(float, default=ETA, doc="regularisation: delta = eta |omega| |G|", check=positive),
+                n_out=engine_option("n_out", int, "number of output times", 1201,
+                                    "20 points per second over the default 60 s span"),
+                splitting=True, required=False, doc="the runs' integration"),
             "outputs": outputs_field(self.plots, list(self.plots)),
         })
 

@@ -19,8 +19,8 @@ from gyrostat.families.rigid_body.plots import draw
 from gyrostat.families.rigid_body.rungs import (averaged_rung, initial_assumptions, invariant_columns, nearly_symmetric,
                                                 slow_columns, triaxial_rung)
 from gyrostat.families.rigid_body.triaxial import TriaxialAveragedModel
-from gyrostat.kind import (ACCURACY, ATOL, BODY, MAX_STEPS, METHOD, N_OUT, PHASE, RTOL, SPLITTING_FIELDS, T_SPAN, Kind, Run,
-                           build, integration, make_body, make_torques, outputs_field, register, title_fields)
+from gyrostat.kind import (BODY, T_SPAN, Kind, Run, build, integration, integration_table, make_body, make_torques,
+                           outputs_field, register, title_fields)
 from gyrostat.schema import ArrayOf, Choice, Field, SceneError, Table, Vector, all_finite, finite, non_negative, nonzero_quaternion
 from gyrostat.torques import TORQUE
 
@@ -54,16 +54,13 @@ class RigidBody(Kind):
                                    "[orbit] (x along track, y minus the orbit normal, z nadir; omega = [0, 0, 0] "
                                    "with the default attitude: at rest in it)"),
             }), required=True, doc="the initial state"),
-            "integration": Field(Table({
-                "model": Field(Choice(*self.models), default="auto",
-                               doc="auto: the cheapest model that meets the accuracy (the model ladder); averaged: over the "
-                                   "symmetric motion in (a, r); averaged_triaxial: over the triaxial motion in "
-                                   "(|G|^2, p_b, s, phase); compare: full and averaged side by side (the triaxial "
-                                   "averaged model for a body far from symmetric)"),
-                "accuracy": ACCURACY, "phase": PHASE,
-                "method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN, "n_out": N_OUT,
-                "max_steps": MAX_STEPS, **SPLITTING_FIELDS,
-            }), required=True, doc="the run"),
+            "integration": integration_table(
+                Field(Choice(*self.models), default="auto",
+                      doc="auto: the cheapest model that meets the accuracy (the model ladder); averaged: over the "
+                          "symmetric motion in (a, r); averaged_triaxial: over the triaxial motion in (|G|^2, p_b, s, "
+                          "phase); compare: full and averaged side by side (the triaxial averaged model for a body far "
+                          "from symmetric)"),
+                t_span=T_SPAN, max_steps=True, splitting=True),
             "outputs": outputs_field(self.plots, ["omega", "invariants"],
                                 reference=Field(Choice("closed_form"), doc="draw and measure against the closed form")),
         })
@@ -204,8 +201,7 @@ class Averaged(RigidBody):
                 "a": Field(float, doc="equatorial amplitude a = sqrt(p^2 + q^2)", unit="rad/s", check=non_negative),
                 "r": Field(float, doc="axial rate r (signed)", unit="rad/s", check=finite),
             }), required=True, doc="the initial state: omega, or a and r"),
-            "integration": Field(Table({"method": METHOD, "rtol": RTOL, "atol": ATOL, "t_span": T_SPAN,
-                                        "n_out": N_OUT}), required=True, doc="the run"),
+            "integration": integration_table(t_span=T_SPAN),
             "outputs": outputs_field(self.plots, ["xy", "slow"]),
         })
 
