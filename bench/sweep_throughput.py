@@ -60,7 +60,7 @@ doc = tomllib.load(open({str(SCENE)!r}, "rb")); doc["integration"].update(t_span
 vary = {{"initial.omega[0]": g.Normal(1.0, 0.1), "initial.omega[2]": g.Normal(-0.3, 0.1),
         "torques[1].matrix[0][0]": g.LogUniform(1e-3, 1e-1)}}
 with tempfile.TemporaryDirectory() as folder:
-    ds = g.sweep(doc, vary, samples={members}, seed=1, trajectories=False, progress=False,
+    ds = g.sweep(doc, vary, samples={members}, seed=1, trajectories=False, progress=False, error_estimate=False,
                  path=os.path.join(folder, "s.nc"), chunk_size=2000)
     ds.close()
 print(next(int(line.split()[1]) for line in open("/proc/self/status") if line.startswith("VmHWM")) / 1024)
@@ -76,13 +76,13 @@ def main() -> None:
     n = args.members
     doc = document()
 
-    g.sweep(doc, VARY, samples=100, seed=2, trajectories=False, progress=False)  # warm-up: xarray's first
+    g.sweep(doc, VARY, samples=100, seed=2, trajectories=False, progress=False, error_estimate=False)  # warm-up: xarray's first
     # Dataset imports its duck-array modules (dask.array: ~1 s), once per process, not per member
     started = time.perf_counter()
-    swept = g.sweep(doc, VARY, samples=n, seed=1, trajectories=False, progress=False)
+    swept = g.sweep(doc, VARY, samples=n, seed=1, trajectories=False, progress=False, error_estimate=False)
     t_sweep = time.perf_counter() - started
     started = time.perf_counter()
-    alone = g.sweep(doc, VARY, samples=n, seed=1, trajectories=False, progress=False, workers=1)
+    alone = g.sweep(doc, VARY, samples=n, seed=1, trajectories=False, progress=False, error_estimate=False, workers=1)
     t_alone = time.perf_counter() - started
     identical = alone.drop_attrs().identical(swept.drop_attrs())
 
@@ -96,7 +96,7 @@ def main() -> None:
     run = members[0]
     started = time.perf_counter()
     solutions = g.solve_ensemble([m.model for m in members], [m.y0 for m in members], run.t_span,
-                                 check_validity=False, progress=False, **run.options)
+                                 check_validity=False, progress=False, error_estimate=False, **run.options)
     t_ensemble = time.perf_counter() - started
     same = np.array_equal(np.array([s.y[-1, 0] for s in solutions]),
                           swept["final_p"].values[swept["status"].values == "success"])
@@ -105,12 +105,12 @@ def main() -> None:
 
     dask_members = min(n, 20_000)
     local_small = time.perf_counter()
-    g.sweep(doc, VARY, samples=dask_members, seed=1, trajectories=False, progress=False, workers=-1)
+    g.sweep(doc, VARY, samples=dask_members, seed=1, trajectories=False, progress=False, error_estimate=False, workers=-1)
     local_small = time.perf_counter() - local_small
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             Client(cluster) as client:
         started = time.perf_counter()
-        g.sweep(doc, VARY, samples=dask_members, seed=1, trajectories=False, progress=False, client=client)
+        g.sweep(doc, VARY, samples=dask_members, seed=1, trajectories=False, progress=False, error_estimate=False, client=client)
         t_dask = time.perf_counter() - started
 
     print(f"Sweep of {n} members (forced_damped, t = 0..10, 11 outputs, dop853), summaries only, "

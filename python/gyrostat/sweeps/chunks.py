@@ -132,7 +132,8 @@ def _put_values(arrays: dict, plan: Plan, drawn: list[tuple[float, ...]]) -> Non
 
 
 def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajectories: bool = True,
-                extrema: Sequence[str] = (), check_validity: bool = True, progress=None) -> dict[str, np.ndarray]:
+                extrema: Sequence[str] = (), check_validity: bool = True, error_estimate: bool = True,
+                progress=None) -> dict[str, np.ndarray]:
     """Solves members ``start`` to ``stop - 1`` of a plan and returns their arrays (what a sweep
     keeps of each). Members that share options are one :func:`gyrostat.solve_ensemble` call on
     ``threads`` C++ threads; a member the physics refuses gets status ``invalid_input``, a member
@@ -155,6 +156,8 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
         Quantities whose minimum and maximum are kept.
     check_validity : bool, optional
         Check an averaged model's assumptions along each member.
+    error_estimate : bool, optional
+        Measure each member's global error (``error_estimate``; :mod:`gyrostat.accuracy`), default True.
     progress : callable, optional
         Called with the number of members finished.
 
@@ -169,7 +172,7 @@ def solve_chunk(plan: Plan, start: int, stop: int, *, threads: int = 0, trajecto
     """
     return _solve_members(plan, _members(plan, start, stop, trajectories, tuple(extrema)), threads=threads,
                           trajectories=trajectories, extrema=tuple(extrema), check_validity=check_validity,
-                          progress=progress)
+                          error_estimate=error_estimate, progress=progress)
 
 
 def _members(plan: Plan, start: int, stop: int, trajectories: bool, extrema: tuple[str, ...]) -> tuple[dict, dict]:
@@ -203,7 +206,8 @@ def _members(plan: Plan, start: int, stop: int, trajectories: bool, extrema: tup
 
 
 def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: int, trajectories: bool,
-                   extrema: tuple[str, ...], check_validity: bool, progress) -> dict[str, np.ndarray]:
+                   extrema: tuple[str, ...], check_validity: bool, progress,
+                   error_estimate: bool = True) -> dict[str, np.ndarray]:
     """The second half of :func:`solve_chunk`: the groups solved (one solve_ensemble each, the
     engine's pool with the GIL released) and each member's summary recorded."""
     from gyrostat.modelbase import ModelBase
@@ -227,7 +231,8 @@ def _solve_members(plan: Plan, members_of_chunk: tuple[dict, dict], *, threads: 
         with _interruptible():
             try:
                 _, results, estimates = ensemble_results(models, starts, span, threads=threads,
-                                                          events=list(events) or None, error_estimate=True,
+                                                          events=list(events) or None,
+                                                          error_estimate=error_estimate,
                                                           progress=report if progress is not None else False,
                                                           **dict(options))
             except Exception:  # a member's run raised (a user's torque): each member solved alone
