@@ -178,3 +178,19 @@ def test_every_familys_scenes_take_the_accuracy(name):
         estimate = entry["error_estimate"]
         assert estimate["met"] is True and 0 < estimate["value"] <= 1e-6, (run, estimate)
         assert "chosen for the accuracy 1e-06" in estimate["basis"], (run, estimate["basis"])
+
+
+def test_the_contract_chooses_the_integrator_when_none_is_given():
+    """accuracy without a method: DOP853's and Taylor's probes are timed and the cheaper taken (the
+    basis names both predictions); the choice meets the accuracy (true error against the engine at
+    rtol 1e-13, ~1e-11 here). A model Taylor does not cover (a viscous cavity) stays on DOP853."""
+    span = (0.0, 0.5 / EPS)
+    solution = g.solve(DAMPED, [0.15, 0.3, 1.0], span, n_out=201, accuracy=1e-8)
+    assert "chosen: predicted dop853" in solution.error_basis and "taylor" in solution.error_basis
+    assert solution.method in ("dop853", "taylor")
+    reference = g.solve(DAMPED, [0.15, 0.3, 1.0], span, n_out=201, rtol=1e-13, atol=1e-15, error_estimate=False)
+    assert _true_error(solution, reference) <= 1e-8
+    cavity = g.Model(g.Body([12.0, 12.0, 4.0]), [g.ViscousCavity(density=970.0, viscosity=2.0, radius=0.25)])
+    other = g.solve(cavity, [0.05, 0.0, 2.0], (0.0, 2000.0), n_out=101, accuracy=1e-8)
+    assert other.method == "dop853" and other.estimate.met, other.error_basis
+    assert g.solve(DAMPED, [0.15, 0.3, 1.0], span, n_out=201, accuracy=1e-8, method="dop853").method == "dop853"

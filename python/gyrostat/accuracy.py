@@ -21,8 +21,9 @@ How it is measured (the basis, in words, is ``Solution.error_basis`` and a line 
   estimate. Cost: ~0.45× the run (dop853), ``error_estimate=False`` turns it off.
 * ``error_estimate="full"``: the companion run at the tighter tolerances covers the whole span,
   compared at every output time (cost: one more run, a little dearer than the run itself).
-* **accuracy given** (:func:`meet`): a probe over the first :data:`PROBE` of the span at two
-  tolerances measures the error per unit rtol at the horizon (grown as above); rtol (and atol =
+* **accuracy given** (:func:`meet`): a probe over the first :data:`PROBE` of the span at three
+  tolerances measures the error per unit rtol at the horizon (grown as above; with no method
+  given, DOP853's and Taylor's probes are timed and the cheaper taken, :func:`choose_method`); rtol (and atol =
   rtol · :data:`ATOL_RATIO` · max|y0|) is chosen for half the accuracy; the run and its tighter
   companion then cover the whole span, and their difference (× ρ/(ρ−1)) is the estimate,
   measured at every output time. When it exceeds the accuracy, the run is repeated tighter (by
@@ -39,6 +40,7 @@ How it is measured (the basis, in words, is ``Solution.error_basis`` and a line 
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -391,18 +393,24 @@ def with_tolerances(opts, rtol: float, atol: float):
 
 
 def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
-               atol_of) -> tuple[float, dict]:
+               atol_of, seconds: list | None = None) -> tuple[float, dict]:
     """The rtol predicted to give MARGIN · accuracy at the horizon: runs at ``first``, first/ρ and
     first/ρ² over the first :data:`PROBE` of the span; the errors of the first two (against the
     third) give the exponent α of error ∝ rtol^α, the first's error grown to the horizon
-    (:func:`_grow`) its size there. The tightest rtol any member needs, and each member's α."""
+    (:func:`_grow`) its size there. The tightest rtol any member needs, and each member's α (the
+    probe's runs' (rtol, seconds) appended to ``seconds`` when given)."""
     window = t0 + PROBE * (t1 - t0)
     grid = np.linspace(t0, window, SAMPLES)
     members = list(range(len(cores)))
     rho = ratio(opts.method)
     first = max(first, ENGINE_RTOL * rho * rho)
     tolerances = (first, first / rho, first / rho**2)
-    runs = [run(_copy(with_tolerances(opts, r, atol_of(r)), grid), window, members) for r in tolerances]
+    runs = []
+    for r in tolerances:
+        started = time.perf_counter()
+        runs.append(run(_copy(with_tolerances(opts, r, atol_of(r)), grid), window, members))
+        if seconds is not None:
+            seconds.append((r, time.perf_counter() - started))
     wanted, alphas = [], {}
     for i, core in enumerate(cores):
         loose, middle, reference = (r[i] for r in runs)
@@ -420,16 +428,53 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
     return (min(LOOSEST_RTOL, max(TIGHTEST_RTOL, min(wanted))) if wanted else first), alphas
 
 
-def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, size: float) -> tuple[list, list]:
+TAYLOR_BELOW = 1e-5
+"""With no method given, an accuracy at or below this has Taylor's probe timed against DOP853's
+(measured on the damped triaxial body, t = 1e4: Taylor 2.5x cheaper at 1e-6, 3-5x at 1e-8 to 1e-10)."""
+
+
+def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
+                  atol_of) -> tuple[object, float, str]:
+    """The cheaper of DOP853 and Taylor for this accuracy (the options with it, its rtol, why in
+    words): each one's probe (:func:`probe_rtol`) gives its rtol and the time of its three runs, whose
+    log-log slope in rtol predicts the whole run's time at that rtol. Taylor is tried only for
+    accuracies at or below :data:`TAYLOR_BELOW` (where its high order pays) and models it covers
+    (constant and linear torques: a ValueError otherwise)."""
+    trials = []
+    for method in ("dop853", "taylor") if accuracy <= TAYLOR_BELOW else ("dop853",):
+        trial = _copy(opts)
+        trial.every_step, trial.events, trial.dense_output = opts.every_step, opts.events, opts.dense_output
+        trial.method = method
+        seconds: list = []
+        try:
+            rtol, _ = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds)
+        except ValueError:  # the method does not cover this model
+            continue
+        (loose, s_loose), (tight, s_tight) = seconds[0], seconds[-1]
+        slope = math.log(s_tight / s_loose) / math.log(tight / loose) if s_loose > 0 and s_tight > 0 else 0.0
+        trials.append((s_tight * (rtol / tight) ** slope / PROBE, method, trial, rtol))
+    cost, method, trial, rtol = min(trials, key=lambda entry: entry[0])
+    why = "" if len(trials) == 1 else ("method " + method + " chosen: predicted " + ", ".join(
+        f"{m} {c:.3g} s" for c, m, _, _ in trials) + " from the probes; ")
+    return trial, rtol, why
+
+
+def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, size: float,
+         choose: bool = False) -> tuple[list, list]:
     """Every member run at tolerances chosen for ``accuracy`` and measured over the whole span
     (module doc); ``size`` is the largest |y0| component (atol = rtol · ATOL_RATIO · size).
     ``opts`` holds the run's other options (output times, events, method, max_steps). Returns
     each member's answer (the engine's Result) and its :class:`Estimate` (None when the answer
-    estimates nothing: a failed run; then a warning stands in an Estimate of NaN)."""
+    estimates nothing: a failed run; then a warning stands in an Estimate of NaN). With ``choose``
+    (no method was given), the method too (:func:`choose_method`)."""
     count = len(cores)
     atol_of = lambda r: r * ATOL_RATIO * (size if size > 0 else 1.0)  # noqa: E731
     first = min(LOOSEST_RTOL, max(TIGHTEST_RTOL, 0.1 * accuracy))
-    rtol, _ = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of) if t1 != t0 else (first, {})
+    why = ""
+    if choose and t1 != t0:
+        opts, rtol, why = choose_method(run, cores, opts, t0, t1, accuracy, first, atol_of)
+    else:
+        rtol, _ = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of) if t1 != t0 else (first, {})
     swappable = not opts.events and not opts.dense_output and not opts.every_step
     made: list = [None] * count
     estimates: list = [None] * count
@@ -453,7 +498,7 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
             answer, estimate = answers[i], measured[i]
             if estimate is not None:
                 estimate.accuracy = accuracy
-                estimate.basis = (f"rtol {rtol:.3g}, atol {atol_of(rtol):.3g} chosen for the accuracy {accuracy:g} "
+                estimate.basis = (why + f"rtol {rtol:.3g}, atol {atol_of(rtol):.3g} chosen for the accuracy {accuracy:g} "
                                   f"(probe at three tolerances over the first {PROBE:.1%} of the span); "
                                   + estimate.basis)
             made[i], estimates[i] = answer, estimate

@@ -53,11 +53,12 @@ def _accuracy_asked(accuracy) -> float | None:
 
 
 def _measured(results: list, cores: list, run, opts, t0: float, t1: float, mode: str, accuracy: float | None,
-              explicit: bool, size: float) -> tuple[list, list]:
-    """The answers and their estimates: tolerances chosen for ``accuracy`` (:func:`gyrostat.accuracy.meet`)
-    unless they were given (``explicit``), or the given run measured (``mode``)."""
+              explicit: bool, size: float, choose_method: bool = False) -> tuple[list, list]:
+    """The answers and their estimates: tolerances chosen for ``accuracy`` (:func:`gyrostat.accuracy.meet`;
+    the method too with ``choose_method``) unless they were given (``explicit``), or the given run
+    measured (``mode``)."""
     if accuracy is not None and not explicit:
-        return _accuracy.meet(run, cores, opts, t0, t1, accuracy, size)
+        return _accuracy.meet(run, cores, opts, t0, t1, accuracy, size, choose=choose_method)
     if results is None:
         results = run(opts, t1, list(range(len(cores))))
     if not mode and accuracy is None:

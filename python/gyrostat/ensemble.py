@@ -216,7 +216,7 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
         explicit = rtol is not None or atol is not None or step is not None or options is not None
         size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
         results, estimates = _measured(None, cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
-                                       asked, explicit, size)
+                                       asked, explicit, size, choose_method=method is None and options is None)
     finally:
         _bars.close(report)
     return models, results, estimates

@@ -69,7 +69,9 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         (t0, t1), in s; t1 < t0 integrates backwards.
     method : str, optional
         The integrator, one of :data:`gyrostat.METHODS` or ``"auto"`` (DOP853, switching to
-        CVODE BDF where the problem turns stiff). Default ``"dop853"``.
+        CVODE BDF where the problem turns stiff). Default ``"dop853"``; with ``accuracy`` and no
+        method, DOP853 or Taylor, whichever its probe predicts cheaper (Taylor where it covers the
+        model, for accuracies ≤ 1e-5).
     rtol : float, optional
         Relative tolerance (dimensionless). Default 1e-8.
     atol : float, optional
@@ -199,7 +201,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
             size = float(np.max(np.abs(y0))) if y0.size else 1.0
             measured = [_accuracy.Compared(core, compare, model) if compare else core]
             results, estimates = _measured(None, measured, lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
-                                           opts, t0, t1, mode, asked, explicit, size)
+                                           opts, t0, t1, mode, asked, explicit, size,
+                                           choose_method=method is None and options is None)
             result, estimate = results[0], estimates[0]
     finally:
         if report is not None:
