@@ -57,6 +57,7 @@ def raising(exception):
     return callback
 
 
+SCENES_DIR = Path(g.__file__).resolve().parent / "scenes"
 PYTHON_DIR = str(Path(g.__file__).resolve().parent.parent)  # child processes import this gyrostat
 SCENE = """[body]
 moments = [1.0, 2.0, 2.5]
@@ -709,6 +710,11 @@ CASES.update({  # the accuracy contract (docs/choosing.md): a run that cannot me
                                     "accuracy = nan"),
     "error_estimate = 'sometimes'": lambda: error(lambda: g.solve(g.Model(BODY), W0, (0, 1),
                                                                   error_estimate="sometimes"), "'sometimes'"),
+    "sweep error_estimate = 'no' (was taken as True)": lambda: error(lambda: g.sweep(
+        SCENES_DIR / "forced_damped.toml", {"torques[0].moment[2]": [0.05]}, progress=False, error_estimate="no"),
+        "error_estimate = 'no'"),
+    "solve compare = 3 (was a TypeError from inside the estimate)": lambda: type_error(
+        lambda: g.solve(g.Model(BODY), W0, (0, 1), compare=3), "compare must be a callable", "int"),
 })
 
 

@@ -55,8 +55,21 @@ TIGHTER_BY_METHOD = {"taylor": 100.0, "cvode_bdf": 10.0, "cvode_adams": 10.0}
 """ρ where the error does not follow the tolerance closely: Taylor's order changes with it (its error
 can stay put over a factor 4), BDF's and Adams' order and step vary; a wider ratio keeps the companion
 much more accurate than the run."""
-ENGINE_RTOL = 1e-14
-"""The engine's least rtol (``Options.check``)."""
+def _least_rtol() -> float:
+    """The least rtol the engine accepts, found from its own rule (C++ ``Options::check``), not restated."""
+    accepted, refused = 1e-8, 1e-30
+    for _ in range(60):  # bisection in log10(rtol): to a few parts in 1e3
+        middle = math.sqrt(accepted * refused)
+        try:
+            _core.Options.check("rtol", middle)
+            accepted = middle
+        except ValueError:
+            refused = middle
+    return accepted
+
+
+ENGINE_RTOL = _least_rtol()
+"""The engine's least rtol (``Options.check``; 1e-14 today)."""
 WINDOW = 0.2
 """The fraction of the span the estimate of a run at given tolerances covers."""
 WINDOW_SAFETY = 3.0
@@ -447,9 +460,11 @@ def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy
         trial.method = method
         seconds: list = []
         try:
-            rtol, _ = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds)
-        except ValueError:  # the method does not cover this model
+            rtol, probed = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds)
+        except ValueError:  # the method does not cover this model (a single run raises)
             continue
+        if method != "dop853" and len(probed) < len(cores):  # ... or a member's probe failed (an ensemble's runs
+            continue                                          # say invalid_input): not a candidate
         (loose, s_loose), (tight, s_tight) = seconds[0], seconds[-1]
         slope = math.log(s_tight / s_loose) / math.log(tight / loose) if s_loose > 0 and s_tight > 0 else 0.0
         trials.append((s_tight * (rtol / tight) ** slope / PROBE, method, trial, rtol))

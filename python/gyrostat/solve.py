@@ -188,6 +188,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     check_validity = check_validity if check_validity is True else flag(check_validity, "check_validity")
     report = _bars.default() if progress is None else _bars.resolve(progress)
     mode = _estimate_mode(error_estimate) if error_estimate is not True else "window"
+    if compare is not None and not callable(compare):
+        raise TypeError(f"compare must be a callable solution -> (n, m) array, not {type(compare).__name__}")
     asked = _accuracy_asked(accuracy) if accuracy is not None else None
     try:
         if asked is None:

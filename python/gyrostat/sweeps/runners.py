@@ -19,6 +19,7 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat import progress as _bars
+from gyrostat.arguments import flag
 from gyrostat.sweeps.chunks import _WORKER, _blank, _members, _put_values, _said, _solve_members, solve_chunk
 from gyrostat.sweeps.plan import Plan
 from gyrostat.sweeps.storage import _finish, _Memory, _NetCDF
@@ -142,8 +143,8 @@ def sweep(scene, vary, *, samples: int | None = None, seed: int | None = None, r
     ranges = [(s, min(s + chunk_size, plan.size)) for s in range(0, plan.size, chunk_size)]
     bar = _bars.resolve(progress, total=plan.size, unit="member", description=f"sweep {plan.scene_name}")
     started = time.perf_counter()
-    options = {"trajectories": trajectories, "extrema": extrema, "check_validity": bool(check_validity),
-               "error_estimate": bool(error_estimate)}
+    options = {"trajectories": trajectories, "extrema": extrema, "check_validity": flag(check_validity, "check_validity"),
+               "error_estimate": flag(error_estimate, "error_estimate")}
     try:
         if client is None and processes > 1:
             finished = _run_processes(plan, ranges, sink, bar, processes, threads, options)
