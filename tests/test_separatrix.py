@@ -18,8 +18,10 @@ over 100 periods, for 1 − k² down to 1e-30, on the separatrix and at the perm
 from __future__ import annotations
 
 import functools
+import json
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import mpmath as mp
 import numpy as np
@@ -277,21 +279,50 @@ ODEFUN_CASES = [(*VALIDATION_CASES[i], times) for i, times in
                  (10, (1, 20, 45)))]
 
 
-@pytest.mark.parametrize("moments, omega0, times", ODEFUN_CASES)
-def test_reference_against_mpmath_taylor_integrator(moments, omega0, times):
-    """The reference against mp.odefun (mpmath's high-order Taylor integrator) on Euler's
-    equations at 30 digits, up to t = 45 through the first swing away from the intermediate axis
-    (1 − k² = 1e-12 and 1e-6, and the separatrix's leaving branch): agreement to 1e-20 (measured
-    ~1e-31) checks the reference far beyond double precision, with its signs, phase and
-    relabelling, where DOP853 cannot."""
+ODEFUN_TABLE = Path(__file__).resolve().parent / "data" / "separatrix_odefun.json"
+"""mp.odefun's ω at 30 digits for ODEFUN_CASES (written by tests/data/make_separatrix_odefun.py, ~25 s)."""
+
+
+def odefun_omega(moments, omega0, times) -> list[list]:
+    """ω(t) by mp.odefun (mpmath's high-order Taylor integrator) on Euler's equations at 30 digits."""
     A, B, C = (mp.mpf(x) for x in moments)
     with mp.workdps(30):
         f = mp.odefun(lambda _t, w: [(B - C) * w[1] * w[2] / A, (C - A) * w[2] * w[0] / B,
                                      (A - B) * w[0] * w[1] / C], 0, [mp.mpf(x) for x in omega0])
-        ref = reference(tuple(moments), tuple(omega0))
-        for t in times:
-            diff = max(abs(x - y) for x, y in zip(f(t), ref.omega_mp(t)))
+        return [list(f(t)) for t in times]
+
+
+def stored_odefun() -> list[dict]:
+    return json.loads(ODEFUN_TABLE.read_text())
+
+
+@pytest.mark.parametrize("case", range(len(ODEFUN_CASES)))
+def test_reference_against_mpmath_taylor_integrator(case):
+    """The reference against mp.odefun on Euler's equations at 30 digits, up to t = 45 through the
+    first swing away from the intermediate axis (1 − k² = 1e-12 and 1e-6, and the separatrix's
+    leaving branch): agreement to 1e-20 (measured ~1e-31) checks the reference far beyond double
+    precision, with its signs, phase and relabelling, where DOP853 cannot. The odefun values are
+    stored (tests/data/separatrix_odefun.json: 25 s of mpmath per run otherwise); the next test
+    recomputes one case to show they still are mp.odefun's."""
+    moments, omega0, times = ODEFUN_CASES[case]
+    stored = stored_odefun()[case]
+    assert stored["moments"] == list(moments) and stored["omega0"] == list(omega0) and stored["times"] == list(times)
+    ref = reference(tuple(moments), tuple(omega0))
+    with mp.workdps(30):
+        for t, omega in zip(times, stored["omega"]):
+            diff = max(abs(mp.mpf(x) - y) for x, y in zip(omega, ref.omega_mp(t)))
             assert diff < mp.mpf("1e-20"), (t, diff)
+
+
+def test_stored_odefun_values_are_mpmaths():
+    """One stored case (the odd permutation of the moments, t up to 8: ~1 s) recomputed by mp.odefun
+    now: the stored values agree to 1e-25 (they were written at 30 digits)."""
+    case = 3
+    moments, omega0, times = ODEFUN_CASES[case]
+    live = odefun_omega(moments, omega0, times)
+    with mp.workdps(30):
+        for row, omega in zip(live, stored_odefun()[case]["omega"]):
+            assert max(abs(mp.mpf(x) - y) for x, y in zip(omega, row)) < mp.mpf("1e-25")
 
 
 def test_reference_parameters():

@@ -177,7 +177,8 @@ static void for_each_python_torque(const AnyModel& model, const std::function<vo
         [&](const auto& m) {
             if constexpr (has_torques<std::decay_t<decltype(m)>>::value) {
                 for (const auto& part : m.torques().parts())
-                    if (const auto* custom = std::get_if<torque::Custom>(&part)) f(*custom->function);
+                    if (const torque::TorqueFunction* user = std::visit([](const auto& x) { return user_function_of(x); }, part))
+                        f(*user);
             }
         },
         model);

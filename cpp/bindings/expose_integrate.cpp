@@ -160,6 +160,7 @@ Examples
 (1e-10, 'dop853')
 )doc")
         .def(py::init<>())
+        .def("__copy__", [](const Options& o) { return Options(o); }, "A copy of every option (events included).")
         .def_property(
             "method", [](const Options& o) { return std::string(integrate::method_name(o.method)); },
             [](Options& o, const std::string& name) { o.method = integrate::method_from_name(name); },

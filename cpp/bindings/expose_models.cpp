@@ -56,10 +56,33 @@ void expose_models(py::module_& m) {
             },
             "What the model declares about its state and outputs: name, unit, description, role ('state' or "
             "'output') and whether it is conserved without perturbation.")
+        .def_property_readonly(
+            "measured_quantities",
+            [](const BoundModel& b) {
+                py::list all;
+                for (const MeasuredQuantity& q : measured_quantities(b.model))
+                    all.append(py::make_tuple(q.name, q.output ? "output" : "state", q.columns));
+                return all;
+            },
+            "What a run's error is measured on (the accuracy contract): (name, role ('state' or 'output'), "
+            "columns) per quantity; a vector's components (omega, quaternion, ...) as one quantity, labels left out.")
         .def("rhs", [](const BoundModel& b, double t, const Eigen::VectorXd& y) { return rhs(b.model, t, y); }, py::arg("t"),
              py::arg("y"))
         .def("initial_state", [](const BoundModel& b, const Eigen::VectorXd& y) { return initial_state(b.model, y); },
              py::arg("given"))
+        .def("measured_differences",
+             [](const BoundModel& b, const integrate::Result& reference, const integrate::Result& other,
+                const std::vector<std::size_t>& reference_rows, const std::vector<std::size_t>& other_rows) {
+                 return measured_differences(b.model, reference, other, reference_rows, other_rows);
+             },
+             py::arg("reference"), py::arg("other"), py::arg("reference_rows") = std::vector<std::size_t>{},
+             py::arg("other_rows") = std::vector<std::size_t>{},
+             "How far two runs are apart on each measured quantity (rows: measured_quantities) at each pair of rows "
+             "(empty: every row), relative to the quantity's largest size in the reference.")
+        .def("separatrix", [](const BoundModel& b, const Eigen::MatrixXd& states) { return separatrix(b.model, states); },
+             py::arg("states"),
+             "The signed distance to a separatrix of the unperturbed motion at each state (rows): a change of sign "
+             "along a run is a crossing; NaN where the model declares none.")
         .def("principal_states",
              [](const BoundModel& b, const Eigen::MatrixXd& states) { return principal_states(b.model, states); },
              py::arg("states"), "States (rows) in the user's body frame, written in the model's principal axes.")

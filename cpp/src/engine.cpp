@@ -1,6 +1,10 @@
 // The engine's dispatch over AnyModel: names, right-hand side, solve and ensemble.
 #include "gyrostat/engine.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "gyrostat/ensemble.hpp"
 #include "ensemble_batch.hpp"
 #include "gyrostat/integrate/dense.hpp"
@@ -122,6 +126,89 @@ integrate::Result described(const AnyModel& model) {
 
 std::vector<std::string> output_names(const AnyModel& model) { return described(model).output_names; }
 
+std::vector<MeasuredQuantity> measured_quantities(const AnyModel& model) {
+    return visit(model, [](const auto& m) {
+        using S = std::decay_t<decltype(m)>;
+        std::vector<MeasuredQuantity> made;
+        std::vector<std::string> taken;
+        for (int i = 0; i < S::dim; ++i) {
+            const model::Quantity& q = S::states[i];
+            taken.emplace_back(q.name);
+            if (q.label) continue;
+            const std::string name = q.vector ? q.vector : q.name;
+            auto same = std::find_if(made.begin(), made.end(), [&](const MeasuredQuantity& x) { return !x.output && x.name == name; });
+            if (q.vector && same != made.end())
+                same->columns.push_back(i);
+            else
+                made.push_back({name, false, {i}});
+        }
+        if constexpr (model::system::has_outputs<S>::value) {
+            int column = 0;
+            for (const model::OutputInfo& info : S::outputs_info) {
+                if (info.measured && std::find(taken.begin(), taken.end(), info.name) == taken.end())
+                    made.push_back({info.name, true, {column}});
+                ++column;
+            }
+        }
+        return made;
+    });
+}
+
+Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Result& reference,
+                                     const integrate::Result& other, const std::vector<std::size_t>& reference_rows,
+                                     const std::vector<std::size_t>& other_rows) {
+    auto rows = [](const integrate::Result& r, const std::vector<std::size_t>& given) {
+        std::vector<std::size_t> made = given;
+        if (made.empty())
+            for (std::size_t k = 0; k < r.t.size(); ++k) made.push_back(k);
+        for (std::size_t k : made)
+            if (k >= r.t.size()) throw std::invalid_argument("measured_differences: row " + std::to_string(k) + " of a run with " +
+                                                             std::to_string(r.t.size()));
+        return made;
+    };
+    const std::vector<std::size_t> a_rows = rows(reference, reference_rows), b_rows = rows(other, other_rows);
+    if (a_rows.size() != b_rows.size() || reference.dim != other.dim || reference.output_names != other.output_names)
+        throw std::invalid_argument("measured_differences: the runs compare " + std::to_string(a_rows.size()) + " and " +
+                                    std::to_string(b_rows.size()) + " rows of states of " + std::to_string(reference.dim) +
+                                    " and " + std::to_string(other.dim) + " components: they must be alike");
+    const std::vector<MeasuredQuantity> quantities = measured_quantities(model);
+    const std::size_t dim = static_cast<std::size_t>(reference.dim), width = reference.output_names.size();
+    const std::size_t n = a_rows.size();
+    Eigen::MatrixXd made(static_cast<Eigen::Index>(quantities.size()), static_cast<Eigen::Index>(n));
+    for (std::size_t q = 0; q < quantities.size(); ++q) {
+        const MeasuredQuantity& quantity = quantities[q];
+        auto value = [&](const integrate::Result& r, std::size_t row, int column) {
+            return quantity.output ? r.outputs[row * width + column] : r.y[row * dim + column];
+        };
+        // NaN anywhere makes a maximum NaN (as NumPy's), which then counts as no size at all: 1
+        auto largest = [](const std::vector<double>& values) {
+            double top = 0.0;
+            for (double v : values)
+                if (std::isnan(v)) return 1.0; else top = std::max(top, v);
+            return top > 0.0 && std::isfinite(top) ? top : 1.0;
+        };
+        std::vector<double> magnitudes;
+        for (std::size_t k = 0; k < n; ++k)
+            for (int c : quantity.columns) magnitudes.push_back(std::abs(value(reference, a_rows[k], c)));
+        const double unit = largest(magnitudes);
+        const bool scalar = quantity.columns.size() == 1;
+        auto size = [&](auto component) {  // |x| of one column, the norm of several
+            if (scalar) return std::abs(component(quantity.columns[0]));
+            double sum = 0.0;
+            for (int c : quantity.columns) sum += component(c) * component(c);
+            return std::sqrt(sum);
+        };
+        std::vector<double> sizes(n), apart(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            sizes[k] = size([&](int c) { return value(reference, a_rows[k], c) / unit; });
+            apart[k] = size([&](int c) { return (value(reference, a_rows[k], c) - value(other, b_rows[k], c)) / unit; });
+        }
+        const double scale = largest(sizes);
+        for (std::size_t k = 0; k < n; ++k) made(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(k)) = apart[k] / scale;
+    }
+    return made;
+}
+
 Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y) {
     return visit(model, [&](const auto& m) -> Eigen::VectorXd {
         using S = std::decay_t<decltype(m)>;
@@ -157,6 +244,17 @@ Eigen::MatrixXd principal_states(const AnyModel& model, const Eigen::MatrixXd& s
             principal.row(i) = y.transpose();
         }
         return principal;
+    });
+}
+
+Eigen::VectorXd separatrix(const AnyModel& model, const Eigen::MatrixXd& states) {
+    const Eigen::MatrixXd principal = principal_states(model, states);
+    return visit(model, [&](const auto& m) -> Eigen::VectorXd {
+        using S = std::decay_t<decltype(m)>;
+        Eigen::VectorXd made = Eigen::VectorXd::Constant(principal.rows(), std::numeric_limits<double>::quiet_NaN());
+        if constexpr (model::system::has_separatrix<S>::value)
+            for (Eigen::Index i = 0; i < principal.rows(); ++i) made[i] = m.separatrix(typename S::State(principal.row(i).transpose()));
+        return made;
     });
 }
 

@@ -1849,6 +1849,10 @@ class Model:
         """
         initial_state of every row of ``given`` (n, k): (n, dim).
         """
+    def measured_differences(self, reference: ..., other: ..., reference_rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], other_rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        How far two runs are apart on each measured quantity (rows: measured_quantities) at each pair of rows (empty: every row), relative to the quantity's largest size in the reference.
+        """
     def outputs_along(self, t: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], y: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         outputs_at at every time t[i] (n,) and state y[i] (n, dim): (n, outputs).
@@ -1865,6 +1869,10 @@ class Model:
         ...
     def rhs(self, t: typing.SupportsFloat | typing.SupportsIndex, y: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
+    def separatrix(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        The signed distance to a separatrix of the unperturbed motion at each state (rows): a change of sign along a run is a crossing; NaN where the model declares none.
+        """
     def slow_rate(self, t: typing.SupportsFloat | typing.SupportsIndex, y: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"]) -> float:
         ...
     def tau_rate(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -1879,6 +1887,11 @@ class Model:
     @property
     def family(self) -> str:
         ...
+    @property
+    def measured_quantities(self) -> list:
+        """
+        What a run's error is measured on (the accuracy contract): (name, role ('state' or 'output'), columns) per quantity; a vector's components (omega, quaternion, ...) as one quantity, labels left out.
+        """
     @property
     def orbit(self) -> typing.Any:
         """
@@ -1952,6 +1965,10 @@ class Options:
         --------
         >>> import gyrostat
         >>> gyrostat.Options.check('rtol', 1e-9)
+        """
+    def __copy__(self) -> Options:
+        """
+        A copy of every option (events included).
         """
     def __init__(self) -> None:
         ...

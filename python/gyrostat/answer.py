@@ -13,15 +13,15 @@ from gyrostat import accuracy as _accuracy
 from gyrostat.modelbase import ModelBase
 from gyrostat.solution import AccuracyWarning, Solution
 
-_BASE_CHECK = ModelBase.check
+BASE_CHECK = ModelBase.check
 
 
-def _checked(solution: Solution, model, check_validity: bool) -> Solution:
+def checked(solution: Solution, model, check_validity: bool) -> Solution:
     if solution.status == "interrupted":
         warnings.warn(f"interrupted: {solution.message}", RuntimeWarning, stacklevel=3)
     for doubt in solution.accuracy_warnings:
         warnings.warn(doubt, AccuracyWarning, stacklevel=3)
-    if check_validity and type(model).check is not _BASE_CHECK and len(solution):
+    if check_validity and type(model).check is not BASE_CHECK and len(solution):
         from gyrostat.assumptions import ValidityWarning
 
         for assumption in model.check(solution):
@@ -31,7 +31,7 @@ def _checked(solution: Solution, model, check_validity: bool) -> Solution:
     return solution
 
 
-def _estimate_mode(error_estimate) -> str:
+def estimate_mode(error_estimate) -> str:
     """``error_estimate`` as "window", "full" or "" (off); ValueError naming another value."""
     if error_estimate is True or error_estimate == "window":
         return "window"
@@ -42,7 +42,7 @@ def _estimate_mode(error_estimate) -> str:
     raise ValueError(f"error_estimate = {error_estimate!r} must be True, False or 'full'")
 
 
-def _accuracy_asked(accuracy) -> float | None:
+def accuracy_asked(accuracy) -> float | None:
     """The accuracy asked as a float, or a ValueError naming a value that is not in (0, 1)."""
     if accuracy is None:
         return None
@@ -52,7 +52,7 @@ def _accuracy_asked(accuracy) -> float | None:
     return float(accuracy)
 
 
-def _measured(results: list, cores: list, run, opts, t0: float, t1: float, mode: str, accuracy: float | None,
+def measured(results: list, cores: list, run, opts, t0: float, t1: float, mode: str, accuracy: float | None,
               explicit: bool, size: float, choose_method: bool = False) -> tuple[list, list]:
     """The answers and their estimates: tolerances chosen for ``accuracy`` (:func:`gyrostat.accuracy.meet`;
     the method too with ``choose_method``) unless they were given (``explicit``), or the given run
@@ -75,7 +75,7 @@ def _measured(results: list, cores: list, run, opts, t0: float, t1: float, mode:
     return results, estimates
 
 
-def _attach(solution: Solution, estimate) -> Solution:
+def attach(solution: Solution, estimate) -> Solution:
     """The estimate on the solution: its value, its basis among the notes, its warning among the doubts."""
     if estimate is None:
         return solution

@@ -11,7 +11,7 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat import progress as _bars
-from gyrostat.answer import _accuracy_asked, _attach, _checked, _estimate_mode, _measured
+from gyrostat.answer import accuracy_asked, attach, checked, estimate_mode, measured
 from gyrostat.arguments import flag, floats, shown
 from gyrostat.modelbase import ModelBase, core_of
 from gyrostat.options import (OPTION_NAMES, Options, check_output_memory, option_values, options_of, span,
@@ -128,9 +128,9 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     models, results, estimates = ensemble_results(
         models, y0s, t_span, threads=threads, **given, options=options, events=events, dense_output=dense_output,
         progress=progress, batch=batch, accuracy=accuracy, error_estimate=error_estimate)
-    solutions = [_attach(Solution(r, models[0] if len(models) == 1 else models[i]), e)
+    solutions = [attach(Solution(r, models[0] if len(models) == 1 else models[i]), e)
                  for i, (r, e) in enumerate(zip(results, estimates))]
-    return [_checked(s, s.model, check_validity) if s.success or s.accuracy_warnings else s for s in solutions]
+    return [checked(s, s.model, check_validity) if s.success or s.accuracy_warnings else s for s in solutions]
 
 
 def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
@@ -199,8 +199,8 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
     batch = flag(batch, "batch")
     outputs = len(opts.t_eval) or opts.n_out
     check_output_memory(cores, count, outputs, f"{count} members x {outputs} output times")
-    mode = _estimate_mode(error_estimate)
-    asked = _accuracy_asked(accuracy)
+    mode = estimate_mode(error_estimate)
+    asked = accuracy_asked(accuracy)
     report = _bars.resolve(progress, total=count, unit="member")
 
     def run(o, t_end, members):  # the members' runs (all of them: the answer's, with the progress)
@@ -215,7 +215,7 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
             return models, run(opts, t1, list(range(count))), [None] * count
         explicit = rtol is not None or atol is not None or step is not None or options is not None
         size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
-        results, estimates = _measured(None, cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
+        results, estimates = measured(None, cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
                                        asked, explicit, size, choose_method=method is None and options is None)
     finally:
         _bars.close(report)

@@ -16,7 +16,7 @@ import numpy as np
 from gyrostat import _core
 from gyrostat import accuracy as _accuracy
 from gyrostat import progress as _bars
-from gyrostat.answer import _BASE_CHECK, _accuracy_asked, _attach, _checked, _estimate_mode, _measured
+from gyrostat.answer import BASE_CHECK, accuracy_asked, attach, checked, estimate_mode, measured
 from gyrostat.arguments import flag, floats
 from gyrostat.ensemble import ensemble_results, solve_ensemble
 from gyrostat.modelbase import core_of
@@ -187,33 +187,34 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         warn_loose_atol(atol, y0)
     check_validity = check_validity if check_validity is True else flag(check_validity, "check_validity")
     report = _bars.default() if progress is None else _bars.resolve(progress)
-    mode = _estimate_mode(error_estimate) if error_estimate is not True else "window"
+    mode = estimate_mode(error_estimate) if error_estimate is not True else "window"
     if compare is not None and not callable(compare):
         raise TypeError(f"compare must be a callable solution -> (n, m) array, not {type(compare).__name__}")
-    asked = _accuracy_asked(accuracy) if accuracy is not None else None
+    asked = accuracy_asked(accuracy) if accuracy is not None else None
     try:
         if asked is None:
             result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates
             estimate = None
             if mode and t1 != t0 and result.success:
-                estimate = _measured([result], [_accuracy.Compared(core, compare, model) if compare else core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
-                                     opts, t0, t1, mode, None, True, 0.0)[1][0]
+                estimate = measured([result], [_accuracy.Compared(core, compare, model) if compare else core],
+                                    lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+                                    opts, t0, t1, mode, None, True, 0.0)[1][0]
         else:
             explicit = rtol is not None or atol is not None or step is not None or options is not None
             size = float(np.max(np.abs(y0))) if y0.size else 1.0
-            measured = [_accuracy.Compared(core, compare, model) if compare else core]
-            results, estimates = _measured(None, measured, lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
-                                           opts, t0, t1, mode, asked, explicit, size,
-                                           choose_method=method is None and options is None)
+            measured_on = [_accuracy.Compared(core, compare, model) if compare else core]
+            results, estimates = measured(None, measured_on, lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+                                          opts, t0, t1, mode, asked, explicit, size,
+                                          choose_method=method is None and options is None)
             result, estimate = results[0], estimates[0]
     finally:
         if report is not None:
             _bars.close(report)
     solution = Solution(result, model)
     if estimate is not None:
-        _attach(solution, estimate)
-    if result.success and (not check_validity or type(model).check is _BASE_CHECK) and not result.warnings \
+        attach(solution, estimate)
+    if result.success and (not check_validity or type(model).check is BASE_CHECK) and not result.warnings \
             and not solution._doubts:
         return solution
-    return _checked(solution, model, check_validity)
+    return checked(solution, model, check_validity)
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 
 namespace gyrostat {
@@ -59,6 +60,19 @@ public:
     Vec3 angular_momentum(const Vec3& omega) const { return moments_.cwiseProduct(omega) + rotor_; }
     /// Kinetic energy of the carrier's rotation, T = ω·Jω / 2 (conserved for a free gyrostat).
     double kinetic_energy(const Vec3& omega) const { return 0.5 * omega.dot(moments_.cwiseProduct(omega)); }
+    /// The signed distance of ω's free motion to the separatrix, (|G|² − 2T A_mid)/|G|² (G = Jω,
+    /// A_mid the middle moment): > 0 a rotation about the axis of the largest moment, < 0 of the
+    /// smallest. A change of sign along a run is a separatrix crossing. NaN with a rotor (its
+    /// separatrices are others), at |G| = 0 and for a body with two equal moments (no separatrix
+    /// between distinct rotations about one of them).
+    double separatrix(const Vec3& omega) const {
+        const double low = moments_.minCoeff(), high = moments_.maxCoeff(), middle = moments_.sum() - low - high;
+        const Vec3 G = moments_.cwiseProduct(omega);
+        const double G2 = G.squaredNorm();
+        if (rotor_.squaredNorm() != 0.0 || !(G2 > 0.0) || middle == low || middle == high)
+            return std::numeric_limits<double>::quiet_NaN();
+        return (G2 - omega.dot(G) * middle) / G2;
+    }
 
     std::string describe() const;
 

@@ -46,6 +46,29 @@ const char* family(const AnyModel& model);
 int dim(const AnyModel& model);
 std::vector<std::string> state_names(const AnyModel& model);
 std::vector<std::string> output_names(const AnyModel& model);
+/// A quantity a run's error is measured on (the accuracy contract, python/gyrostat/accuracy.py):
+/// the state components of one vector (ω, the quaternion, a moving mass's displacement and velocity:
+/// model::Quantity::vector; one norm), a scalar state (not a label), or an output the model
+/// declares measured (model::OutputInfo::measured; not when a state has its name). In the order of
+/// the state, then of the outputs.
+struct MeasuredQuantity {
+    std::string name;
+    bool output = false;       ///< columns index the outputs (else the state)
+    std::vector<int> columns;  ///< the components, in order
+};
+std::vector<MeasuredQuantity> measured_quantities(const AnyModel& model);
+/// How far two runs of `model` are apart on each measured quantity, at each pair of rows
+/// (`reference_rows[k]` of `reference` against `other_rows[k]` of `other`; empty: every row, the
+/// runs having as many): row q of the result is quantity q's |Δ| (a vector's norm) over its largest
+/// size in `reference` (that of a vector's norm). A quantity's values are first divided by their
+/// largest magnitude (1 when that is 0, infinite or NaN), so that huge states do not overflow; a
+/// NaN difference stays NaN.
+Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Result& reference,
+                                     const integrate::Result& other, const std::vector<std::size_t>& reference_rows,
+                                     const std::vector<std::size_t>& other_rows);
+/// The model's signed distance to a separatrix (model/system.hpp: separatrix) at each state (rows,
+/// in the user's frame); NaN for a model that declares none.
+Eigen::VectorXd separatrix(const AnyModel& model, const Eigen::MatrixXd& states);
 /// An empty Result that says what a run of `model` holds: the names, units and descriptions of
 /// its state and outputs (model/system.hpp's declarations).
 integrate::Result described(const AnyModel& model);

@@ -105,8 +105,8 @@ public:
                                         format_value(y[0]));
     }
 
-    static constexpr std::array<OutputInfo, 7> outputs_info{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
-                                                             {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true},
+    static constexpr std::array<OutputInfo, 7> outputs_info{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true, true},
+                                                             {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true, true},
                                                              {"x", "rad^2/s^2", "x = a^2 (papers 000/001; paper 002 calls it y)", false},
                                                              {"y", "rad^2/s^2", "y = r^2 (papers 000/001; paper 002 calls it x)", false},
                                                              {"fast_frequency", "rad/s", "|(C - A) r / A|, the frequency of the averaged-out motion", false},

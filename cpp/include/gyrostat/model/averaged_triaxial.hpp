@@ -45,7 +45,7 @@ public:
     static constexpr std::array<Quantity, dim> states{
         {{"G2", "kg^2 m^4/s^2", "|G|^2, the squared norm of the angular momentum"},
          {"pb", "kg^2 m^4/s^2", "p_b = |G|^2 - 2 T A_mid, the distance to the separatrix (> 0: rotation about the axis of the largest moment, < 0: of the smallest)"},
-         {"branch", "1", "s = +1 or -1, the sign of omega about the axis the body rotates about (constant between separatrix crossings)"},
+         {"branch", "1", "s = +1 or -1, the sign of omega about the axis the body rotates about (constant between separatrix crossings)", nullptr, true},
          {"phase", "rad", "the fast phase phi of the free motion (u = 2 K phi / pi; 0 where omega_mid = 0), unwrapped"}}};
 
     /// (|G|², p_b, s, φ) do not depend on the body frame (model/frame.hpp); the ω they are lifted
@@ -135,8 +135,8 @@ public:
     }
 
     static constexpr std::array<OutputInfo, 11> outputs_info{
-        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega|, the norm of the angular momentum", true},
-         {"kinetic_energy", "J", "T = omega . J omega / 2 = (|G|^2 - p_b)/(2 A_mid), the kinetic energy of the rotation", true},
+        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega|, the norm of the angular momentum", true, true},
+         {"kinetic_energy", "J", "T = omega . J omega / 2 = (|G|^2 - p_b)/(2 A_mid), the kinetic energy of the rotation", true, true},
          {"modulus_squared", "1", "k^2 of the free motion (0: a permanent rotation or a symmetric body, 1: the separatrix)", false},
          {"complementary_modulus_squared", "1", "k'^2 = 1 - k^2, from p_b (every digit next to the separatrix)", false},
          {"period", "s", "P = 4 K(k) / lambda, the period of omega(t) of the free motion", false},

@@ -157,7 +157,7 @@ public:
     /// keeps it: none, or the cavity).
     bool keeps_momentum_norm() const { return body_.rotor().squaredNorm() == 0.0 && torques_.keeps_momentum_norm(); }
 
-    static constexpr std::array<OutputInfo, 3> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}, nutation_angle_info}};
+    static constexpr std::array<OutputInfo, 3> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true, true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true, true}, nutation_angle_info}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     /// |G|, T, the nutation angle ϑ between body z and G = Jω + k (model/system.hpp:
     /// nutation_angle), then ψ, θ, φ with the attitude.
@@ -169,6 +169,8 @@ public:
         out[2] = nutation_angle(G);
         this->attitude_outputs(y, out + 3);
     }
+    /// The free rigid body's separatrix at ω (Body::separatrix; NaN with a rotor).
+    double separatrix(const State& y) const { return body_.separatrix(y.template head<3>()); }
     /// Without torques |G| and T are first integrals; a torque with Jω·M ≡ 0 (the cavity) keeps
     /// |G| of a rigid body; any torque changes T.
     bool keeps(std::size_t output) const {
@@ -206,13 +208,21 @@ struct GyrostatLanes {
     std::array<std::vector<UserTorque>, W> lane_user;  ///< when the lanes' differ: each lane's, called with n = 1
     bool mixed = false;                                ///< the lanes' user torques differ
 
-    /// Whether every torque of `torques` outside the affine part is a compiled vectorised user
-    /// torque (each appended to `found`).
+    /// Whether every torque of `torques` outside the affine part has a compiled vectorised form
+    /// (torque/set.hpp: has_vector_form; each appended to `found`).
     static bool vectorised(const TorqueSet& torques, std::vector<UserTorque>* found = nullptr) {
         for (const AnyTorque& part : torques.others()) {
-            const auto* custom = std::get_if<torque::Custom>(&part);
-            if (!custom || !custom->vector_form().function) return false;
-            if (found) found->push_back({custom->vector_form(), custom->attitude, &custom->label});
+            const bool taken = std::visit([&](const auto& x) {
+                if constexpr (gyrostat::has_vector_form<std::decay_t<decltype(x)>>::value) {
+                    const torque::VectorForm form = x.vector_form();
+                    if (!form.function) return false;
+                    if (found) found->push_back({form, gyrostat::uses_attitude(x), &x.label});
+                    return true;
+                } else {
+                    return false;
+                }
+            }, part);
+            if (!taken) return false;
         }
         return true;
     }

@@ -50,24 +50,29 @@ public:
 
     LagrangeAveraged(Body body, double mu, TorqueSet torques)
         : top_(body, mu, torques), torques_(torques.in_principal_axes(body)) {
-        for (const auto& part : torques_.parts()) {
-            if (const auto* medium = std::get_if<torque::ResistiveMedium>(&part)) {
-                for (std::size_t k = 0; k < medium->coefficients.size(); ++k)
-                    add_linear(medium->coefficients[k], k, "ResistiveMedium coefficient D_" + std::to_string(k));
-            } else if (const auto* damping = std::get_if<torque::LinearDamping>(&part)) {
-                add_linear(damping->matrix, 0, "LinearDamping matrix");
-            } else if (const auto* constant = std::get_if<torque::Constant>(&part)) {
-                if (constant->moment.x() != 0.0 || constant->moment.y() != 0.0)
-                    throw std::invalid_argument(
-                        "LagrangeAveraged: a constant torque must be axial, M = (0, 0, c), to be of the paper's class "
-                        "(2.3); got M1 = " + format_value(constant->moment.x()) + ", M2 = " +
-                        format_value(constant->moment.y()) + ": use the full LagrangeTop");
-                axial_constant_ += constant->moment.z();
-            } else {
-                throw std::invalid_argument(std::string("LagrangeAveraged: the nutation average of torque '") +
-                                            torque_name(part) + "' is not implemented: use the full LagrangeTop");
-            }
-        }
+        // the torques' affine forms (torque/affine.hpp: M = M0 − Σ t^k D_k ω) are of the paper's
+        // class when M0 = (0, 0, c) and every D_k = diag(d_k, d_k, d3_k)
+        for (const auto& part : torques_.parts())
+            std::visit([&](const auto& x) {
+                using T = std::decay_t<decltype(x)>;
+                if constexpr (gyrostat::has_affine_form<T>::value) {
+                    const torque::AffineForm form = x.affine_form();
+                    const Vec3& m0 = form.constant;
+                    if (m0.x() != 0.0 || m0.y() != 0.0)
+                        throw std::invalid_argument(
+                            std::string("LagrangeAveraged: ") + T::python_name + "'s constant torque must be axial, "
+                            "M = (0, 0, c), to be of the paper's class (2.3); got M1 = " + format_value(m0.x()) +
+                            ", M2 = " + format_value(m0.y()) + ": use the full LagrangeTop");
+                    axial_constant_ += m0.z();
+                    for (std::size_t k = 0; k < form.damping.size(); ++k)
+                        add_linear(form.damping[k], k, std::string(T::python_name) +
+                                                           (form.damping.size() == 1 ? std::string(" matrix")
+                                                                                     : " coefficient D_" + std::to_string(k)));
+                } else {
+                    throw std::invalid_argument(std::string("LagrangeAveraged: the nutation average of torque '") +
+                                                T::name + "' is not implemented: use the full LagrangeTop");
+                }
+            }, part);
     }
 
     const LagrangeTop& top() const { return top_; }

@@ -198,9 +198,9 @@ public:
                 0.5 * (A_ * (y[0] * y[0] + y[1] * y[1]) + C_ * y[2] * y[2]) + mu_ * g[2], y[2]};
     }
 
-    static constexpr std::array<OutputInfo, 12> own_outputs{{{"G_z", "kg m^2/s", "the angular momentum about the vertical", true},
-                                                             {"H", "J", "the top's energy, rotation plus gravity", true},
-                                                             {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", false},
+    static constexpr std::array<OutputInfo, 12> own_outputs{{{"G_z", "kg m^2/s", "the angular momentum about the vertical", true, true},
+                                                             {"H", "J", "the top's energy, rotation plus gravity", true, true},
+                                                             {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", false, true},
                                                              {"u1", "1", "the smallest root of the nutation cubic (u = cos theta)", false},
                                                              {"u2", "1", "the middle root: the top of the nutation", false},
                                                              {"u3", "1", "the largest root", false},

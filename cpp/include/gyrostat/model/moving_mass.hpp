@@ -33,15 +33,15 @@ public:
     static constexpr int dim = 9;
     using State = Eigen::Matrix<double, 9, 1>;
     static constexpr const char* family = "moving_mass";
-    static constexpr std::array<Quantity, dim> states{{{"p", "rad/s", "angular velocity about body x"},
-                                                        {"q", "rad/s", "angular velocity about body y"},
-                                                        {"r", "rad/s", "angular velocity about body z"},
-                                                        {"u_1", "m", "the mass's displacement from its attachment, body x"},
-                                                        {"u_2", "m", "the displacement, body y"},
-                                                        {"u_3", "m", "the displacement, body z"},
-                                                        {"v_1", "m/s", "the displacement's rate, body x"},
-                                                        {"v_2", "m/s", "the displacement's rate, body y"},
-                                                        {"v_3", "m/s", "the displacement's rate, body z"}}};
+    static constexpr std::array<Quantity, dim> states{{{"p", "rad/s", "angular velocity about body x", "omega"},
+                                                        {"q", "rad/s", "angular velocity about body y", "omega"},
+                                                        {"r", "rad/s", "angular velocity about body z", "omega"},
+                                                        {"u_1", "m", "the mass's displacement from its attachment, body x", "displacement"},
+                                                        {"u_2", "m", "the displacement, body y", "displacement"},
+                                                        {"u_3", "m", "the displacement, body z", "displacement"},
+                                                        {"v_1", "m/s", "the displacement's rate, body x", "velocity"},
+                                                        {"v_2", "m/s", "the displacement's rate, body y", "velocity"},
+                                                        {"v_3", "m/s", "the displacement's rate, body z", "velocity"}}};
 
     /// ω, u and v are vectors in body axes (model/frame.hpp); on a body given by its inertia
     /// tensor the mass moves about its attachment on the third principal axis.
@@ -127,8 +127,8 @@ public:
     /// The nutation angle ϑ is that of the system's angular momentum K (carrier and mass) to the
     /// carrier's z axis (model/system.hpp: nutation_angle).
     static constexpr std::array<OutputInfo, 5> outputs_info{
-        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}, nutation_angle_info,
-         {"kinetic_energy", "J", "T = omega . J omega / 2 with J the system's moments with the mass at rest: the rotation's energy the reduced and averaged models carry", false}}};
+        {{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true, true}, {"energy", "J", "the total energy: the carrier's rotation, the mass's motion and the spring", false, true}, {"displacement_ratio", "1", "|u|/rho: the mass's displacement against its arm (the model assumes it small)", false}, nutation_angle_info,
+         {"kinetic_energy", "J", "T = omega . J omega / 2 with J the system's moments with the mass at rest: the rotation's energy the reduced and averaged models carry", false, true}}};
     void outputs(double, const State& y, double* out) const {
         const Vec3 w = y.head<3>(), u = y.segment<3>(3), v = y.tail<3>();
         const Vec3 d = Vec3(0, 0, rho_) + u;

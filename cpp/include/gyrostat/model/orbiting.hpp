@@ -65,6 +65,7 @@ public:
     void require_splitting() const { inner_.require_splitting(); }
     void free_flow(double h, State& y) const { inner_.free_flow(h, y); }
     bool keeps_momentum_norm() const { return inner_.keeps_momentum_norm(); }
+    double separatrix(const State& y) const { return inner_.separatrix(y); }
 
     static constexpr std::array<OutputInfo, 12> orbit_outputs{{
         {"q_orbit_w", "1", "attitude quaternion body to orbit frame (LVLH: x along track, y minus the orbit normal, z nadir), scalar part (>= 0)", false},

@@ -338,7 +338,7 @@ public:
         return rate;
     }
 
-    static constexpr std::array<OutputInfo, 10> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true},
+    static constexpr std::array<OutputInfo, 10> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true, true},
                                                             {"h", "kg m^2/s^2", "omega . J omega (= 2T)", true},
                                                             {"g", "1", "d tau/dt, the servo's gain", false},
                                                             {"L", "N m", "the torque's magnitude law L(t)", false},
@@ -369,6 +369,8 @@ public:
     }
     /// |G| and h are kept by the servo's torque (orthogonal to ω and G); other torques change them.
     bool keeps(std::size_t /*output*/) const { return torques_.empty(); }
+    /// The free rigid body's separatrix at ω (Body::separatrix; NaN with a rotor).
+    double separatrix(const State& y) const { return body_.separatrix(y.template head<3>()); }
 
 private:
     Body body_;

@@ -21,6 +21,11 @@ struct Quantity {
     const char* name;
     const char* unit;
     const char* description;
+    /// The vector this component is part of ("omega", "quaternion", …; nullptr: a scalar). A run's
+    /// error is measured on a vector as one norm (engine.hpp: measured_quantities).
+    const char* vector = nullptr;
+    /// A label, not a quantity (the triaxial averaged model's branch ±1): no error is measured on it.
+    bool label = false;
 };
 
 /// A named quantity a model records at every output time (invariants and derived quantities).
@@ -32,6 +37,9 @@ struct OutputInfo {
     /// change along a run measures the perturbation's work, or the integration error where
     /// nothing perturbs it. Derived quantities (angles, roots, rates) are not conserved.
     bool conserved;
+    /// A run's error is measured on it (engine.hpp: measured_quantities): the invariants the
+    /// papers plot (|G|, T, the moving mass's energy, the top's G_z and H).
+    bool measured = false;
 };
 
 /// A System must give
@@ -61,6 +69,13 @@ struct OutputInfo {
 ///                                                                integral with this model's
 ///                                                                torques (default: yes; a forced
 ///                                                                energy is not)
+///   double separatrix(const State& y) const;                     the signed distance to a separatrix of
+///                                                                the unperturbed motion: a change of sign
+///                                                                along a run is a crossing, where the
+///                                                                run's error grows faster than before it
+///                                                                (the accuracy contract's window estimate
+///                                                                then measures the whole span; NaN: none
+///                                                                here) (default: none)
 ///   void check_state(const State& y) const;                      throws std::invalid_argument for
 ///                                                                a state the model cannot reach
 ///                                                                (default: finite is enough)
@@ -147,6 +162,12 @@ template <class S, class = void>
 struct has_outputs : std::false_type {};
 template <class S>
 struct has_outputs<S, std::void_t<decltype(S::outputs_info)>> : std::true_type {};
+
+template <class S, class = void>
+struct has_separatrix : std::false_type {};
+template <class S>
+struct has_separatrix<S, std::void_t<decltype(std::declval<const S&>().separatrix(std::declval<const typename S::State&>()))>>
+    : std::true_type {};
 
 template <class S, class = void>
 struct has_keeps : std::false_type {};
@@ -325,8 +346,8 @@ constexpr std::array<T, N + M> concat(const std::array<T, N>& first, const std::
 }
 
 /// The state of the models that may integrate the attitude: ω, then the quaternion.
-inline constexpr std::array<Quantity, 3> omega_states{{{"p", "rad/s", "angular velocity about body x"}, {"q", "rad/s", "angular velocity about body y"}, {"r", "rad/s", "angular velocity about body z"}}};
-inline constexpr std::array<Quantity, 4> quaternion_states{{{"q_w", "1", "attitude quaternion, scalar part (body to inertial)"}, {"q_x", "1", "attitude quaternion, x"}, {"q_y", "1", "attitude quaternion, y"}, {"q_z", "1", "attitude quaternion, z"}}};
+inline constexpr std::array<Quantity, 3> omega_states{{{"p", "rad/s", "angular velocity about body x", "omega"}, {"q", "rad/s", "angular velocity about body y", "omega"}, {"r", "rad/s", "angular velocity about body z", "omega"}}};
+inline constexpr std::array<Quantity, 4> quaternion_states{{{"q_w", "1", "attitude quaternion, scalar part (body to inertial)", "quaternion"}, {"q_x", "1", "attitude quaternion, x", "quaternion"}, {"q_y", "1", "attitude quaternion, y", "quaternion"}, {"q_z", "1", "attitude quaternion, z", "quaternion"}}};
 template <bool WithAttitude>
 constexpr auto rate_states() {
     if constexpr (WithAttitude)

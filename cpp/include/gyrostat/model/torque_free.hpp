@@ -254,7 +254,7 @@ public:
         dy.template head<3>() = body_.inverse_moments().cwiseProduct(body_.angular_momentum(omega).cross(omega));
         if constexpr (WithAttitude) dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
     }
-    static constexpr std::array<OutputInfo, 3> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true}, nutation_angle_info}};
+    static constexpr std::array<OutputInfo, 3> own_outputs{{{"angular_momentum_norm", "kg m^2/s", "|G| = |J omega + k|, the norm of the angular momentum", true, true}, {"kinetic_energy", "J", "T = omega . J omega / 2, the kinetic energy of the rotation", true, true}, nutation_angle_info}};
     static constexpr auto outputs_info = with_euler_outputs<WithAttitude>(own_outputs);
     /// |G|, T, the nutation angle ϑ between body z and G = Jω + k (model/system.hpp:
     /// nutation_angle), then ψ, θ, φ with the attitude.

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/affine.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
@@ -34,6 +35,9 @@ struct Constant {
     }
 
     Vec3 operator()(double /*t*/, const Vec3& /*omega*/, const Vec3& /*moments*/) const { return moment; }
+    /// M0 = moment, no ω term (torque/affine.hpp).
+    AffineForm affine_form() const { return {moment, {}}; }
+    static constexpr bool constant_coefficients = true;
     /// ∂M/∂ω = 0.
     void add_jacobian(double /*t*/, const Vec3& /*omega*/, const Vec3& /*moments*/, Mat3& /*dM_domega*/) const {}
     /// (ȧ, ṙ) of the averaged symmetric motion.

@@ -143,6 +143,9 @@ struct Custom {
     }
 
     bool uses_attitude() const { return attitude; }
+    /// The user's function (torque/set.hpp: a torque that calls one; the front end resets a Python
+    /// function's state before a run, an ensemble of serialised ones runs on one thread).
+    const TorqueFunction& user_function() const { return *function; }
     /// The compiled vectorised function the SIMD batches call (none: a scalar or Python function,
     /// or a body given by its inertia tensor, whose frame the batches do not rotate).
     VectorForm vector_form() const { return rotated_ ? VectorForm{} : function->vector_form(); }

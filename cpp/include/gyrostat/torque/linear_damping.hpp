@@ -5,6 +5,7 @@
 #include <array>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/torque/affine.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
@@ -44,6 +45,9 @@ struct LinearDamping {
     }
 
     Vec3 operator()(double /*t*/, const Vec3& omega, const Vec3& /*moments*/) const { return -matrix * omega; }
+    /// D_0 = D (torque/affine.hpp).
+    AffineForm affine_form() const { return {Vec3::Zero(), {matrix}}; }
+    static constexpr bool constant_coefficients = true;
     /// ∂M/∂ω = −D.
     void add_jacobian(double /*t*/, const Vec3& /*omega*/, const Vec3& /*moments*/, Mat3& dM_domega) const {
         dM_domega -= matrix;

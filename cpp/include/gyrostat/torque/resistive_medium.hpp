@@ -8,6 +8,7 @@
 
 #include "gyrostat/body.hpp"
 #include "gyrostat/euler_poinsot.hpp"
+#include "gyrostat/torque/affine.hpp"
 #include "gyrostat/torque/parameter.hpp"
 
 namespace gyrostat::torque {
@@ -51,6 +52,8 @@ struct ResistiveMedium {
         return d;
     }
     Vec3 operator()(double t, const Vec3& omega, const Vec3& /*moments*/) const { return -(at(t) * omega); }
+    /// D_k = coefficients[k] (torque/affine.hpp); not folded: D depends on t.
+    AffineForm affine_form() const { return {Vec3::Zero(), coefficients}; }
     void add_jacobian(double t, const Vec3& /*omega*/, const Vec3& /*moments*/, Mat3& dM_domega) const {
         dM_domega -= at(t);
     }

@@ -28,28 +28,45 @@
 namespace gyrostat {
 
 /// Every torque the library knows: adding a torque is its header and its line here. Each is a
-/// small value type with
-///   Vec3 operator()(t, ω, J)                       the torque in body axes (J: principal moments),
-///                                                  or, for a torque that depends on the attitude,
-///   Vec3 operator()(t, ω, J, q)                    with `static constexpr bool needs_attitude = true`
-///                                                  (q: the unit quaternion body → inertial; only
-///                                                  models that carry q take it),
+/// small value type. It must give
+///   Vec3 operator()(t, ω, J)                       the torque in body axes (J: principal moments);
 ///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω (an attitude
 ///                                                  torque's ∂M/∂q is left out of the Jacobian: the
 ///                                                  implicit methods' Newton iteration only needs an
-///                                                  approximation, the answer is the right-hand side's),
-///   Vector2d averaged(t, a, r, A, C)               its contribution (ȧ, ṙ) to the system averaged
-///                                                  over the symmetric Euler–Poinsot motion (a torque
-///                                                  without it is refused by the averaged model),
-///   bool axisymmetric()                            it commutes with rotations about body z,
-/// and declares beside its equations (torque/parameter.hpp)
+///                                                  approximation, the answer is the right-hand side's);
+///   bool axisymmetric()                            it commutes with rotations about body z;
+/// and declare beside its equations (torque/parameter.hpp)
 ///   static name, python_name, description          its scene type, its Python class, one line,
-///   static std::array<Parameter, n> parameters     name, shape, unit, description, constraint,
+///   static std::array<Parameter, n> parameters     name, shape, unit, axes, description, constraint,
 ///   static T from(const Values&)                   itself from named values (a scene table),
-///   Values values() const                          the parameters it keeps,
-///   std::vector<Assumption> assumptions(const Motion&) const   its validity numbers,
-/// and may declare `static constexpr bool keeps_momentum_norm = true` when Jω·M ≡ 0.
+///   Values values() const                          the parameters it keeps.
 /// The Python classes, the scene schema and every list of torques are generated from these.
+/// It declares each capability it has; the models and integrators read the declarations (the
+/// traits below), never its type:
+///   static constexpr bool needs_attitude = true    it reads the attitude: operator()(t, ω, J, q)
+///                                                  instead (q: the unit quaternion body → inertial;
+///                                                  models without q refuse it: require_no_attitude);
+///   static constexpr bool optional_attitude = true decided per instance: bool uses_attitude(), and
+///                                                  operator()/add_jacobian take q as a pointer;
+///   Vector2d averaged(t, a, r, A, C)               its (ȧ, ṙ) over the symmetric Euler–Poinsot
+///                                                  motion (without it the averaged model refuses it);
+///   Vec3 averaged_power(t, EulerPoinsot, J)        its ⟨ω_i M_i⟩ over the triaxial free motion in
+///                                                  closed form (without it: quadrature);
+///   AffineForm affine_form()                       M = M0 − Σ t^k D_k ω (torque/affine.hpp; the
+///                                                  nutation-averaged top takes only these), and
+///   static constexpr bool constant_coefficients    at most D_0: folded into one M0 − D ω, which the
+///                                                  Taylor recursion and the SIMD lanes take;
+///   VectorForm vector_form(), std::string label    a compiled function the SIMD lanes call for W
+///                                                  members at once (DOP853 batches), and its name;
+///   const TorqueFunction& user_function()          it calls the user's function (reset before a
+///                                                  run; a serialised one keeps an ensemble on one thread);
+///   static constexpr bool on_orbit = true          it reads the body's place on a circular orbit:
+///                                                  a member `orbit`, T with_orbit(const CircularOrbit&);
+///   T in_principal_axes(const Body&)               it moves itself to the principal axes (others are
+///                                                  moved by their parameters' declared axes);
+///   T prepared(const Vec3& moments)                what it computes once for the body's moments;
+///   std::vector<Assumption> assumptions(const Motion&)   its validity numbers;
+///   static constexpr bool keeps_momentum_norm = true     Jω·M ≡ 0.
 using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
                                torque::ViscousCavity, torque::MovingMassDamper, torque::GravityGradient,
                                torque::MagneticTorque, torque::DipoleFieldTorque, torque::InertialTorque,
@@ -104,6 +121,39 @@ struct has_averaged_power : std::false_type {};
 template <class T>
 struct has_averaged_power<T, std::void_t<decltype(std::declval<const T&>().averaged_power(
                                  0.0, std::declval<const EulerPoinsot&>(), Vec3()))>> : std::true_type {};
+
+/// A torque affine in ω with coefficients polynomial in t (torque/affine.hpp).
+template <class T, class = void>
+struct has_affine_form : std::false_type {};
+template <class T>
+struct has_affine_form<T, std::void_t<decltype(std::declval<const T&>().affine_form())>> : std::true_type {};
+
+/// ... whose form is constant in t: folded into the set's one M0 − D ω.
+template <class T, class = void>
+struct folded : std::false_type {};
+template <class T>
+struct folded<T, std::enable_if_t<T::constant_coefficients>> : std::true_type {};
+
+/// A torque the SIMD lanes may call for W members at once (`VectorForm vector_form() const`).
+template <class T, class = void>
+struct has_vector_form : std::false_type {};
+template <class T>
+struct has_vector_form<T, std::void_t<decltype(std::declval<const T&>().vector_form())>> : std::true_type {};
+
+/// A torque that calls the user's function (`const TorqueFunction& user_function() const`).
+template <class T, class = void>
+struct calls_user_function : std::false_type {};
+template <class T>
+struct calls_user_function<T, std::void_t<decltype(std::declval<const T&>().user_function())>> : std::true_type {};
+
+/// The user's function a torque calls (nullptr: none).
+template <class T>
+const torque::TorqueFunction* user_function_of(const T& x) {
+    if constexpr (calls_user_function<T>::value)
+        return &x.user_function();
+    else
+        return nullptr;
+}
 
 template <class T, class = void>
 struct has_assumptions : std::false_type {};
@@ -214,7 +264,7 @@ public:
     }
     bool empty() const { return parts_.empty(); }
     bool has_damping() const { return has_damping_; }
-    /// Only constant and linear torques: the right-hand side is a quadratic polynomial.
+    /// Only folded torques (constant affine coefficients): the right-hand side is a quadratic polynomial.
     bool is_affine() const { return others_.empty(); }
     /// Every torque keeps |Jω| (Jω·M ≡ 0; none at all counts).
     bool keeps_momentum_norm() const {
@@ -246,7 +296,8 @@ public:
     /// ensemble of such members runs on one thread, since more only hand the GIL back and forth.
     bool serialised() const {
         for (const auto& part : parts_)
-            if (const auto* custom = std::get_if<torque::Custom>(&part); custom && custom->function->serialised())
+            if (const torque::TorqueFunction* f = std::visit([](const auto& x) { return user_function_of(x); }, part);
+                f && f->serialised())
                 return true;
         return false;
     }
@@ -409,15 +460,17 @@ private:
         }, part);
     }
 
+    /// A torque with constant affine coefficients joins M0 − D ω; every other is kept apart.
     void fold(const AnyTorque& part) {
-        if (const auto* c = std::get_if<torque::Constant>(&part)) {
-            constant_ += c->moment;
-        } else if (const auto* d = std::get_if<torque::LinearDamping>(&part)) {
-            damping_ += d->matrix;
-            has_damping_ = true;
-        } else {
-            others_.push_back(part);
-        }
+        std::visit([&](const auto& x) {
+            if constexpr (folded<std::decay_t<decltype(x)>>::value) {
+                const torque::AffineForm form = x.affine_form();
+                constant_ += form.constant;
+                if (!form.damping.empty()) damping_ += form.damping.front(), has_damping_ = true;
+            } else {
+                others_.push_back(part);
+            }
+        }, part);
     }
 
     std::vector<AnyTorque> parts_;
