@@ -521,6 +521,9 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
                                   f"(probe at three tolerances over the first {PROBE:.1%} of the span); "
                                   + estimate.basis)
             made[i], estimates[i] = answer, estimate
+            if estimate is not None and math.isnan(estimate.value) and not estimate.warning:
+                estimate.warning = (f"the error could not be measured ({estimate.basis.rsplit('; ', 1)[-1]}): the "
+                                    f"accuracy {accuracy:g} is not shown to be met; ask for a looser accuracy")
             if estimate is None or not math.isfinite(estimate.value) or estimate.met:
                 continue
             value = estimate.value
@@ -546,7 +549,8 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
             break
         rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
         reuse = swappable and rho >= 2.0 and min(tighter_rtol) >= tried.rtol / rho and \
-            all(i in companions and companions[i].success for i in again)
+            tried.rtol / rho >= 2.0 * ENGINE_RTOL and \
+            all(i in companions and companions[i].success for i in again)  # (and the new answer can be measured)
         if reuse and round_ < ROUNDS:  # the companion is tight enough by the measured ratio: it is the next answer
             members, rtol = again, tried.rtol / rho
             carried = {i: companions[i] for i in again}
