@@ -9,13 +9,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
-import matplotlib.pyplot as plt
 import numpy as np
 
 from gyrostat import figures
 from gyrostat.figures import (LEGEND_SIZE, curves, error, euler_angles, invariants, mark_singular, omega,  # noqa: F401
-                              relative_change, wrap_angle)
+                              plt, relative_change, wrap_angle)
 from gyrostat.solution import Solution
 
 
@@ -128,7 +126,10 @@ def sweep(ds, values, title: str, path: Path, contour: float | None = None,
         z = values.transpose(names[0], names[1], ...).values.T  # rows: the second parameter
         finite = z[np.isfinite(z)]
         log = finite.size and np.all(finite > 0) and finite.max() / finite.min() > 100
-        norm = matplotlib.colors.LogNorm(finite.min(), finite.max()) if log else None
+        from matplotlib.colors import LogNorm  # (matplotlib is imported where gyrostat draws: figures.plt)
+        from matplotlib.lines import Line2D
+
+        norm = LogNorm(finite.min(), finite.max()) if log else None
         mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z), shading="nearest", cmap="viridis", norm=norm)
         fig.colorbar(mesh, ax=ax, label=label)
         handles = []
@@ -136,8 +137,7 @@ def sweep(ds, values, title: str, path: Path, contour: float | None = None,
         # coincide, both stay visible (white on either side of the red dashes and between them)
         if contour is not None and finite.size and finite.min() < contour < finite.max():
             ax.contour(x, y, z, levels=[contour], colors="w", linewidths=4.5, zorder=3)
-            handles.append(matplotlib.lines.Line2D([], [], color="w", lw=4.5,
-                                                   label=f"gyrostat: {expression} = {contour:g}"))
+            handles.append(Line2D([], [], color="w", lw=4.5, label=f"gyrostat: {expression} = {contour:g}"))
         for line in lines or ():
             handles += ax.plot(line["x"], line["y"], color="r", ls=(0, (4, 4)), lw=1.5, label=line["label"], zorder=4)
         bad = failed.transpose(names[0], names[1]).values.T
