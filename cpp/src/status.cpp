@@ -67,54 +67,80 @@ const char* status_name(Status s) {
     return "unknown";
 }
 
-void check_option(const std::string& name, double x) {
-    const bool count = name == "n_out" || name == "max_steps" || name == "splitting_order";
-    const bool whole = count && std::isfinite(x) && x == std::floor(x) && std::abs(x) < 9e18;
-    const std::string shown = name + " = " + (whole ? std::to_string(static_cast<long long>(x)) : format_value(x));
-    if (name == "rtol") {
-        // Below ~50 machine epsilons no double-precision integrator can honour a relative tolerance.
-        constexpr double kSmallestRtol = 1e-14;
-        if (!std::isfinite(x) || !(x > 0.0)) throw std::invalid_argument(shown + " must be a finite positive number");
-        if (x < kSmallestRtol)
-            throw std::invalid_argument(shown + " is below 1e-14 (about 50 machine epsilons): not attainable in double precision");
-        if (x >= 1.0) throw std::invalid_argument(shown + " must be below 1");
-    } else if (name == "atol") {
-        if (!std::isfinite(x) || x < 0.0) throw std::invalid_argument(shown + " must be finite and non-negative");
-    } else if (name == "n_out") {
-        // Each output row holds t and at least two state components: n_out·24 bytes at the least.
-        if (x * 24.0 > kMaxOutputBytes)
-            throw std::invalid_argument(shown + " output times would take at least " +
-                                        format_value(x * 24.0 / (1024.0 * 1024 * 1024)) +
-                                        " GiB (limit 2 GiB for one run): ask for fewer outputs");
-        if (!(x >= 0.0) || x == 1.0 || x != std::floor(x))
-            throw std::invalid_argument(shown + " must be at least 2 (or 0: t0 and t1 only)");
-    } else if (name == "max_steps") {
-        if (!(x > 0.0) || x != std::floor(x)) throw std::invalid_argument(shown + " must be positive");
-    } else if (name == "first_step") {
-        if (!std::isfinite(x) || x < 0.0) throw std::invalid_argument(shown + " must be finite and >= 0 (0: automatic)");
-    } else if (name == "max_step") {
-        if (std::isnan(x) || !(x > 0.0)) throw std::invalid_argument(shown + " must be positive");
-    } else if (name == "step") {
-        if (!std::isfinite(x) || x < 0.0)
-            throw std::invalid_argument(shown + " must be finite and >= 0 (the splitting step; 0: not set)");
-    } else if (name == "splitting_order") {
-        if (x != 2 && x != 4 && x != 6) throw std::invalid_argument(shown + " must be 2, 4 or 6");
-    } else {
-        throw std::invalid_argument("no option '" + name + "' (rtol, atol, n_out, max_steps, first_step, max_step, step, splitting_order)");
+namespace {
+
+/// The scalar options check_option knows, in the order of its message.
+enum class Scalar { Rtol, Atol, NOut, MaxSteps, FirstStep, MaxStep, Step, SplittingOrder };
+
+/// The rule of one scalar option, named `name` in the message: nothing is formatted unless it
+/// throws (validate() runs these on every solve).
+void check_scalar(Scalar option, const char* name, double x) {
+    const auto fail = [&](const std::string& why) {
+        const bool count = option == Scalar::NOut || option == Scalar::MaxSteps || option == Scalar::SplittingOrder;
+        const bool whole = count && std::isfinite(x) && x == std::floor(x) && std::abs(x) < 9e18;
+        throw std::invalid_argument(std::string(name) + " = " +
+                                    (whole ? std::to_string(static_cast<long long>(x)) : format_value(x)) + why);
+    };
+    switch (option) {
+        case Scalar::Rtol: {
+            // Below ~50 machine epsilons no double-precision integrator can honour a relative tolerance.
+            constexpr double kSmallestRtol = 1e-14;
+            if (!std::isfinite(x) || !(x > 0.0)) fail(" must be a finite positive number");
+            if (x < kSmallestRtol) fail(" is below 1e-14 (about 50 machine epsilons): not attainable in double precision");
+            if (x >= 1.0) fail(" must be below 1");
+            return;
+        }
+        case Scalar::Atol:
+            if (!std::isfinite(x) || x < 0.0) fail(" must be finite and non-negative");
+            return;
+        case Scalar::NOut:
+            // Each output row holds t and at least two state components: n_out·24 bytes at the least.
+            if (x * 24.0 > kMaxOutputBytes)
+                fail(" output times would take at least " + format_value(x * 24.0 / (1024.0 * 1024 * 1024)) +
+                     " GiB (limit 2 GiB for one run): ask for fewer outputs");
+            if (!(x >= 0.0) || x == 1.0 || x != std::floor(x)) fail(" must be at least 2 (or 0: t0 and t1 only)");
+            return;
+        case Scalar::MaxSteps:
+            if (!(x > 0.0) || x != std::floor(x)) fail(" must be positive");
+            return;
+        case Scalar::FirstStep:
+            if (!std::isfinite(x) || x < 0.0) fail(" must be finite and >= 0 (0: automatic)");
+            return;
+        case Scalar::MaxStep:
+            if (std::isnan(x) || !(x > 0.0)) fail(" must be positive");
+            return;
+        case Scalar::Step:
+            if (!std::isfinite(x) || x < 0.0) fail(" must be finite and >= 0 (the splitting step; 0: not set)");
+            return;
+        case Scalar::SplittingOrder:
+            if (x != 2 && x != 4 && x != 6) fail(" must be 2, 4 or 6");
+            return;
     }
 }
 
+}  // namespace
+
+void check_option(const std::string& name, double x) {
+    static const std::pair<const char*, Scalar> known[] = {
+        {"rtol", Scalar::Rtol},           {"atol", Scalar::Atol},         {"n_out", Scalar::NOut},
+        {"max_steps", Scalar::MaxSteps},  {"first_step", Scalar::FirstStep}, {"max_step", Scalar::MaxStep},
+        {"step", Scalar::Step},           {"splitting_order", Scalar::SplittingOrder}};
+    for (const auto& [known_name, option] : known)
+        if (name == known_name) return check_scalar(option, known_name, x);
+    throw std::invalid_argument("no option '" + name + "' (rtol, atol, n_out, max_steps, first_step, max_step, step, splitting_order)");
+}
+
 void validate(const Options& o, double t0, double t1) {
-    check_option("rtol", o.rtol);
-    check_option("atol", o.atol);
+    check_scalar(Scalar::Rtol, "rtol", o.rtol);
+    check_scalar(Scalar::Atol, "atol", o.atol);
     if (!std::isfinite(t0)) throw std::invalid_argument("t0 = " + format_value(t0) + " is not finite");
     if (!std::isfinite(t1)) throw std::invalid_argument("t1 = " + format_value(t1) + " is not finite");
-    check_option("n_out", static_cast<double>(o.n_out));
-    check_option("max_steps", static_cast<double>(o.max_steps));
-    check_option("first_step", o.first_step);
-    check_option("max_step", o.max_step);
-    check_option("step", o.step);
-    check_option("splitting_order", o.splitting_order);
+    check_scalar(Scalar::NOut, "n_out", static_cast<double>(o.n_out));
+    check_scalar(Scalar::MaxSteps, "max_steps", static_cast<double>(o.max_steps));
+    check_scalar(Scalar::FirstStep, "first_step", o.first_step);
+    check_scalar(Scalar::MaxStep, "max_step", o.max_step);
+    check_scalar(Scalar::Step, "step", o.step);
+    check_scalar(Scalar::SplittingOrder, "splitting_order", o.splitting_order);
     const double direction = t1 >= t0 ? 1.0 : -1.0;
     for (std::size_t i = 0; i < o.t_eval.size(); ++i) {
         const double t = o.t_eval[i];

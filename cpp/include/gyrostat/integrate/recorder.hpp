@@ -25,6 +25,8 @@ void describe(Result& result, const System* system = nullptr) {
     namespace sys = model::system;
     result.dim = System::dim;
     result.state_names.clear(), result.state_units.clear(), result.state_descriptions.clear();
+    result.state_names.reserve(System::dim), result.state_units.reserve(System::dim);
+    result.state_descriptions.reserve(System::dim);
     for (const auto& q : System::states) {
         result.state_names.emplace_back(q.name);
         result.state_units.emplace_back(q.unit);
@@ -33,6 +35,9 @@ void describe(Result& result, const System* system = nullptr) {
     result.output_names.clear(), result.output_units.clear(), result.output_descriptions.clear();
     result.output_conserved.clear(), result.output_kept.clear();
     if constexpr (sys::has_outputs<System>::value) {
+        constexpr std::size_t n = System::outputs_info.size();
+        result.output_names.reserve(n), result.output_units.reserve(n), result.output_descriptions.reserve(n);
+        result.output_conserved.reserve(n), result.output_kept.reserve(n);
         for (const auto& info : System::outputs_info) {
             bool kept = info.conserved;
             if constexpr (sys::has_keeps<System>::value)
