@@ -35,6 +35,7 @@ from scipy.integrate import ode, solve_ivp
 
 import gyrostat as g
 from gyrostat import accuracy as accuracy_module
+from gyrostat import lagrange as lg
 from gyrostat import orthogonal as o
 
 LOW, HIGH = 0.5, 30.0  # the issue's band for estimate / true
@@ -444,3 +445,46 @@ def test_an_answer_next_to_the_engines_least_rtol_is_still_measured():
     assert math.isfinite(sol.error_estimate) or warned, f"a silent NaN estimate: {sol.error_basis}"
     assert warned or sol.error_estimate <= 1e-9, (sol.error_estimate, sol.error_basis)
     assert sol.options.rtol >= 2 * accuracy_module.ENGINE_RTOL or warned, sol.error_basis
+
+
+# ------------------------------------------------------------------------------------ the Lagrange top
+TOP_T1, TOP_EPS = 300.0, 0.002
+
+
+@pytest.fixture(scope="module")
+def top_reference():
+    """Paper 003's heavy top, case 2 (θ0 = 60°, ε = 0.002) over (0, 300), by SciPy's DOP853 on
+    test_lagrange.py's own (ω, γ, Q) equations (γ integrated on its own, not taken from Q): the
+    library's state (ω, Q) and the outputs G_z, H, T it measures, from the reference (~1 s)."""
+    from test_lagrange import A as TA, C as TC, MU as TMU, ref_integrals, ref_rhs, ref_state
+
+    y0 = ref_state(0.0, 0.0, math.sqrt(3.0), math.radians(60.0), 0.0)
+    t = np.linspace(0.0, TOP_T1, N_OUT)
+    full = dop853(ref_rhs(TOP_EPS), y0, t, 1e-14)
+    looser = dop853(ref_rhs(TOP_EPS), y0, t, 1e-13)
+    ref = type("TopReference", (), {})()
+    ref.t, ref.y0 = t, np.r_[y0[:3], y0[6:]]
+    ref.state = full[:, [0, 1, 2, 6, 7, 8, 9]]
+    ref.state[:, 3:] /= np.linalg.norm(ref.state[:, 3:], axis=1)[:, None]
+    ref.G_z, ref.H, _ = ref_integrals(full.T, TA, TC, TMU)
+    ref.T = 0.5 * (TA * (full[:, 0] ** 2 + full[:, 1] ** 2) + TC * full[:, 2] ** 2)
+    ref.own_error = max(_vector_error(looser[:, c], full[:, c]) for c in (slice(0, 3), slice(6, 10)))
+    ref.model = lg.LagrangeTop(TA, TC, TMU, [lg.paper_torque(TOP_EPS)])
+    return ref
+
+
+@pytest.mark.parametrize("kw", [dict(accuracy=1e-6), dict(rtol=1e-9)], ids=["accuracy=1e-6", "rtol=1e-9"])
+def test_lagrange_top(top_reference, kw):
+    """The top's estimate is measured on ω and the quaternion (vectors), G_z, H and T, and lies in
+    the contract's band against the reference; with accuracy, the delivered error is within it."""
+    ref = top_reference
+    sol = quiet_solve(ref.model, ref.y0, (0.0, TOP_T1), n_out=N_OUT, **kw)
+    assert set(sol.error_estimates) == {"omega", "quaternion", "G_z", "H", "kinetic_energy"}, sol.error_estimates
+    y = np.asarray(sol.y, float)
+    errors = {"omega": _vector_error(y[:, :3], ref.state[:, :3]),
+              "quaternion": _vector_error(_aligned(y[:, 3:7], ref.state[:, 3:]), ref.state[:, 3:]),
+              "G_z": _scalar_error(sol["G_z"], ref.G_z), "H": _scalar_error(sol["H"], ref.H),
+              "kinetic_energy": _scalar_error(sol["kinetic_energy"], ref.T)}
+    true, _ = check_band(sol, errors, ref.own_error, f"Lagrange top, {kw}")
+    if "accuracy" in kw:
+        assert true <= kw["accuracy"], f"top: true error {true:.3g} exceeds the accuracy {kw['accuracy']:g}: {errors}"
