@@ -62,9 +62,11 @@ def test_the_contract_comment_names_every_detected_capability_and_no_other():
     assert listed - required - capabilities == set(), listed - required - capabilities
 
 
-def test_a_constant_with_zero_matrices_folds_as_before():
+def test_constant_and_linear_damping_fold_into_one_affine_torque():
     """Constant + LinearDamping fold into M0 − D ω (the declaration constant_coefficients): the
-    right-hand side is the written Euler equation with that torque, and Taylor covers the model."""
+    right-hand side equals Euler's equation with that torque written here, to 1e-15 relative (a few
+    roundings of O(1) terms: the library evaluates J⁻¹(M − ω × Jω) in another order), and Taylor
+    covers the model (it refuses any torque that is not folded)."""
     J = np.array([1.0, 2.0, 3.0])
     M0, D = np.array([0.01, -0.02, 0.03]), np.diag([0.1, 0.2, 0.3])
     model = g.Model(g.Body(J), [g.ConstantTorque(M0), g.LinearDamping(matrix=D)])
