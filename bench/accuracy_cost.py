@@ -53,6 +53,7 @@ import numpy as np
 import gyrostat as g
 from gyrostat import _core
 from gyrostat import accuracy as acc
+from gyrostat import contract
 from gyrostat import lagrange as lg
 
 RESULTS = Path(__file__).resolve().parent / "results"
@@ -83,7 +84,7 @@ class Scene:
                            **self.kw, **kw)
 
     def plain(self, rtol: float):
-        return self.solve(rtol=rtol, atol=rtol * acc.ATOL_RATIO * self.size, error_estimate=False)
+        return self.solve(rtol=rtol, atol=rtol * contract.ATOL_RATIO * self.size, error_estimate=False)
 
     def true_error(self, sol) -> float:
         if not sol.success or len(sol.t) != N_OUT:
@@ -187,7 +188,7 @@ def main() -> int:
         for a in accuracies:
             jobs[(s.name, "accuracy", a)] = (lambda s=s, a=a: s.solve(accuracy=a))
         for r in explicit:
-            atol = r * acc.ATOL_RATIO * s.size
+            atol = r * contract.ATOL_RATIO * s.size
             jobs[(s.name, "explicit_off", r)] = (lambda s=s, r=r, atol=atol: s.solve(rtol=r, atol=atol,
                                                                                      error_estimate=False))
             jobs[(s.name, "explicit_on", r)] = (lambda s=s, r=r, atol=atol: s.solve(rtol=r, atol=atol))

@@ -431,6 +431,28 @@ def test_a_run_across_a_separatrix_is_measured_over_the_whole_span(crossing_refe
                f"cavity across the separatrix, rtol {rtol:g}")
 
 
+@pytest.mark.parametrize("accuracy", [1e-4, 1e-6])
+def test_a_repeated_run_is_measured_by_scaling_its_first_runs_error(crossing_reference, accuracy):
+    """With accuracy given, the probe (the first 6 % of the span) cannot see the crossing, so the
+    first run misses the accuracy (its companion over the whole span measures by how much) and the run
+    is repeated tighter. The repeat is measured without a second whole-span companion: the first
+    run's whole-span error times the ratio of the two runs' errors over the window (gyrostat.contract.
+    scaled_estimates). Against SciPy: delivered within the accuracy, the estimate within the band,
+    alone and as an ensemble's second member (the members renumbered in the rounds)."""
+    model = g.Model(g.Body(list(CROSS_J)), [g.ViscousCavity(1.0, 100.0, 1.0)])
+    sol = quiet_solve(model, CROSS_W0, (0.0, CROSS_T1), n_out=N_OUT, accuracy=accuracy)
+    assert "scaled by this run's error over the first 20% of the span" in sol.error_basis, sol.error_basis
+    true, _ = check_band(sol, true_errors(sol, crossing_reference.y, CROSS_J), crossing_reference.own_error,
+                         f"cavity across the separatrix, accuracy {accuracy:g}")
+    assert true <= accuracy, f"delivered {true:.3g} > accuracy {accuracy:g} (issue 41, item 3); {sol.error_basis}"
+    members = g.solve_ensemble(model, [CROSS_W0 * 1.01, CROSS_W0], (0.0, CROSS_T1), n_out=N_OUT, accuracy=accuracy,
+                               progress=False)
+    assert "scaled by this run's error" in members[1].error_basis, members[1].error_basis
+    true, _ = check_band(members[1], true_errors(members[1], crossing_reference.y, CROSS_J),
+                         crossing_reference.own_error, f"the same as an ensemble's member 1, accuracy {accuracy:g}")
+    assert true <= accuracy, f"member 1 delivered {true:.3g} > accuracy {accuracy:g}; {members[1].error_basis}"
+
+
 def test_an_answer_next_to_the_engines_least_rtol_is_still_measured(issue_reference):
     """The damped body with the quaternion at accuracy 1e-9 over t = 1e4 (bench/accuracy_cost.py's
     `attitude` scene): its first Taylor run missed, and the companion (rtol 1.7e-12 / 100) became the

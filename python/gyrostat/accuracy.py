@@ -1,5 +1,6 @@
-"""The accuracy contract: every answer carries a measured estimate of its global error, and a run
-given ``accuracy`` chooses its tolerances to meet it (:func:`estimate_runs`, :func:`meet`).
+"""The accuracy contract's measurement: every answer carries a measured estimate of its global error
+(:func:`estimate_runs`); a run given ``accuracy`` chooses its tolerances to meet it with these
+measurements (:mod:`gyrostat.contract`).
 
 The error is measured on the quantities a run reports (:func:`quantities`): ω as a vector
 (``omega``), the attitude quaternion (``quaternion``), a moving mass's displacement and velocity
@@ -28,15 +29,8 @@ How it is measured (the basis, in words, is ``Solution.error_basis`` and a line 
   crosses at 57 % of its span).
 * ``error_estimate="full"``: the companion run at the tighter tolerances covers the whole span,
   compared at every output time (cost: one more run, a little dearer than the run itself).
-* **accuracy given** (:func:`meet`): a probe over the first :data:`PROBE` of the span at three
-  tolerances measures the error per unit rtol at the horizon (grown as above; with no method
-  given, DOP853's and Taylor's probes are timed and the cheaper taken, :func:`choose_method`); rtol (and atol =
-  rtol · :data:`ATOL_RATIO` · max|y0|) is chosen for half the accuracy; the run and its tighter
-  companion then cover the whole span, and their difference (× ρ/(ρ−1)) is the estimate,
-  measured at every output time. When it exceeds the accuracy, the run is repeated tighter (by
-  the measured ratio) up to :data:`ROUNDS` times; a run that still cannot meet it (rounding of
-  doubles over a long span, ``max_steps``) warns (:class:`gyrostat.AccuracyWarning`) with the
-  measured error and what would meet it.
+* **accuracy given**: :mod:`gyrostat.contract` chooses the tolerances and measures the answer with
+  the functions here.
 * method ``splitting``: its own estimate (steps of h against h/2 along the run, relative to
   max|y_i|: ``docs/integrators.md``); a companion, where one runs (``"full"``, ``accuracy``), halves a
   given step (Richardson: the difference times 2^p/(2^p − 1), p the composition's order).
@@ -82,23 +76,10 @@ WINDOW = 0.2
 WINDOW_SAFETY = 3.0
 """The window's estimate, grown to the horizon, is multiplied by this: a phase error can grow
 faster than the window shows (measured: up to 3× under the t^k growth on long spans)."""
-PROBE = 1.0 / 16.0
-"""The fraction of the span the accuracy's probe covers (to choose rtol)."""
 SAMPLES = 201
 """Window and probe compare their runs at this many evenly spaced times."""
 WINDOW_TIMES = 16
 """The window compares the run's own output times when it holds at least this many of them."""
-MARGIN = 0.6
-"""rtol is chosen for this fraction of the accuracy asked."""
-PROBE_LEAST_GROWTH = 0.5
-"""The probe grows its error to the horizon at least as t^0.5 (a damped error may level off: the
-whole-span check catches a probe that was too hopeful, at the cost of one more run)."""
-ROUNDS = 3
-"""The most runs tighter than the first that :func:`meet` makes before it warns."""
-ATOL_RATIO = 1e-3
-"""With ``accuracy``: atol = rtol · ATOL_RATIO · max|y0| (the state's size)."""
-LOOSEST_RTOL, TIGHTEST_RTOL = 1e-3, 1e-13
-"""The range of rtol :func:`meet` chooses from."""
 CLOSED_FORM_ERROR = 1e-14
 """The closed form's error estimate: rounding in its elliptic functions."""
 FLOOR = 1e-16
@@ -254,12 +235,12 @@ def _grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float,
 
 
 def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horizons: list[float],
-                     fraction: float = WINDOW, answers: list | None = None) -> list[Estimate]:
+                     fraction: float = WINDOW, answers: list | None = None, grow: bool = True) -> list[Estimate]:
     """The estimate of each member's run at ``opts`` (ending at its horizon) from runs at ``opts``
     and at :func:`tighter` ones over the first ``fraction`` of the span (module doc). With the
     members' ``answers`` (engine results sharing their output times, at least :data:`WINDOW_TIMES`
     of them in the window), the answers themselves stand for the runs at ``opts``: only the
-    companion runs."""
+    companion runs. ``grow=False``: the error over the window itself, not grown to the horizon."""
     members = list(range(len(cores)))
     window = t0 + fraction * (t1 - t0)
     upper, inside = None, slice(None)
@@ -288,13 +269,14 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
                                                 f"{failed.message})"))
             continue
         per, ks = {}, []
-        grows = abs(horizons[i] - t0) > abs(window - t0)
+        grows = grow and abs(horizons[i] - t0) > abs(window - t0)
         for name, d in differences(b, a, core, slice(None), inside).items():
-            value, k = _grow(np.maximum.accumulate(d * gain), grid, t0, horizons[i])
+            running = np.maximum.accumulate(d * gain)
+            value, k = _grow(running, grid, t0, horizons[i]) if grows else (float(running[-1]), 1.0)
             per[name] = max(value * (WINDOW_SAFETY if grows else 1.0), FLOOR)
             ks.append(k)
         growth = (f"grown as t^{max(ks):.2g} to t = {horizons[i]:.6g}, times {WINDOW_SAFETY:g}" if grows
-                  else "over the whole run")
+                  else "over the whole run" if abs(horizons[i] - t0) <= abs(window - t0) else "not grown")
         made.append(Estimate(max(per.values()), per,
                              f"measured over the first {fraction:.0%} of the span ([{t0:.6g}, {window:.6g}], "
                              f"{len(grid)} times) against a run with {what} (difference x {gain:.3g}), {growth}"))
@@ -337,6 +319,20 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
                              f"measured at {int(keep_mine.sum())} output times over the whole run against a run "
                              f"with {what} (difference x {gain:.3g})"))
     return made
+
+
+def window_error(answer, companion, core, t0: float, t1: float, gain: float) -> float | None:
+    """The answer's largest error over the first :data:`WINDOW` of the span, measured against a
+    companion at the same output times (the difference times ``gain``), or None where they share
+    fewer than :data:`WINDOW_TIMES` output times there."""
+    times = np.asarray(answer.t, float)
+    if companion is None or not companion.success or not np.array_equal(times, np.asarray(companion.t, float)):
+        return None
+    within = (times - t0) * (1.0 if t1 >= t0 else -1.0) <= WINDOW * abs(t1 - t0)
+    if within.sum() < WINDOW_TIMES:
+        return None
+    apart = differences(companion, answer, core, within, within)
+    return max(float(d.max()) for d in apart.values()) * gain if apart else None
 
 
 def closed_form_estimate(core) -> Estimate:
@@ -399,202 +395,3 @@ def estimate_runs(run: Runner, cores: list, opts, t0: float, t1: float, answers:
     return made
 
 
-# ------------------------------------------------------------------------------------ the accuracy asked
-def with_tolerances(opts, rtol: float, atol: float):
-    """A copy of the options (events and dense output included) at these tolerances."""
-    made = _copy(opts)
-    made.every_step = opts.every_step
-    made.events, made.dense_output = opts.events, opts.dense_output
-    made.rtol, made.atol = float(rtol), float(atol)
-    return made
-
-
-def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
-               atol_of, seconds: list | None = None) -> tuple[float, dict]:
-    """The rtol predicted to give MARGIN · accuracy at the horizon: runs at ``first``, first/ρ and
-    first/ρ² over the first :data:`PROBE` of the span; the errors of the first two (against the
-    third) give the exponent α of error ∝ rtol^α, the first's error grown to the horizon
-    (:func:`_grow`) its size there. The tightest rtol any member needs, and each member's α (the
-    probe's runs' (rtol, seconds) appended to ``seconds`` when given)."""
-    window = t0 + PROBE * (t1 - t0)
-    grid = np.linspace(t0, window, SAMPLES)
-    members = list(range(len(cores)))
-    rho = ratio(opts.method)
-    first = max(first, ENGINE_RTOL * rho * rho)
-    tolerances = (first, first / rho, first / rho**2)
-    runs = []
-    for r in tolerances:
-        started = time.perf_counter()
-        runs.append(run(_copy(with_tolerances(opts, r, atol_of(r)), grid), window, members))
-        if seconds is not None:
-            seconds.append((r, time.perf_counter() - started))
-    wanted, alphas = [], {}
-    for i, core in enumerate(cores):
-        loose, middle, reference = (r[i] for r in runs)
-        if not all(r.success and len(r.t) == SAMPLES for r in (loose, middle, reference)):
-            continue
-        curves = [np.maximum.accumulate(np.max(list(differences(reference, r, core).values()), axis=0))
-                  for r in (loose, middle)]
-        at_horizon, _ = _grow(curves[0], grid, t0, t1, least=PROBE_LEAST_GROWTH)
-        if not at_horizon > 0:
-            continue
-        alpha = 1.0 if not curves[1][-1] > 0 else min(2.0, max(0.7, math.log(curves[0][-1] / curves[1][-1]) /
-                                                                   math.log(rho)))
-        alphas[i] = alpha
-        wanted.append(first * (MARGIN * accuracy / at_horizon) ** (1.0 / alpha))
-    return (min(LOOSEST_RTOL, max(TIGHTEST_RTOL, min(wanted))) if wanted else first), alphas
-
-
-TAYLOR_BELOW = 1e-5
-"""With no method given, an accuracy at or below this has Taylor's probe timed against DOP853's
-(measured on the damped triaxial body, t = 1e4: Taylor 2.5x cheaper at 1e-6, 3-5x at 1e-8 to 1e-10)."""
-
-
-def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
-                  atol_of) -> tuple[object, float, str]:
-    """The cheaper of DOP853 and Taylor for this accuracy (the options with it, its rtol, why in
-    words): each one's probe (:func:`probe_rtol`) gives its rtol and the time of its three runs, whose
-    log-log slope in rtol predicts the whole run's time at that rtol. Taylor is tried only for
-    accuracies at or below :data:`TAYLOR_BELOW` (where its high order pays) and models it covers
-    (constant and linear torques: a ValueError otherwise)."""
-    trials = []
-    for method in ("dop853", "taylor") if accuracy <= TAYLOR_BELOW else ("dop853",):
-        trial = _copy(opts)
-        trial.every_step, trial.events, trial.dense_output = opts.every_step, opts.events, opts.dense_output
-        trial.method = method
-        seconds: list = []
-        try:
-            rtol, probed = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds)
-        except ValueError:  # the method does not cover this model (a single run raises)
-            continue
-        if method != "dop853" and len(probed) < len(cores):  # ... or a member's probe failed (an ensemble's runs
-            continue                                          # say invalid_input): not a candidate
-        (loose, s_loose), (tight, s_tight) = seconds[0], seconds[-1]
-        slope = math.log(s_tight / s_loose) / math.log(tight / loose) if s_loose > 0 and s_tight > 0 else 0.0
-        trials.append((s_tight * (rtol / tight) ** slope / PROBE, method, trial, rtol))
-    cost, method, trial, rtol = min(trials, key=lambda entry: entry[0])
-    why = "" if len(trials) == 1 else ("method " + method + " chosen: predicted " + ", ".join(
-        f"{m} {c:.3g} s" for c, m, _, _ in trials) + " from the probes; ")
-    return trial, rtol, why
-
-
-def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, size: float,
-         choose: bool = False) -> tuple[list, list]:
-    """Every member run at tolerances chosen for ``accuracy`` and measured over the whole span
-    (module doc); ``size`` is the largest |y0| component (atol = rtol · ATOL_RATIO · size).
-    ``opts`` holds the run's other options (output times, events, method, max_steps). Returns
-    each member's answer (the engine's Result) and its :class:`Estimate` (None when the answer
-    estimates nothing: a failed run; then a warning stands in an Estimate of NaN). With ``choose``
-    (no method was given), the method too (:func:`choose_method`)."""
-    count = len(cores)
-    atol_of = lambda r: r * ATOL_RATIO * (size if size > 0 else 1.0)  # noqa: E731
-    first = min(LOOSEST_RTOL, max(TIGHTEST_RTOL, 0.1 * accuracy))
-    why = ""
-    if choose and t1 != t0:
-        opts, rtol, why = choose_method(run, cores, opts, t0, t1, accuracy, first, atol_of)
-    else:
-        rtol, _ = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of) if t1 != t0 else (first, {})
-    swappable = not opts.events and not opts.dense_output and not opts.every_step
-    made: list = [None] * count
-    estimates: list = [None] * count
-    members, previous, carried = list(range(count)), {}, {}
-    for round_ in range(ROUNDS + 1):
-        tried = with_tolerances(opts, rtol, atol_of(rtol))
-        if carried:  # the last round's companions, run at this rtol: not run again
-            answers, carried = carried, {}
-        else:
-            answers = dict(zip(members, run(tried, t1, members)))
-        if any(a.status == "interrupted" for a in answers.values()):  # Ctrl-C: what was computed, no more runs
-            for i, answer in answers.items():
-                made[i] = answer
-            break
-        results = [answers.get(i) for i in range(count)]
-        companions: dict = {}
-        measured = estimate_runs(run, cores, tried, t0, t1, [r if r is not None else _EMPTY for r in results],
-                                 full=True, companions=companions)
-        again, tighter_rtol = [], []
-        for i in members:
-            answer, estimate = answers[i], measured[i]
-            if estimate is not None:
-                estimate.accuracy = accuracy
-                estimate.basis = (why + f"rtol {rtol:.3g}, atol {atol_of(rtol):.3g} chosen for the accuracy {accuracy:g} "
-                                  f"(probe at three tolerances over the first {PROBE:.1%} of the span); "
-                                  + estimate.basis)
-            made[i], estimates[i] = answer, estimate
-            if estimate is not None and math.isnan(estimate.value) and not estimate.warning:
-                estimate.warning = (f"the error could not be measured ({estimate.basis.rsplit('; ', 1)[-1]}): the "
-                                    f"accuracy {accuracy:g} is not shown to be met; ask for a looser accuracy")
-            if estimate is None or not math.isfinite(estimate.value) or estimate.met:
-                continue
-            value = estimate.value
-            taken = _companion_answer(estimate, companions.get(i), answer, tried, accuracy) if swappable else None
-            if taken is not None:
-                made[i], estimates[i] = taken
-                continue
-            floor = i in previous and value > 0.5 * previous[i][0] and rtol < 0.25 * previous[i][1]
-            if floor:
-                estimate.warning = (f"the measured error {value:.3g} exceeds the accuracy {accuracy:g} and does not "
-                                    f"fall with rtol ({rtol:.3g}): the rounding of doubles over this span; the least "
-                                    f"error reachable is about {value:.2g}: ask for an accuracy above it")
-                continue
-            if rtol <= TIGHTEST_RTOL:
-                estimate.warning = (f"the measured error {value:.3g} exceeds the accuracy {accuracy:g} at the least "
-                                    f"rtol the contract takes ({TIGHTEST_RTOL:g}): ask for an accuracy above "
-                                    f"{value:.2g}, or give rtol down to 1e-14 yourself")
-                continue
-            previous[i] = (value, rtol)
-            again.append(i)
-            tighter_rtol.append(max(TIGHTEST_RTOL, rtol * MARGIN * accuracy / value))
-        if not again:
-            break
-        rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
-        reuse = swappable and rho >= 2.0 and min(tighter_rtol) >= tried.rtol / rho and \
-            tried.rtol / rho >= 2.0 * ENGINE_RTOL and \
-            all(i in companions and companions[i].success for i in again)  # (and the new answer can be measured)
-        if reuse and round_ < ROUNDS:  # the companion is tight enough by the measured ratio: it is the next answer
-            members, rtol = again, tried.rtol / rho
-            carried = {i: companions[i] for i in again}
-            continue
-        if round_ == ROUNDS:
-            for i in again:
-                estimates[i].warning = (f"the measured error {estimates[i].value:.3g} exceeds the accuracy "
-                                   f"{accuracy:g} after {ROUNDS + 1} runs (last rtol {rtol:.3g}); rtol about "
-                                   f"{min(tighter_rtol):.2g} would meet it")
-            break
-        members, rtol = again, min(tighter_rtol)
-    for i, answer in enumerate(made):
-        if answer is not None and not answer.success and answer.status != "interrupted":
-            estimates[i] = Estimate(math.nan, {}, "no estimate: the run stopped", accuracy,
-                                    f"the run stopped ({answer.status}: {answer.message}): the accuracy {accuracy:g} "
-                                    f"is not met over the span" + (", raise max_steps" if answer.status ==
-                                                                    "max_steps_reached" else ""))
-    return made, estimates
-
-
-def _companion_answer(estimate: Estimate, companion, answer, tried, accuracy: float):
-    """(The companion's result, its estimate) when the companion run (ρ ≥ 2 times tighter, its
-    output times the answer's) meets the accuracy by a bound of its own error: the difference of
-    the two runs (the companion's error is the difference over ρ^α − 1, at most the difference
-    wherever α ≥ log 2 / log ρ; the probe's α proved too uncertain to divide by). None otherwise."""
-    if companion is None or not companion.success or len(companion.t) != len(answer.t):
-        return None
-    rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
-    if rho < 2.0:
-        return None
-    shrink = (rho - 1.0) / rho  # back from the answer's estimate (difference x rho/(rho-1)) to the difference
-    value = estimate.value * shrink
-    if value > accuracy:
-        return None
-    per = {name: v * shrink for name, v in estimate.per_quantity.items()}
-    return companion, Estimate(value, per, f"the companion run (rtol {tried.rtol / rho:.3g}) taken as the answer: "
-                                             f"its error is at most the difference of the two runs; "
-                                             f"{estimate.basis}", accuracy)
-
-
-class _Empty:
-    """A stand-in result for members not run this round."""
-
-    success, t, t_last, method = False, np.zeros(0), math.nan, ""
-
-
-_EMPTY = _Empty()

@@ -10,6 +10,7 @@ import warnings
 import numpy as np
 
 from gyrostat import accuracy as _accuracy
+from gyrostat import contract as _contract
 from gyrostat.modelbase import ModelBase
 from gyrostat.solution import AccuracyWarning, Solution
 
@@ -54,11 +55,11 @@ def accuracy_asked(accuracy) -> float | None:
 
 def measured(results: list, cores: list, run, opts, t0: float, t1: float, mode: str, accuracy: float | None,
               explicit: bool, size: float, choose_method: bool = False) -> tuple[list, list]:
-    """The answers and their estimates: tolerances chosen for ``accuracy`` (:func:`gyrostat.accuracy.meet`;
+    """The answers and their estimates: tolerances chosen for ``accuracy`` (:func:`gyrostat.contract.meet`;
     the method too with ``choose_method``) unless they were given (``explicit``), or the given run
     measured (``mode``)."""
     if accuracy is not None and not explicit:
-        return _accuracy.meet(run, cores, opts, t0, t1, accuracy, size, choose=choose_method)
+        return _contract.meet(run, cores, opts, t0, t1, accuracy, size, choose=choose_method)
     if results is None:
         results = run(opts, t1, list(range(len(cores))))
     if not mode and accuracy is None:
@@ -71,7 +72,7 @@ def measured(results: list, cores: list, run, opts, t0: float, t1: float, mode: 
                 estimate.warning = (f"the measured error {estimate.value:.3g} exceeds the accuracy {accuracy:g} at the "
                                     f"tolerances given (rtol {opts.rtol:g}, atol {opts.atol:g}): leave rtol and atol "
                                     f"out to have them chosen, or tighten rtol about "
-                                    f"{opts.rtol * _accuracy.MARGIN * accuracy / estimate.value:.2g}")
+                                    f"{opts.rtol * _contract.MARGIN * accuracy / estimate.value:.2g}")
     return results, estimates
 
 

@@ -1,0 +1,338 @@
+"""The accuracy asked: a run given ``accuracy`` chooses its tolerances to meet it and is measured
+over its whole span (:func:`meet`), with the measurements of :mod:`gyrostat.accuracy`.
+
+* **The probe** (:func:`probe_rtol`): runs over the first :data:`PROBE` of the span at three
+  tolerances measure the error per unit rtol at the horizon (grown as t^k, as the window's
+  estimate is); with no method given, DOP853's and Taylor's probes are timed and the cheaper
+  taken (:func:`choose_method`). rtol (and atol = rtol · :data:`ATOL_RATIO` · max|y0|) is chosen
+  for :data:`MARGIN` of the accuracy.
+* **The first run** and its tighter companion cover the whole span; their difference (× ρ/(ρ−1))
+  at every output time is the estimate. Where the companion meets the accuracy by a bound of its
+  own error (the difference itself), the companion is the answer.
+* **A run repeated tighter** (by the measured ratio, up to :data:`ROUNDS` times) is measured
+  without a second whole-span companion where it can be (:func:`scaled_estimates`): the first
+  run's whole-span error, scaled by the ratio of the two runs' errors over the first
+  :data:`gyrostat.accuracy.WINDOW` of the span, each measured against its own companion there
+  (tolerance proportionality, measured: the error's course over the span keeps its shape when the
+  tolerance changes). Methods that switch integrators (``auto``) or measure their own error
+  (``splitting``) are measured over the whole span again.
+* A run that still cannot meet it (rounding of doubles over a long span, ``max_steps``) warns
+  (:class:`gyrostat.AccuracyWarning`) with the measured error and what would meet it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, _copy, _grow, differences,
+                               estimate_runs, ratio, tighter, window_error, window_estimates)
+
+PROBE = 1.0 / 16.0
+"""The fraction of the span the accuracy's probe covers (to choose rtol)."""
+
+MARGIN = 0.6
+"""rtol is chosen for this fraction of the accuracy asked."""
+
+PROBE_LEAST_GROWTH = 0.5
+"""The probe grows its error to the horizon at least as t^0.5 (a damped error may level off: the
+whole-span check catches a probe that was too hopeful, at the cost of one more run)."""
+
+ROUNDS = 3
+"""The most runs tighter than the first that :func:`meet` makes before it warns."""
+
+ATOL_RATIO = 1e-3
+"""With ``accuracy``: atol = rtol · ATOL_RATIO · max|y0| (the state's size)."""
+
+PROBE_LEAST_ALPHA = 1.0
+"""The probe's exponent α of error ∝ rtol^α is taken at least this: DOP853's global error follows its
+tolerance as rtol^1.1 to rtol^1.4 once the error is small (bench/accuracy_cost.py's scenes), and a probe
+whose loosest run is not yet there measured α = 0.7 on the damped body with attitude and chose an rtol
+80 times tighter than needed; a probe too hopeful costs one more run, measured cheaply
+(:func:`scaled_estimates`)."""
+
+CHEAP_EVALUATIONS = 2000
+"""A run predicted (from the probe's first run) to take fewer right-hand sides than this over the
+whole span is not probed further: its first run, at rtol = accuracy / 10, and the companion measure
+it directly. Such a run (the averaged models: ~100 evaluations, ~20 µs) costs less than the probe's
+own Python (~0.3 ms for three runs and their comparisons)."""
+
+SHORT = "short"
+"""What :func:`choose_method` says of a run too short to probe (:data:`CHEAP_EVALUATIONS`)."""
+
+PROBE_SAMPLES = 41
+"""The probe compares its runs at this many evenly spaced times (each one an interpolation of
+every run: at 201 the probe's runs, a few steps each, spent most of their time there)."""
+
+LOOSEST_RTOL, TIGHTEST_RTOL = 1e-3, 1e-13
+"""The range of rtol :func:`meet` chooses from."""
+
+
+def with_tolerances(opts, rtol: float, atol: float):
+    """A copy of the options (events and dense output included) at these tolerances."""
+    made = _copy(opts)
+    made.every_step = opts.every_step
+    made.events, made.dense_output = opts.events, opts.dense_output
+    made.rtol, made.atol = float(rtol), float(atol)
+    return made
+
+
+def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
+               atol_of, seconds: list | None = None) -> tuple[float, dict | None]:
+    """The rtol predicted to give MARGIN · accuracy at the horizon: runs at ``first``, first/ρ and
+    first/ρ² over the first :data:`PROBE` of the span; the errors of the first two (against the
+    third) give the exponent α of error ∝ rtol^α, the first's error grown to the horizon
+    (:func:`_grow`) its size there. The tightest rtol any member needs, and each member's α (the
+    probe's runs' (rtol, seconds) appended to ``seconds`` when given); (``first``, None) when the
+    first run predicts a whole run cheaper than the probe (:data:`CHEAP_EVALUATIONS`)."""
+    window = t0 + PROBE * (t1 - t0)
+    grid = np.linspace(t0, window, PROBE_SAMPLES)
+    members = list(range(len(cores)))
+    rho = ratio(opts.method)
+    first = max(first, ENGINE_RTOL * rho * rho)
+    tolerances = (first, first / rho, first / rho**2)
+    runs = []
+    for r in tolerances:
+        started = time.perf_counter()
+        runs.append(run(_copy(with_tolerances(opts, r, atol_of(r)), grid), window, members))
+        if seconds is not None:
+            seconds.append((r, time.perf_counter() - started))
+        if len(runs) == 1 and all(r.success for r in runs[0]) and \
+                0 < max(r.stats.rhs_evals for r in runs[0]) < CHEAP_EVALUATIONS * PROBE:
+            return first, None
+    wanted, alphas = [], {}
+    for i, core in enumerate(cores):
+        loose, middle, reference = (r[i] for r in runs)
+        if not all(r.success and len(r.t) == PROBE_SAMPLES for r in (loose, middle, reference)):
+            continue
+        curves = [np.maximum.accumulate(np.max(list(differences(reference, r, core).values()), axis=0))
+                  for r in (loose, middle)]
+        at_horizon, _ = _grow(curves[0], grid, t0, t1, least=PROBE_LEAST_GROWTH)
+        if not at_horizon > 0:
+            continue
+        measured = math.log(curves[0][-1] / curves[1][-1]) / math.log(rho) if curves[1][-1] > 0 else 1.0
+        alpha = min(2.0, max(PROBE_LEAST_ALPHA, measured))
+        alphas[i] = alpha
+        wanted.append(first * (MARGIN * accuracy / at_horizon) ** (1.0 / alpha))
+    return (min(LOOSEST_RTOL, max(TIGHTEST_RTOL, min(wanted))) if wanted else first), alphas
+
+
+TAYLOR_BELOW = 1e-5
+"""With no method given, an accuracy at or below this has Taylor's probe timed against DOP853's
+(measured on the damped triaxial body, t = 1e4: Taylor 2.5x cheaper at 1e-6, 3-5x at 1e-8 to 1e-10)."""
+
+
+def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
+                  atol_of) -> tuple[object, float, str]:
+    """The cheaper of DOP853 and Taylor for this accuracy (the options with it, its rtol, why in
+    words): each one's probe (:func:`probe_rtol`) gives its rtol and the time of its three runs, whose
+    log-log slope in rtol predicts the whole run's time at that rtol. Taylor is tried only for
+    accuracies at or below :data:`TAYLOR_BELOW` (where its high order pays) and models it covers
+    (constant and linear torques: a ValueError otherwise)."""
+    trials = []
+    for method in ("dop853", "taylor") if accuracy <= TAYLOR_BELOW else ("dop853",):
+        trial = _copy(opts)
+        trial.every_step, trial.events, trial.dense_output = opts.every_step, opts.events, opts.dense_output
+        trial.method = method
+        seconds: list = []
+        try:
+            rtol, probed = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds)
+        except ValueError:  # the method does not cover this model (a single run raises)
+            continue
+        if probed is None:  # a short run: no probe (and no other method) pays
+            return trial, rtol, SHORT
+        if method != "dop853" and len(probed) < len(cores):  # ... or a member's probe failed (an ensemble's runs
+            continue                                          # say invalid_input): not a candidate
+        (loose, s_loose), (tight, s_tight) = seconds[0], seconds[-1]
+        slope = math.log(s_tight / s_loose) / math.log(tight / loose) if s_loose > 0 and s_tight > 0 else 0.0
+        trials.append((s_tight * (rtol / tight) ** slope / PROBE, method, trial, rtol))
+    cost, method, trial, rtol = min(trials, key=lambda entry: entry[0])
+    why = "" if len(trials) == 1 else ("method " + method + " chosen: predicted " + ", ".join(
+        f"{m} {c:.3g} s" for c, m, _, _ in trials) + " from the probes; ")
+    return trial, rtol, why
+
+
+def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, size: float,
+         choose: bool = False) -> tuple[list, list]:
+    """Every member run at tolerances chosen for ``accuracy`` and measured over the whole span
+    (module doc); ``size`` is the largest |y0| component (atol = rtol · ATOL_RATIO · size).
+    ``opts`` holds the run's other options (output times, events, method, max_steps). Returns
+    each member's answer (the engine's Result) and its :class:`Estimate` (None when the answer
+    estimates nothing: a failed run; then a warning stands in an Estimate of NaN). With ``choose``
+    (no method was given), the method too (:func:`choose_method`)."""
+    count = len(cores)
+    atol_of = lambda r: r * ATOL_RATIO * (size if size > 0 else 1.0)  # noqa: E731
+    first = min(LOOSEST_RTOL, max(TIGHTEST_RTOL, 0.1 * accuracy))
+    why = ""
+    if choose and t1 != t0:
+        opts, rtol, why = choose_method(run, cores, opts, t0, t1, accuracy, first, atol_of)
+    elif t1 != t0:
+        rtol, probed = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of)
+        why = SHORT if probed is None else ""
+    else:
+        rtol = first
+    how = (f"no probe: a short run, fewer than {CHEAP_EVALUATIONS} right-hand sides predicted from the probe's first "
+           f"run" if why == SHORT else f"probe at three tolerances over the first {PROBE:.1%} of the span")
+    why = "" if why == SHORT else why
+    swappable = not opts.events and not opts.dense_output and not opts.every_step
+    made: list = [None] * count
+    estimates: list = [None] * count
+    members, previous, carried, bases = list(range(count)), {}, {}, {}
+    for round_ in range(ROUNDS + 1):
+        tried = with_tolerances(opts, rtol, atol_of(rtol))
+        if carried:  # the last round's companions, run at this rtol: not run again
+            answers, carried = carried, {}
+        else:
+            answers = dict(zip(members, run(tried, t1, members)))
+        if any(a.status == "interrupted" for a in answers.values()):  # Ctrl-C: what was computed, no more runs
+            for i, answer in answers.items():
+                made[i] = answer
+            break
+        results = [answers.get(i) for i in range(count)]
+        companions: dict = {}
+        measured = _measure(run, cores, tried, t0, t1, results, members, bases, companions)
+        again, tighter_rtol = [], []
+        for i in members:
+            answer, estimate = answers[i], measured[i]
+            if estimate is not None:
+                estimate.accuracy = accuracy
+                estimate.basis = (why + f"rtol {rtol:.3g}, atol {atol_of(rtol):.3g} chosen for the accuracy "
+                                  f"{accuracy:g} ({how}); " + estimate.basis)
+            made[i], estimates[i] = answer, estimate
+            if estimate is not None and math.isnan(estimate.value) and not estimate.warning:
+                estimate.warning = (f"the error could not be measured ({estimate.basis.rsplit('; ', 1)[-1]}): the "
+                                    f"accuracy {accuracy:g} is not shown to be met; ask for a looser accuracy")
+            if estimate is None or not math.isfinite(estimate.value) or estimate.met:
+                continue
+            value = estimate.value
+            taken = _companion_answer(estimate, companions.get(i), answer, tried, accuracy) if swappable else None
+            if taken is not None:
+                made[i], estimates[i] = taken
+                continue
+            floor = i in previous and value > 0.5 * previous[i][0] and rtol < 0.25 * previous[i][1]
+            if floor:
+                estimate.warning = (f"the measured error {value:.3g} exceeds the accuracy {accuracy:g} and does not "
+                                    f"fall with rtol ({rtol:.3g}): the rounding of doubles over this span; the least "
+                                    f"error reachable is about {value:.2g}: ask for an accuracy above it")
+                continue
+            if rtol <= TIGHTEST_RTOL:
+                estimate.warning = (f"the measured error {value:.3g} exceeds the accuracy {accuracy:g} at the least "
+                                    f"rtol the contract takes ({TIGHTEST_RTOL:g}): ask for an accuracy above "
+                                    f"{value:.2g}, or give rtol down to 1e-14 yourself")
+                continue
+            previous[i] = (value, rtol)
+            again.append(i)
+            tighter_rtol.append(max(TIGHTEST_RTOL, rtol * MARGIN * accuracy / value))
+        if not again:
+            break
+        rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
+        reuse = swappable and rho >= 2.0 and min(tighter_rtol) >= tried.rtol / rho and \
+            tried.rtol / rho >= 2.0 * ENGINE_RTOL and \
+            all(i in companions and companions[i].success for i in again)  # (and the new answer can be measured)
+        if reuse and round_ < ROUNDS:  # the companion is tight enough by the measured ratio: it is the next answer
+            members, rtol = again, tried.rtol / rho
+            carried = {i: companions[i] for i in again}
+            continue
+        if round_ == ROUNDS:
+            for i in again:
+                estimates[i].warning = (f"the measured error {estimates[i].value:.3g} exceeds the accuracy "
+                                   f"{accuracy:g} after {ROUNDS + 1} runs (last rtol {rtol:.3g}); rtol about "
+                                   f"{min(tighter_rtol):.2g} would meet it")
+            break
+        members, rtol = again, min(tighter_rtol)
+    for i, answer in enumerate(made):
+        if answer is not None and not answer.success and answer.status != "interrupted":
+            estimates[i] = Estimate(math.nan, {}, "no estimate: the run stopped", accuracy,
+                                    f"the run stopped ({answer.status}: {answer.message}): the accuracy {accuracy:g} "
+                                    f"is not met over the span" + (", raise max_steps" if answer.status ==
+                                                                    "max_steps_reached" else ""))
+    return made, estimates
+
+
+UNSCALED = ("auto", "splitting")
+"""Methods whose repeated runs are measured over the whole span again: ``auto`` may switch integrators
+between two tolerances, ``splitting`` measures its own error."""
+SCALE_FLOOR = 100.0 * ENGINE_RTOL
+"""A first run's error over the window must exceed this to scale from (below it, rounding)."""
+
+
+def _measure(run: Runner, cores: list, tried, t0: float, t1: float, results: list, members: list[int],
+             bases: dict, companions: dict) -> list:
+    """Each member's estimate this round: scaled from its base (its last whole-span measurement) where
+    it has one and the method allows (:func:`scaled_estimates`), else measured over the whole span
+    (the base then recorded, the companions kept in ``companions``)."""
+    measured: list = [None] * len(results)
+    scaled = [i for i in members if i in bases and results[i] is not None] if tried.method not in UNSCALED else []
+    if scaled:
+        for i, e in zip(scaled, scaled_estimates(run, [cores[i] for i in scaled], tried, t0, t1,
+                                                 [results[i] for i in scaled], [bases[i] for i in scaled])):
+            measured[i] = e
+    spanned = [i for i in members if measured[i] is None]
+    if spanned:
+        over = estimate_runs(run, cores, tried, t0, t1, [results[i] if i in spanned and results[i] is not None
+                                                        else _EMPTY for i in range(len(results))],
+                             full=True, companions=companions)
+        gain = tighter(tried)[1]
+        for i in spanned:
+            measured[i] = over[i]
+            if over[i] is not None and math.isfinite(over[i].value) and math.isfinite(gain):
+                early = window_error(results[i], companions.get(i), cores[i], t0, t1, gain)
+                if early is not None and early > SCALE_FLOOR:
+                    bases[i] = (tried.rtol, over[i], early)
+    return measured
+
+
+def scaled_estimates(run: Runner, cores: list, opts, t0: float, t1: float, answers: list,
+                     bases: list) -> list:
+    """Each answer's estimate from its base, (rtol, whole-span Estimate, error over the window) of an
+    earlier run of the same member: that run's whole-span error times the ratio of this answer's
+    error over the first :data:`gyrostat.accuracy.WINDOW` of the span (against a companion there,
+    the only run made) to that run's there. None where the ratio cannot be measured (a failed
+    companion, an error that did not fall): that member is measured over the whole span instead."""
+    windows = window_estimates(run, cores, opts, t0, t1, [float(a.t_last) for a in answers], answers=answers,
+                               grow=False)
+    made: list = []
+    for answer, window, (rtol, spanned, before) in zip(answers, windows, bases):
+        now = window.value
+        if not (answer.success and math.isfinite(now) and 0.0 < now < before):
+            made.append(None)
+            continue
+        scale = now / before
+        per = {name: max(v * scale, FLOOR) for name, v in spanned.per_quantity.items()}
+        made.append(Estimate(max(per.values()), per,
+                             f"the whole-span error measured at rtol {rtol:.3g} ({spanned.value:.3g}) scaled by this "
+                             f"run's error over the first {WINDOW:.0%} of the span over that run's there ({now:.3g} / "
+                             f"{before:.3g}; each against a run with tolerances {ratio(opts.method):g} times tighter): "
+                             f"the error keeps its course over the span when the tolerance changes"))
+    return made
+
+
+def _companion_answer(estimate: Estimate, companion, answer, tried, accuracy: float):
+    """(The companion's result, its estimate) when the companion run (ρ ≥ 2 times tighter, its
+    output times the answer's) meets the accuracy by a bound of its own error: the difference of
+    the two runs (the companion's error is the difference over ρ^α − 1, at most the difference
+    wherever α ≥ log 2 / log ρ; the probe's α proved too uncertain to divide by). None otherwise."""
+    if companion is None or not companion.success or len(companion.t) != len(answer.t):
+        return None
+    rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
+    if rho < 2.0:
+        return None
+    shrink = (rho - 1.0) / rho  # back from the answer's estimate (difference x rho/(rho-1)) to the difference
+    value = estimate.value * shrink
+    if value > accuracy:
+        return None
+    per = {name: v * shrink for name, v in estimate.per_quantity.items()}
+    return companion, Estimate(value, per, f"the companion run (rtol {tried.rtol / rho:.3g}) taken as the answer: "
+                                             f"its error is at most the difference of the two runs; "
+                                             f"{estimate.basis}", accuracy)
+
+
+class _Empty:
+    """A stand-in result for members not run this round."""
+
+    success, t, t_last, method = False, np.zeros(0), math.nan, ""
+
+
+_EMPTY = _Empty()
