@@ -72,7 +72,12 @@ def order() -> None:
 
 
 def cost() -> None:
-    body, w0, eps = g.Body(list(A)), start(), 1e-4
+    for eps in (1e-4, 1e-5):
+        cost_at(eps)
+
+
+def cost_at(eps: float) -> None:
+    body, w0 = g.Body(list(A)), start()
     print(f"2. cost from Python at eps = {eps:g} over t = 1/eps (rtol 1e-10, atol 1e-12; best of 3)")
     print(f"{'torque':<34} {'full s':>9} {'averaged s':>11} {'ratio':>8} {'steps full/avg':>16} {'rel. error':>11} {'omega error':>11}")
     cases = {"linear damping (closed form)": [g.LinearDamping(eps * np.diag([1.0, 2.0, 3.0]))],

@@ -200,7 +200,7 @@ def tighter(opts) -> tuple[object, float, str]:
     rho = min(ratio(opts.method), opts.rtol / ENGINE_RTOL)
     if rho < 2.0:  # the run is at the engine's least tolerance: nothing tighter to compare with
         return made, math.inf, "nothing: the run's rtol is the engine's least"
-    made.rtol, made.atol = opts.rtol / rho, opts.atol / rho
+    made.rtol, made.atol = max(opts.rtol / rho, ENGINE_RTOL), opts.atol / rho  # (no rounding below the least)
     return made, rho / (rho - 1.0), f"rtol and atol / {rho:g}"
 
 

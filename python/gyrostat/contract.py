@@ -14,14 +14,15 @@ over its whole span (:func:`meet`), with the measurements of :mod:`gyrostat.accu
   run's whole-span error, scaled by the ratio of the two runs' errors over the first
   :data:`gyrostat.accuracy.WINDOW` of the span, each measured against its own companion there
   (tolerance proportionality, measured: the error's course over the span keeps its shape when the
-  tolerance changes). Methods that switch integrators (``auto``) or measure their own error
-  (``splitting``) are measured over the whole span again.
+  tolerance changes), for the Runge–Kutta pairs of one order (:data:`SCALED`); the other methods'
+  repeats are measured over the whole span again.
 * A run that still cannot meet it (rounding of doubles over a long span, ``max_steps``) warns
   (:class:`gyrostat.AccuracyWarning`) with the measured error and what would meet it.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -34,7 +35,9 @@ PROBE = 1.0 / 16.0
 """The fraction of the span the accuracy's probe covers (to choose rtol)."""
 
 MARGIN = 0.6
-"""rtol is chosen for this fraction of the accuracy asked."""
+"""rtol is chosen for this fraction of the accuracy asked (bench/accuracy_cost.py's scenes against 0.5,
+0.7 and 0.85: the fewest right-hand sides in geometric mean, 1.15 against 1.15–1.26, and the least
+largest ratio to the cheapest run, 3.05 against 3.09–4.28; a miss costs a repeat)."""
 
 PROBE_LEAST_GROWTH = 0.5
 """The probe grows its error to the horizon at least as t^0.5 (a damped error may level off: the
@@ -224,7 +227,9 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
                 continue
             previous[i] = (value, rtol)
             again.append(i)
-            tighter_rtol.append(max(TIGHTEST_RTOL, rtol * MARGIN * accuracy / value))
+            scaled_next = tried.method in SCALED and i in bases  # (its next estimate is scaled)
+            tighter_rtol.append(max(TIGHTEST_RTOL, rtol * MARGIN * accuracy / value /
+                                    (SCALE_SAFETY if scaled_next else 1.0)))
         if not again:
             break
         rho = min(ratio(tried.method), tried.rtol / ENGINE_RTOL)
@@ -251,9 +256,17 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
     return made, estimates
 
 
-UNSCALED = ("auto", "splitting")
-"""Methods whose repeated runs are measured over the whole span again: ``auto`` may switch integrators
-between two tolerances, ``splitting`` measures its own error."""
+SCALED = ("dop853", "arkode_verner6", "arkode_fehlberg8")
+"""Methods whose repeated runs are measured by scaling (:func:`scaled_estimates`): Runge–Kutta pairs
+of one order, whose error keeps its course over the span when the tolerance changes. Taylor and
+CVODE change their order with the tolerance (measured: a Taylor repeat on the damped body scaled
+to 0.13 of its true error), ``auto`` may switch integrators between two tolerances, ``splitting``
+measures its own error: their repeats are measured over the whole span again."""
+SCALE_SAFETY = 2.0
+"""A scaled estimate is multiplied by this: the ratio of the window's errors read the whole span's
+ratio to within 0.41–2.3 (the damped triaxial body's ω at accuracy 1e-5, whose phase error falls
+less than the window's between rtol 1.5e-7 and 1.8e-8; the cavity crossing the separatrix): doubled,
+the estimate reads 0.8–4.6× the true error there. A repeat's rtol is chosen with it counted."""
 SCALE_FLOOR = 100.0 * ENGINE_RTOL
 """A first run's error over the window must exceed this to scale from (below it, rounding)."""
 
@@ -264,7 +277,11 @@ def _measure(run: Runner, cores: list, tried, t0: float, t1: float, results: lis
     it has one and the method allows (:func:`scaled_estimates`), else measured over the whole span
     (the base then recorded, the companions kept in ``companions``)."""
     measured: list = [None] * len(results)
-    scaled = [i for i in members if i in bases and results[i] is not None] if tried.method not in UNSCALED else []
+    for i in [i for i in members if callable(bases.get(i))]:  # the window's error of a base, measured when first needed
+        bases[i] = bases[i]()
+        if bases[i] is None:
+            del bases[i]
+    scaled = [i for i in members if i in bases and results[i] is not None] if tried.method in SCALED else []
     if scaled:
         for i, e in zip(scaled, scaled_estimates(run, [cores[i] for i in scaled], tried, t0, t1,
                                                  [results[i] for i in scaled], [bases[i] for i in scaled])):
@@ -278,10 +295,16 @@ def _measure(run: Runner, cores: list, tried, t0: float, t1: float, results: lis
         for i in spanned:
             measured[i] = over[i]
             if over[i] is not None and math.isfinite(over[i].value) and math.isfinite(gain):
-                early = window_error(results[i], companions.get(i), cores[i], t0, t1, gain)
-                if early is not None and early > SCALE_FLOOR:
-                    bases[i] = (tried.rtol, over[i], early)
+                bases[i] = functools.partial(_base, tried.rtol, over[i], results[i], companions.get(i), cores[i],
+                                             t0, t1, gain)
     return measured
+
+
+def _base(rtol: float, spanned: Estimate, answer, companion, core, t0: float, t1: float, gain: float):
+    """(rtol, whole-span Estimate, error over the window) of a run measured over the whole span, or None
+    where its error over the window cannot be measured (too few output times there, or rounding)."""
+    early = window_error(answer, companion, core, t0, t1, gain)
+    return (rtol, spanned, early) if early is not None and early > SCALE_FLOOR else None
 
 
 def scaled_estimates(run: Runner, cores: list, opts, t0: float, t1: float, answers: list,
@@ -299,13 +322,14 @@ def scaled_estimates(run: Runner, cores: list, opts, t0: float, t1: float, answe
         if not (answer.success and math.isfinite(now) and 0.0 < now < before):
             made.append(None)
             continue
-        scale = now / before
+        scale = SCALE_SAFETY * now / before
         per = {name: max(v * scale, FLOOR) for name, v in spanned.per_quantity.items()}
         made.append(Estimate(max(per.values()), per,
                              f"the whole-span error measured at rtol {rtol:.3g} ({spanned.value:.3g}) scaled by this "
                              f"run's error over the first {WINDOW:.0%} of the span over that run's there ({now:.3g} / "
-                             f"{before:.3g}; each against a run with tolerances {ratio(opts.method):g} times tighter): "
-                             f"the error keeps its course over the span when the tolerance changes"))
+                             f"{before:.3g}; each against a run with tolerances {ratio(opts.method):g} times "
+                             f"tighter), times {SCALE_SAFETY:g}: the error keeps its course over the span when the "
+                             f"tolerance changes, within that factor"))
     return made
 
 
