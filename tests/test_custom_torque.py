@@ -73,6 +73,41 @@ def test_equals_the_built_in_linear_damping():
     assert np.abs(custom.y - builtin.y).max() < 1e-14
 
 
+RETURNS = {  # what a user's M = -c omega may be returned as; the first three are read in place (read_flat)
+    "float64 array": lambda c, w: -c * w,
+    "tuple of floats": lambda c, w: tuple(float(-c * x) for x in w),
+    "tuple of NumPy float64 scalars": lambda c, w: (-c * w[0], -c * w[1], -c * w[2]),
+    "list of floats": lambda c, w: [float(-c * x) for x in w],
+    "strided float64 view": lambda c, w: np.repeat(-c * w, 2)[::2],
+    "float32 array": lambda c, w: (-c * w).astype(np.float32),
+    "list with an int": lambda c, w: [0, float(-c * w[1]), float(-c * w[2])],
+}
+
+
+@pytest.mark.parametrize("kind", list(RETURNS))
+def test_every_form_of_a_returned_torque_gives_the_same_run(kind):
+    """The values a Python torque returns are read in place when they are a float64 array or a tuple
+    or list of floats, and converted otherwise: every form gives the run the built-in LinearDamping
+    gives to rounding (1e-14: the same -c omega_i; float32 rounds M to ~6e-8 relative, the integer
+    0 replaces M_1 and is compared with its own reference)."""
+    c = 0.07
+    make = RETURNS[kind]
+    run = g.solve(g.Model(g.Body(J), [g.CustomTorque(lambda t, w: make(c, w))]), W0, (0.0, 20.0), t_eval=T,
+                  rtol=1e-10, atol=1e-12)
+    diagonal = [0.0, c, c] if kind == "list with an int" else [c, c, c]
+    builtin = g.solve(g.Model(g.Body(J), [g.LinearDamping(diagonal=diagonal)]), W0, (0.0, 20.0), t_eval=T,
+                      rtol=1e-10, atol=1e-12)
+    tolerance = 1e-6 if kind == "float32 array" else 1e-14
+    assert np.abs(run.y - builtin.y).max() < tolerance, kind
+
+
+@pytest.mark.parametrize("value", [(1.0, 2.0), [1.0, 2.0, 3.0, 4.0], np.zeros(4), np.zeros((3, 1)), ("a", 1.0, 2.0)])
+def test_a_returned_torque_of_the_wrong_shape_is_refused_by_name(value):
+    with pytest.raises(ValueError, match="CustomTorque 'shaped' returned a value that, as M in body axes, must be 3 "
+                                         "numbers, got"):
+        g.solve(g.Model(g.Body(J), [g.CustomTorque(lambda t, w: value, name="shaped")]), W0, (0.0, 1.0))
+
+
 def test_attitude_function_equals_the_inertial_torque():
     q0 = np.array([0.9, 0.1, -0.3, 0.2]) / np.linalg.norm([0.9, 0.1, -0.3, 0.2])
     y0 = np.concatenate([W0, q0])

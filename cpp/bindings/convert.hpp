@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <cctype>
+#include <cstring>
 #include <string>
 #include <variant>
 #include <vector>
@@ -77,6 +78,30 @@ inline double scalar(const py::handle& obj, const std::string& what) {
         PyErr_Clear();  // an int too large for a double
     }
     throw py::value_error(what + " must be a number, got " + shown(obj));
+}
+
+/// `count` numbers read in place from what a user's function most often returns: a 1-D float64
+/// NumPy array, or a tuple or list of Python floats (NumPy's float64 scalars are floats); true when
+/// `obj` is one of them with `count` numbers, else false and `numbers` takes it (its checks and
+/// messages). No array is made and no message formatted: a Python torque calls this at every
+/// evaluation (bench/custom_torque.py).
+inline bool read_flat(const py::handle& obj, long count, double* out) {
+    PyObject* p = obj.ptr();
+    if (PyTuple_CheckExact(p) || PyList_CheckExact(p)) {
+        if (PySequence_Fast_GET_SIZE(p) != count) return false;
+        PyObject** items = PySequence_Fast_ITEMS(p);
+        for (long i = 0; i < count; ++i) {
+            if (!PyFloat_Check(items[i])) return false;
+            out[i] = PyFloat_AS_DOUBLE(items[i]);
+        }
+        return true;
+    }
+    if (!py::isinstance<py::array>(obj)) return false;
+    const auto a = py::reinterpret_borrow<py::array>(obj);
+    if (a.ndim() != 1 || a.shape(0) != count || a.itemsize() != sizeof(double) || a.dtype().kind() != 'f') return false;
+    const auto* first = static_cast<const char*>(a.data());
+    for (long i = 0; i < count; ++i) std::memcpy(out + i, first + i * a.strides(0), sizeof(double));
+    return true;
 }
 
 /// `obj` as numbers of the given shape (cols = 0: a vector of `rows`), or a ValueError that names

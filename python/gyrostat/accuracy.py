@@ -155,6 +155,11 @@ def _rows(result, quantity: Quantity, keep=slice(None), core=None) -> np.ndarray
     return np.asarray(core.compare(Solution(result, core.model)), float).reshape(len(result.t), -1)[keep]
 
 
+def _every(keep) -> bool:
+    """Whether a keep is the slice of every row."""
+    return isinstance(keep, slice) and keep == slice(None)
+
+
 def _rows_kept(keep, count: int) -> np.ndarray:
     """The row numbers a keep (a slice or a boolean mask) selects."""
     return np.arange(count)[keep] if isinstance(keep, slice) else np.flatnonzero(keep)
@@ -166,8 +171,10 @@ def differences(reference, other, core, keep_reference=slice(None), keep_other=s
     model's on its ``compare``)."""
     wanted = quantities(core)
     if not isinstance(core, Compared):
-        rows = [_rows_kept(keep, len(r.t)) for keep, r in ((keep_reference, reference), (keep_other, other))]
-        if not (len(rows[0]) == len(reference.t) and len(rows[1]) == len(other.t)):  # (every row: nothing to pass)
+        every = _every(keep_reference) and _every(keep_other)  # (every row: nothing to pass)
+        rows = None if every else [_rows_kept(keep, len(r.t)) for keep, r in ((keep_reference, reference),
+                                                                               (keep_other, other))]
+        if rows is not None and not (len(rows[0]) == len(reference.t) and len(rows[1]) == len(other.t)):
             apart = core.measured_differences(reference, other, rows[0], rows[1])
         else:
             apart = core.measured_differences(reference, other)
@@ -188,11 +195,11 @@ def ratio(method: str) -> float:
     return TIGHTER_BY_METHOD.get(method, TIGHTER)
 
 
-def tighter(opts) -> tuple[object, float, str]:
+def tighter(opts, fresh: bool = False) -> tuple[object, float, str]:
     """The companion's Options (tolerances ρ times smaller, at least the engine's least rtol, or a
     given splitting step halved), the factor turning the difference into the run's own error, and
-    what was tightened (words)."""
-    made = _copy(opts)
+    what was tightened (words). ``fresh``: ``opts`` is a copy of the caller's own, tightened in place."""
+    made = opts if fresh else _copy(opts)
     if opts.method == "splitting" and opts.step > 0:
         made.step = opts.step / 2.0
         gain = 2.0 ** opts.splitting_order
@@ -254,7 +261,7 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
     if upper is None:
         grid = np.linspace(t0, window, SAMPLES)
         upper = run(_copy(opts, grid), window, members)
-    companion, gain, what = tighter(_copy(opts, grid))
+    companion, gain, what = tighter(_copy(opts, grid), fresh=True)
     if not math.isfinite(gain):
         return [Estimate(math.nan, {}, f"no estimate: compared with {what}") for _ in cores]
     lower = run(companion, window, members)
@@ -293,7 +300,7 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
     times = np.asarray(answers[members[0]].t, float)
     shared = all(np.array_equal(np.asarray(answers[m].t, float), times) for m in members)
     grid = times if shared else np.unique(np.concatenate([np.asarray(answers[m].t, float) for m in members]))
-    companion, gain, what = tighter(_copy(opts, grid))
+    companion, gain, what = tighter(_copy(opts, grid), fresh=True)
     if not math.isfinite(gain):
         return [Estimate(math.nan, {}, f"no estimate: compared with {what}") for _ in members]
     t_end = float(max(answers[m].t_last for m in members)) if len(grid) else float(opts.t_eval[-1])
@@ -310,13 +317,15 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
             continue
         theirs = np.asarray(other.t, float)
         if np.array_equal(mine, theirs):  # the companion records the answer's own times (as a rule)
-            keep_mine = keep_theirs = np.ones(len(mine), bool)
+            keep_mine = keep_theirs = slice(None)
+            compared = len(mine)
         else:
             keep_mine, keep_theirs = np.isin(mine, theirs), np.isin(theirs, mine)
+            compared = int(keep_mine.sum())
         per = {name: max(float(d.max()) * gain, FLOOR) if d.size else math.nan
                for name, d in differences(answer, other, cores[m], keep_mine, keep_theirs).items()}
         made.append(Estimate(max(per.values()), per,
-                             f"measured at {int(keep_mine.sum())} output times over the whole run against a run "
+                             f"measured at {compared} output times over the whole run against a run "
                              f"with {what} (difference x {gain:.3g})"))
     return made
 
