@@ -283,7 +283,8 @@ def _measure(run: Runner, cores: list, tried, t0: float, t1: float, results: lis
             del bases[i]
     scaled = [i for i in members if i in bases and results[i] is not None] if tried.method in SCALED else []
     if scaled:
-        for i, e in zip(scaled, scaled_estimates(run, [cores[i] for i in scaled], tried, t0, t1,
+        sub = lambda o, t, ms: run(o, t, [scaled[j] for j in ms])  # noqa: E731  (members renumbered)
+        for i, e in zip(scaled, scaled_estimates(sub, [cores[i] for i in scaled], tried, t0, t1,
                                                  [results[i] for i in scaled], [bases[i] for i in scaled])):
             measured[i] = e
     spanned = [i for i in members if measured[i] is None]
