@@ -199,7 +199,7 @@ def tighter(opts, fresh: bool = False) -> tuple[object, float, str]:
     """The companion's Options (tolerances ρ times smaller, at least the engine's least rtol, or a
     given splitting step halved), the factor turning the difference into the run's own error, and
     what was tightened (words). ``fresh``: ``opts`` is a copy of the caller's own, tightened in place."""
-    made = opts if fresh else _copy(opts)
+    made = opts if fresh else copy_options(opts)
     if opts.method == "splitting" and opts.step > 0:
         made.step = opts.step / 2.0
         gain = 2.0 ** opts.splitting_order
@@ -211,7 +211,7 @@ def tighter(opts, fresh: bool = False) -> tuple[object, float, str]:
     return made, rho / (rho - 1.0), f"rtol and atol / {rho:g}"
 
 
-def _copy(opts, t_eval=None):
+def copy_options(opts, t_eval=None):
     """A copy of the options without events, dense output or every step (a companion records only
     its output times), at ``t_eval`` when given."""
     made = copy.copy(opts)
@@ -227,7 +227,7 @@ Runner = Callable[[object, float, list], list]
 """run(options, t_end, members) -> the engine's Result of each member (in that order)."""
 
 
-def _grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float,
+def grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float,
           least: float = 1.0) -> tuple[float, float]:
     """The running maximum of a difference over a window grown to ``horizon`` as t^k, k fitted over
     the window's second half and kept within [least, 2]; (value, k). (Distances from t0: a backward
@@ -242,12 +242,12 @@ def _grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float,
 
 
 def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horizons: list[float],
-                     fraction: float = WINDOW, answers: list | None = None, grow: bool = True) -> list[Estimate]:
+                     fraction: float = WINDOW, answers: list | None = None, to_horizon: bool = True) -> list[Estimate]:
     """The estimate of each member's run at ``opts`` (ending at its horizon) from runs at ``opts``
     and at :func:`tighter` ones over the first ``fraction`` of the span (module doc). With the
     members' ``answers`` (engine results sharing their output times, at least :data:`WINDOW_TIMES`
     of them in the window), the answers themselves stand for the runs at ``opts``: only the
-    companion runs. ``grow=False``: the error over the window itself, not grown to the horizon."""
+    companion runs. ``to_horizon=False``: the error over the window itself, not grown to the horizon."""
     members = list(range(len(cores)))
     window = t0 + fraction * (t1 - t0)
     upper, inside = None, slice(None)
@@ -260,8 +260,8 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
             window = float(grid[-1])
     if upper is None:
         grid = np.linspace(t0, window, SAMPLES)
-        upper = run(_copy(opts, grid), window, members)
-    companion, gain, what = tighter(_copy(opts, grid), fresh=True)
+        upper = run(copy_options(opts, grid), window, members)
+    companion, gain, what = tighter(copy_options(opts, grid), fresh=True)
     if not math.isfinite(gain):
         return [Estimate(math.nan, {}, f"no estimate: compared with {what}") for _ in cores]
     lower = run(companion, window, members)
@@ -276,10 +276,10 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
                                                 f"{failed.message})"))
             continue
         per, ks = {}, []
-        grows = grow and abs(horizons[i] - t0) > abs(window - t0)
+        grows = to_horizon and abs(horizons[i] - t0) > abs(window - t0)
         for name, d in differences(b, a, core, slice(None), inside).items():
             running = np.maximum.accumulate(d * gain)
-            value, k = _grow(running, grid, t0, horizons[i]) if grows else (float(running[-1]), 1.0)
+            value, k = grow(running, grid, t0, horizons[i]) if grows else (float(running[-1]), 1.0)
             per[name] = max(value * (WINDOW_SAFETY if grows else 1.0), FLOOR)
             ks.append(k)
         growth = (f"grown as t^{max(ks):.2g} to t = {horizons[i]:.6g}, times {WINDOW_SAFETY:g}" if grows
@@ -300,7 +300,7 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
     times = np.asarray(answers[members[0]].t, float)
     shared = all(np.array_equal(np.asarray(answers[m].t, float), times) for m in members)
     grid = times if shared else np.unique(np.concatenate([np.asarray(answers[m].t, float) for m in members]))
-    companion, gain, what = tighter(_copy(opts, grid), fresh=True)
+    companion, gain, what = tighter(copy_options(opts, grid), fresh=True)
     if not math.isfinite(gain):
         return [Estimate(math.nan, {}, f"no estimate: compared with {what}") for _ in members]
     t_end = float(max(answers[m].t_last for m in members)) if len(grid) else float(opts.t_eval[-1])

@@ -14,8 +14,12 @@ over its whole span (:func:`meet`), with the measurements of :mod:`gyrostat.accu
   run's whole-span error, scaled by the ratio of the two runs' errors over the first
   :data:`gyrostat.accuracy.WINDOW` of the span, each measured against its own companion there
   (tolerance proportionality, measured: the error's course over the span keeps its shape when the
-  tolerance changes), for the Runge–Kutta pairs of one order (:data:`SCALED`); the other methods'
-  repeats are measured over the whole span again.
+  tolerance changes, within :data:`SCALE_SAFETY`, by which it is multiplied), for the Runge–Kutta
+  pairs of one order (:data:`SCALED`); the other methods' repeats are measured over the whole span
+  again.
+* **A short run** (fewer than :data:`CHEAP_EVALUATIONS` right-hand sides predicted from the probe's
+  first run) is not probed further: its first run, at rtol = accuracy / 10, and the companion
+  measure it directly.
 * A run that still cannot meet it (rounding of doubles over a long span, ``max_steps``) warns
   (:class:`gyrostat.AccuracyWarning`) with the measured error and what would meet it.
 """
@@ -28,8 +32,8 @@ import time
 
 import numpy as np
 
-from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, _copy, _grow, differences,
-                               estimate_runs, ratio, tighter, window_error, window_estimates)
+from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, copy_options, differences,
+                               estimate_runs, grow, ratio, tighter, window_error, window_estimates)
 
 PROBE = 1.0 / 16.0
 """The fraction of the span the accuracy's probe covers (to choose rtol)."""
@@ -75,7 +79,7 @@ LOOSEST_RTOL, TIGHTEST_RTOL = 1e-3, 1e-13
 
 def with_tolerances(opts, rtol: float, atol: float):
     """A copy of the options (events and dense output included) at these tolerances."""
-    made = _copy(opts)
+    made = copy_options(opts)
     made.every_step = opts.every_step
     made.events, made.dense_output = opts.events, opts.dense_output
     made.rtol, made.atol = float(rtol), float(atol)
@@ -87,7 +91,7 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
     """The rtol predicted to give MARGIN · accuracy at the horizon: runs at ``first``, first/ρ and
     first/ρ² over the first :data:`PROBE` of the span; the errors of the first two (against the
     third) give the exponent α of error ∝ rtol^α, the first's error grown to the horizon
-    (:func:`_grow`) its size there. The tightest rtol any member needs, and each member's α (the
+    (:func:`gyrostat.accuracy.grow`) its size there. The tightest rtol any member needs, and each member's α (the
     probe's runs' (rtol, seconds) appended to ``seconds`` when given); (``first``, None) when the
     first run predicts a whole run cheaper than the probe (:data:`CHEAP_EVALUATIONS`)."""
     window = t0 + PROBE * (t1 - t0)
@@ -99,7 +103,7 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
     runs = []
     for r in tolerances:
         started = time.perf_counter()
-        runs.append(run(_copy(with_tolerances(opts, r, atol_of(r)), grid), window, members))
+        runs.append(run(copy_options(with_tolerances(opts, r, atol_of(r)), grid), window, members))
         if seconds is not None:
             seconds.append((r, time.perf_counter() - started))
         if len(runs) == 1 and all(r.success for r in runs[0]) and \
@@ -112,7 +116,7 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
             continue
         curves = [np.maximum.accumulate(np.max(list(differences(reference, r, core).values()), axis=0))
                   for r in (loose, middle)]
-        at_horizon, _ = _grow(curves[0], grid, t0, t1, least=PROBE_LEAST_GROWTH)
+        at_horizon, _ = grow(curves[0], grid, t0, t1, least=PROBE_LEAST_GROWTH)
         if not at_horizon > 0:
             continue
         measured = math.log(curves[0][-1] / curves[1][-1]) / math.log(rho) if curves[1][-1] > 0 else 1.0
@@ -136,7 +140,7 @@ def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy
     (constant and linear torques: a ValueError otherwise)."""
     trials = []
     for method in ("dop853", "taylor") if accuracy <= TAYLOR_BELOW else ("dop853",):
-        trial = _copy(opts)
+        trial = copy_options(opts)
         trial.every_step, trial.events, trial.dense_output = opts.every_step, opts.events, opts.dense_output
         trial.method = method
         seconds: list = []
@@ -316,7 +320,7 @@ def scaled_estimates(run: Runner, cores: list, opts, t0: float, t1: float, answe
     the only run made) to that run's there. None where the ratio cannot be measured (a failed
     companion, an error that did not fall): that member is measured over the whole span instead."""
     windows = window_estimates(run, cores, opts, t0, t1, [float(a.t_last) for a in answers], answers=answers,
-                               grow=False)
+                               to_horizon=False)
     made: list = []
     for answer, window, (rtol, spanned, before) in zip(answers, windows, bases):
         now = window.value
