@@ -572,3 +572,13 @@ n_out = {N_OUT}
     run = json.loads((tmp_path / "out" / "cross" / "report.json").read_text())["runs"]["full"]
     assert "crosses a separatrix" in run["error_estimate"]["basis"]
     assert run["error_estimate"]["value"] == single.error_estimate
+
+
+def test_the_scaled_methods_are_the_engines_own_names():
+    """contract.SCALED names integrators by the engine's method names (C++ `_core.methods()`): a
+    misspelt or removed name would silently measure that method's repeats over the whole span."""
+    from gyrostat import contract
+    from gyrostat.options import METHODS
+
+    assert set(contract.SCALED) <= set(METHODS), (contract.SCALED, METHODS)
+    assert "taylor" not in contract.SCALED and "auto" not in contract.SCALED, contract.SCALED
