@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <cctype>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <variant>
@@ -102,6 +103,28 @@ inline bool read_flat(const py::handle& obj, long count, double* out) {
     const auto* first = static_cast<const char*>(a.data());
     for (long i = 0; i < count; ++i) std::memcpy(out + i, first + i * a.strides(0), sizeof(double));
     return true;
+}
+
+/// Row numbers (None or none: every row) from a sequence or a 1-D integer array, read without a Python object
+/// per number (an array's buffer is copied); a ValueError names a negative or non-integer one.
+inline std::vector<std::size_t> row_numbers(const py::object& obj, const char* what) {
+    std::vector<std::size_t> made;
+    if (obj.is_none()) return made;
+    using Integers = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+    const py::array given = py::array::ensure(obj);
+    if (given && given.ndim() == 1 && given.shape(0) == 0) return made;  // (none given: every row)
+    const char kind = given ? given.dtype().kind() : '?';
+    if (!(kind == 'i' || kind == 'u') || given.ndim() != 1)
+        throw py::value_error(std::string(what) + " must be row numbers (integers), got " + shown(obj));
+    const Integers a = Integers::ensure(given);
+    if (!a) throw py::value_error(std::string(what) + " must be row numbers (integers), got " + shown(obj));
+    made.resize(static_cast<std::size_t>(a.shape(0)));
+    const std::int64_t* first = a.data();
+    for (std::size_t k = 0; k < made.size(); ++k) {
+        if (first[k] < 0) throw py::value_error(std::string(what) + ": row " + std::to_string(first[k]) + " is negative");
+        made[k] = static_cast<std::size_t>(first[k]);
+    }
+    return made;
 }
 
 /// `obj` as numbers of the given shape (cols = 0: a vector of `rows`), or a ValueError that names

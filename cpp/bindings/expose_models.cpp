@@ -72,13 +72,19 @@ void expose_models(py::module_& m) {
              py::arg("given"))
         .def("measured_differences",
              [](const BoundModel& b, const integrate::Result& reference, const integrate::Result& other,
-                const std::vector<std::size_t>& reference_rows, const std::vector<std::size_t>& other_rows) {
-                 return measured_differences(b.model, reference, other, reference_rows, other_rows);
+                const py::object& reference_rows, const py::object& other_rows) {
+                 return measured_differences(b.model, reference, other, row_numbers(reference_rows, "reference_rows"),
+                                             row_numbers(other_rows, "other_rows"));
              },
-             py::arg("reference"), py::arg("other"), py::arg("reference_rows") = std::vector<std::size_t>{},
-             py::arg("other_rows") = std::vector<std::size_t>{},
+             py::arg("reference"), py::arg("other"), py::arg("reference_rows") = py::none(),
+             py::arg("other_rows") = py::none(),
              "How far two runs are apart on each measured quantity (rows: measured_quantities) at each pair of rows "
              "(empty: every row), relative to the quantity's largest size in the reference.")
+        .def("first_crossing",
+             [](const BoundModel& b, const integrate::Result& run, double after) { return first_crossing(b.model, run, after); },
+             py::arg("run"), py::arg("after"),
+             "The first output time of the run past `after` (in its direction) at which its state has crossed a separatrix "
+             "(separatrix's sign changed since the output before); NaN when none, or when the model declares none.")
         .def("separatrix", [](const BoundModel& b, const Eigen::MatrixXd& states) { return separatrix(b.model, states); },
              py::arg("states"),
              "The signed distance to a separatrix of the unperturbed motion at each state (rows): a change of sign "

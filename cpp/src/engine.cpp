@@ -158,55 +158,91 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
                                      const integrate::Result& other, const std::vector<std::size_t>& reference_rows,
                                      const std::vector<std::size_t>& other_rows) {
     auto rows = [](const integrate::Result& r, const std::vector<std::size_t>& given) {
-        std::vector<std::size_t> made = given;
-        if (made.empty())
-            for (std::size_t k = 0; k < r.t.size(); ++k) made.push_back(k);
-        for (std::size_t k : made)
+        for (std::size_t k : given)
             if (k >= r.t.size()) throw std::invalid_argument("measured_differences: row " + std::to_string(k) + " of a run with " +
                                                              std::to_string(r.t.size()));
-        return made;
+        return given.empty() ? r.t.size() : given.size();
     };
-    const std::vector<std::size_t> a_rows = rows(reference, reference_rows), b_rows = rows(other, other_rows);
-    if (a_rows.size() != b_rows.size() || reference.dim != other.dim || reference.output_names != other.output_names)
-        throw std::invalid_argument("measured_differences: the runs compare " + std::to_string(a_rows.size()) + " and " +
-                                    std::to_string(b_rows.size()) + " rows of states of " + std::to_string(reference.dim) +
+    const std::size_t n = rows(reference, reference_rows), n_other = rows(other, other_rows);
+    if (n != n_other || reference.dim != other.dim || reference.output_names != other.output_names)
+        throw std::invalid_argument("measured_differences: the runs compare " + std::to_string(n) + " and " +
+                                    std::to_string(n_other) + " rows of states of " + std::to_string(reference.dim) +
                                     " and " + std::to_string(other.dim) + " components: they must be alike");
+    // row k of each run (every row when none are given)
+    auto a_row = [&](std::size_t k) { return reference_rows.empty() ? k : reference_rows[k]; };
+    auto b_row = [&](std::size_t k) { return other_rows.empty() ? k : other_rows[k]; };
     const std::vector<MeasuredQuantity> quantities = measured_quantities(model);
     const std::size_t dim = static_cast<std::size_t>(reference.dim), width = reference.output_names.size();
-    const std::size_t n = a_rows.size();
+    // NaN anywhere makes a largest size NaN (as NumPy's maximum), which then counts as no size at all: 1
+    auto unit_of = [](double top, bool nan) { return nan || !(top > 0.0 && std::isfinite(top)) ? 1.0 : top; };
     Eigen::MatrixXd made(static_cast<Eigen::Index>(quantities.size()), static_cast<Eigen::Index>(n));
+    std::vector<double> apart(n);
     for (std::size_t q = 0; q < quantities.size(); ++q) {
         const MeasuredQuantity& quantity = quantities[q];
-        auto value = [&](const integrate::Result& r, std::size_t row, int column) {
-            return quantity.output ? r.outputs[row * width + column] : r.y[row * dim + column];
-        };
-        // NaN anywhere makes a maximum NaN (as NumPy's), which then counts as no size at all: 1
-        auto largest = [](const std::vector<double>& values) {
-            double top = 0.0;
-            for (double v : values)
-                if (std::isnan(v)) return 1.0; else top = std::max(top, v);
-            return top > 0.0 && std::isfinite(top) ? top : 1.0;
-        };
-        std::vector<double> magnitudes;
+        const double* a = quantity.output ? reference.outputs.data() : reference.y.data();
+        const double* b = quantity.output ? other.outputs.data() : other.y.data();
+        const std::size_t stride = quantity.output ? width : dim;
+        double top = 0.0;
+        bool nan = false;
         for (std::size_t k = 0; k < n; ++k)
-            for (int c : quantity.columns) magnitudes.push_back(std::abs(value(reference, a_rows[k], c)));
-        const double unit = largest(magnitudes);
-        const bool scalar = quantity.columns.size() == 1;
-        auto size = [&](auto component) {  // |x| of one column, the norm of several
-            if (scalar) return std::abs(component(quantity.columns[0]));
-            double sum = 0.0;
-            for (int c : quantity.columns) sum += component(c) * component(c);
-            return std::sqrt(sum);
-        };
-        std::vector<double> sizes(n), apart(n);
+            for (int c : quantity.columns) {
+                const double v = std::abs(a[a_row(k) * stride + c]);
+                nan = nan || std::isnan(v);
+                top = std::max(top, v);
+            }
+        const double unit = unit_of(top, nan);
+        double largest = 0.0;  // |x| of one column, the norm of several, relative to the unit
+        bool largest_nan = false;
         for (std::size_t k = 0; k < n; ++k) {
-            sizes[k] = size([&](int c) { return value(reference, a_rows[k], c) / unit; });
-            apart[k] = size([&](int c) { return (value(reference, a_rows[k], c) - value(other, b_rows[k], c)) / unit; });
+            const double* x = a + a_row(k) * stride;
+            const double* z = b + b_row(k) * stride;
+            double size = 0.0, distance = 0.0;
+            if (quantity.columns.size() == 1) {
+                const int c = quantity.columns[0];
+                size = std::abs(x[c] / unit);
+                distance = std::abs((x[c] - z[c]) / unit);
+            } else {
+                for (int c : quantity.columns) {
+                    const double s = x[c] / unit, d = (x[c] - z[c]) / unit;
+                    size += s * s;
+                    distance += d * d;
+                }
+                size = std::sqrt(size);
+                distance = std::sqrt(distance);
+            }
+            largest_nan = largest_nan || std::isnan(size);
+            largest = std::max(largest, size);
+            apart[k] = distance;
         }
-        const double scale = largest(sizes);
+        const double scale = unit_of(largest, largest_nan);
         for (std::size_t k = 0; k < n; ++k) made(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(k)) = apart[k] / scale;
     }
     return made;
+}
+
+double first_crossing(const AnyModel& model, const integrate::Result& run, double after) {
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    return visit(model, [&](const auto& m) -> double {
+        using S = std::decay_t<decltype(m)>;
+        if constexpr (model::system::has_separatrix<S>::value) {
+            const std::size_t n = run.t.size();
+            if (n < 2 || run.dim != S::dim) return none;
+            const double forward = run.t[n - 1] >= run.t[0] ? 1.0 : -1.0;
+            double side = 0.0;
+            for (std::size_t k = 0; k < n; ++k) {
+                typename S::State y = Eigen::Map<const typename S::State>(run.y.data() + k * S::dim);
+                model::frame::convert(m, y.data(), To::Principal);
+                const double now = m.separatrix(y);
+                const double sign = now > 0.0 ? 1.0 : now < 0.0 ? -1.0 : 0.0;  // (NaN: 0, as no side)
+                if (k > 0 && side * sign < 0.0 && (run.t[k] - after) * forward > 0.0) return run.t[k];
+                side = sign;
+            }
+            return none;
+        } else {
+            (void)m, (void)run, (void)after;
+            return none;
+        }
+    });
 }
 
 Eigen::VectorXd rhs(const AnyModel& model, double t, const Eigen::VectorXd& y) {

@@ -1839,6 +1839,10 @@ class Model:
         """
     def fast_frequency(self, r: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
+    def first_crossing(self, run: ..., after: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        The first output time of the run past `after` (in its direction) at which its state has crossed a separatrix (separatrix's sign changed since the output before); NaN when none, or when the model declares none.
+        """
     def from_orbit_frame(self, t: typing.SupportsFloat | typing.SupportsIndex, attitude: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"], omega: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         The state (omega, q) at t of a body with this attitude (body to orbit frame) and this angular velocity relative to the orbit frame (body axes).
@@ -1851,7 +1855,7 @@ class Model:
         """
         initial_state of every row of ``given`` (n, k): (n, dim).
         """
-    def measured_differences(self, reference: ..., other: ..., reference_rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = [], other_rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+    def measured_differences(self, reference: ..., other: ..., reference_rows: typing.Any = None, other_rows: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         How far two runs are apart on each measured quantity (rows: measured_quantities) at each pair of rows (empty: every row), relative to the quantity's largest size in the reference.
         """

@@ -155,38 +155,36 @@ def _rows(result, quantity: Quantity, keep=slice(None), core=None) -> np.ndarray
     return np.asarray(core.compare(Solution(result, core.model)), float).reshape(len(result.t), -1)[keep]
 
 
-def _every(keep) -> bool:
-    """Whether a keep is the slice of every row."""
-    return isinstance(keep, slice) and keep == slice(None)
+def _rows_kept(keep, count: int):
+    """The row numbers a keep (a slice or a boolean mask) selects; None for every row."""
+    if isinstance(keep, slice):
+        return None if keep == slice(None) or keep == slice(0, count) else np.arange(count)[keep]
+    return None if keep.all() and len(keep) == count else np.flatnonzero(keep)
 
 
-def _rows_kept(keep, count: int) -> np.ndarray:
-    """The row numbers a keep (a slice or a boolean mask) selects."""
-    return np.arange(count)[keep] if isinstance(keep, slice) else np.flatnonzero(keep)
+def apart(reference, other, core, keep_reference=slice(None), keep_other=slice(None)) -> tuple[list[str], np.ndarray]:
+    """The quantities' names and how far the two results are apart on each at each compared pair
+    of rows ((quantities, n): :func:`differences` as one array)."""
+    wanted = quantities(core)
+    if not isinstance(core, Compared):
+        return [q.name for q in wanted], core.measured_differences(
+            reference, other, _rows_kept(keep_reference, len(reference.t)), _rows_kept(keep_other, len(other.t)))
+    a, b = _rows(reference, wanted[0], keep_reference, core), _rows(other, wanted[0], keep_other, core)
+    with np.errstate(all="ignore"):  # huge or non-finite values: scaled first, NaN stays NaN
+        unit = float(np.abs(a).max()) if a.size else 0.0
+        unit = unit if 0 < unit < math.inf else 1.0
+        a, distance = a / unit, (a - b) / unit
+        scale = math.sqrt(float(np.einsum("ij,ij->i", a, a).max())) if a.size else 0.0
+        distance = np.sqrt(np.einsum("ij,ij->i", distance, distance))
+    return ["compared"], (distance / (scale if scale > 0 else 1.0))[np.newaxis, :]
 
 
 def differences(reference, other, core, keep_reference=slice(None), keep_other=slice(None)) -> dict[str, np.ndarray]:
     """Each quantity's difference between two results at the same times, relative to its largest
     size in ``reference``: {name: (n,)} (the engine's ``measured_differences``; a :class:`Compared`
     model's on its ``compare``)."""
-    wanted = quantities(core)
-    if not isinstance(core, Compared):
-        every = _every(keep_reference) and _every(keep_other)  # (every row: nothing to pass)
-        rows = None if every else [_rows_kept(keep, len(r.t)) for keep, r in ((keep_reference, reference),
-                                                                               (keep_other, other))]
-        if rows is not None and not (len(rows[0]) == len(reference.t) and len(rows[1]) == len(other.t)):
-            apart = core.measured_differences(reference, other, rows[0], rows[1])
-        else:
-            apart = core.measured_differences(reference, other)
-        return {quantity.name: apart[i] for i, quantity in enumerate(wanted)}
-    a, b = _rows(reference, wanted[0], keep_reference, core), _rows(other, wanted[0], keep_other, core)
-    with np.errstate(all="ignore"):  # huge or non-finite values: scaled first, NaN stays NaN
-        unit = float(np.abs(a).max()) if a.size else 0.0
-        unit = unit if 0 < unit < math.inf else 1.0
-        a, apart = a / unit, (a - b) / unit
-        scale = math.sqrt(float(np.einsum("ij,ij->i", a, a).max())) if a.size else 0.0
-        distance = np.sqrt(np.einsum("ij,ij->i", apart, apart))
-    return {"compared": distance / (scale if scale > 0 else 1.0)}
+    names, made = apart(reference, other, core, keep_reference, keep_other)
+    return {name: made[i] for i, name in enumerate(names)}
 
 
 # ------------------------------------------------------------------------------------ companions
@@ -227,18 +225,28 @@ Runner = Callable[[object, float, list], list]
 """run(options, t_end, members) -> the engine's Result of each member (in that order)."""
 
 
-def grow(running: np.ndarray, times: np.ndarray, t0: float, horizon: float,
-          least: float = 1.0) -> tuple[float, float]:
-    """The running maximum of a difference over a window grown to ``horizon`` as t^k, k fitted over
-    the window's second half and kept within [least, 2]; (value, k). (Distances from t0: a backward
-    run grows the same way.)"""
-    last = float(running[-1])
-    end, middle, far = abs(times[-1] - t0), abs(times[len(times) // 2] - t0), abs(horizon - t0)
+def grow(last: float, half: float, end: float, middle: float, far: float, least: float = 1.0) -> tuple[float, float]:
+    """A difference's running maximum over a window (``last`` at its end, ``half`` at its middle
+    output time), grown to the horizon as t^k, k fitted over the window's second half and kept
+    within [least, 2]; (value, k). ``end``, ``middle``, ``far``: the distances from t0 of the window's
+    end, its middle output time and the horizon (a backward run grows the same way)."""
     if far <= end or last == 0.0:
         return last, 1.0
-    half = float(running[len(running) // 2])
     k = 1.0 if half <= 0 else min(2.0, max(least, math.log(last / half) / math.log(end / middle)))
     return last * (far / end) ** k, k
+
+
+def running_maxima(made: np.ndarray) -> tuple[list[float], list[float]]:
+    """Each row's maximum over all its columns and over the first half (to the middle column
+    included): the running maximum at the end and at the middle of the window (NaN stays NaN)."""
+    middle = made.shape[1] // 2
+    return made.max(axis=1).tolist(), made[:, :middle + 1].max(axis=1).tolist()
+
+
+def _within(times: np.ndarray, t0: float, t1: float, fraction: float) -> int:
+    """How many of a run's output times (monotone in its direction, from t0) lie in the first
+    ``fraction`` of the span: they are the first ones."""
+    return int(np.searchsorted((times - t0) * (1.0 if t1 >= t0 else -1.0), fraction * abs(t1 - t0), side="right"))
 
 
 def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horizons: list[float],
@@ -253,10 +261,10 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
     upper, inside = None, slice(None)
     if answers:
         times = np.asarray(answers[0].t, float)
-        within = (times - t0) * (1.0 if t1 >= t0 else -1.0) <= fraction * abs(t1 - t0)
-        if within.sum() >= WINDOW_TIMES and all(np.array_equal(np.asarray(a.t, float), times) for a in answers[1:]):
-            upper, inside = answers, within
-            grid = times[within]
+        count = _within(times, t0, t1, fraction)
+        if count >= WINDOW_TIMES and all(np.array_equal(np.asarray(a.t, float), times) for a in answers[1:]):
+            upper, inside = answers, slice(0, count)
+            grid = times[:count]
             window = float(grid[-1])
     if upper is None:
         grid = np.linspace(t0, window, SAMPLES)
@@ -268,8 +276,8 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
     made = []
     for i, core in enumerate(cores):
         a, b = upper[i], lower[i]
-        rows = int(np.count_nonzero(inside)) if isinstance(inside, np.ndarray) else len(a.t)
-        if not (a.success or isinstance(inside, np.ndarray)) or not b.success or rows != len(grid) \
+        rows = inside.stop if inside.stop is not None else len(a.t)
+        if not (a.success or inside.stop is not None) or not b.success or rows != len(grid) \
                 or len(b.t) != len(grid):
             failed = b if not b.success else a
             made.append(Estimate(math.nan, {}, f"no estimate: the window's run stopped ({failed.status}: "
@@ -277,9 +285,11 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
             continue
         per, ks = {}, []
         grows = to_horizon and abs(horizons[i] - t0) > abs(window - t0)
-        for name, d in differences(b, a, core, slice(None), inside).items():
-            running = np.maximum.accumulate(d * gain)
-            value, k = grow(running, grid, t0, horizons[i]) if grows else (float(running[-1]), 1.0)
+        names, made_apart = apart(b, a, core, slice(None), inside)
+        lasts, halves = running_maxima(made_apart)
+        end, middle, far = abs(grid[-1] - t0), abs(grid[len(grid) // 2] - t0), abs(horizons[i] - t0)
+        for name, last, half in zip(names, lasts, halves):
+            value, k = grow(last * gain, half * gain, end, middle, far) if grows else (last * gain, 1.0)
             per[name] = max(value * (WINDOW_SAFETY if grows else 1.0), FLOOR)
             ks.append(k)
         growth = (f"grown as t^{max(ks):.2g} to t = {horizons[i]:.6g}, times {WINDOW_SAFETY:g}" if grows
@@ -322,8 +332,9 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
         else:
             keep_mine, keep_theirs = np.isin(mine, theirs), np.isin(theirs, mine)
             compared = int(keep_mine.sum())
-        per = {name: max(float(d.max()) * gain, FLOOR) if d.size else math.nan
-               for name, d in differences(answer, other, cores[m], keep_mine, keep_theirs).items()}
+        names, made_apart = apart(answer, other, cores[m], keep_mine, keep_theirs)
+        largest = made_apart.max(axis=1).tolist() if made_apart.shape[1] else [math.nan] * len(names)
+        per = {name: max(d * gain, FLOOR) if not math.isnan(d) else math.nan for name, d in zip(names, largest)}
         made.append(Estimate(max(per.values()), per,
                              f"measured at {compared} output times over the whole run against a run "
                              f"with {what} (difference x {gain:.3g})"))
@@ -337,11 +348,11 @@ def window_error(answer, companion, core, t0: float, t1: float, gain: float) -> 
     times = np.asarray(answer.t, float)
     if companion is None or not companion.success or not np.array_equal(times, np.asarray(companion.t, float)):
         return None
-    within = (times - t0) * (1.0 if t1 >= t0 else -1.0) <= WINDOW * abs(t1 - t0)
-    if within.sum() < WINDOW_TIMES:
+    count = _within(times, t0, t1, WINDOW)
+    if count < WINDOW_TIMES:
         return None
-    apart = differences(companion, answer, core, within, within)
-    return max(float(d.max()) for d in apart.values()) * gain if apart else None
+    _, made = apart(companion, answer, core, slice(0, count), slice(0, count))
+    return float(made.max()) * gain if made.size else None
 
 
 def closed_form_estimate(core) -> Estimate:
@@ -356,13 +367,10 @@ def crossing(core, answer, after: float) -> float | None:
     separatrix of its model (the sign of ``core.separatrix`` changes between two output times; a
     model that declares none never crosses), or None."""
     model = core.core if isinstance(core, Compared) else core
-    times = np.asarray(answer.t, float)
-    if len(times) < 2 or not hasattr(model, "separatrix"):
+    if not hasattr(model, "first_crossing"):
         return None
-    side = np.sign(np.asarray(model.separatrix(np.asarray(answer.y, float)), float))
-    forward = 1.0 if times[-1] >= times[0] else -1.0
-    changed = np.flatnonzero((side[:-1] * side[1:] < 0) & ((times[1:] - after) * forward > 0))
-    return float(times[changed[0] + 1]) if changed.size else None
+    when = model.first_crossing(answer, after)
+    return None if math.isnan(when) else float(when)
 
 
 def estimate_runs(run: Runner, cores: list, opts, t0: float, t1: float, answers: list, full: bool = False,

@@ -32,8 +32,8 @@ import time
 
 import numpy as np
 
-from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, copy_options, differences,
-                               estimate_runs, grow, ratio, tighter, window_error, window_estimates)
+from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, apart, copy_options, estimate_runs, grow,
+                               ratio, running_maxima, tighter, window_error, window_estimates)
 
 PROBE = 1.0 / 16.0
 """The fraction of the span the accuracy's probe covers (to choose rtol)."""
@@ -114,12 +114,13 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
         loose, middle, reference = (r[i] for r in runs)
         if not all(r.success and len(r.t) == PROBE_SAMPLES for r in (loose, middle, reference)):
             continue
-        curves = [np.maximum.accumulate(np.max(list(differences(reference, r, core).values()), axis=0))
-                  for r in (loose, middle)]
-        at_horizon, _ = grow(curves[0], grid, t0, t1, least=PROBE_LEAST_GROWTH)
+        (loose_end, tight_end), (loose_half, _) = running_maxima(
+            np.vstack([apart(reference, r, core)[1].max(axis=0) for r in (loose, middle)]))
+        at_horizon, _ = grow(loose_end, loose_half, abs(grid[-1] - t0), abs(grid[len(grid) // 2] - t0), abs(t1 - t0),
+                             least=PROBE_LEAST_GROWTH)
         if not at_horizon > 0:
             continue
-        measured = math.log(curves[0][-1] / curves[1][-1]) / math.log(rho) if curves[1][-1] > 0 else 1.0
+        measured = math.log(loose_end / tight_end) / math.log(rho) if tight_end > 0 else 1.0
         alpha = min(2.0, max(PROBE_LEAST_ALPHA, measured))
         alphas[i] = alpha
         wanted.append(first * (MARGIN * accuracy / at_horizon) ** (1.0 / alpha))

@@ -69,6 +69,10 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
 /// The model's signed distance to a separatrix (model/system.hpp: separatrix) at each state (rows,
 /// in the user's frame); NaN for a model that declares none.
 Eigen::VectorXd separatrix(const AnyModel& model, const Eigen::MatrixXd& states);
+/// The first output time of `run` past `after` (in the run's direction) at which the state has
+/// crossed a separatrix of the model (the sign of `separatrix` changed since the output before);
+/// NaN when it does not, or when the model declares none.
+double first_crossing(const AnyModel& model, const integrate::Result& run, double after);
 /// An empty Result that says what a run of `model` holds: the names, units and descriptions of
 /// its state and outputs (model/system.hpp's declarations).
 integrate::Result described(const AnyModel& model);
