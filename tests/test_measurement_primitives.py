@@ -114,3 +114,16 @@ def test_a_model_without_a_separatrix_never_crosses():
     mass = g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), mass=1.0, arm=1.0, frequency=10.0, damping=98.0)
     result = run(mass, mass.quasi_static_state([1.0, 0.0, 1.0]), 5.0, 1e-8)
     assert math.isnan(mass._core.first_crossing(result, 0.0))
+
+
+@pytest.mark.parametrize("t0, t1, count", [(0.0, 3.75, 41), (10.0, -5.0, 201), (1e5, 1.2e5, 41), (0.0, 1e-300, 2)])
+def test_the_windows_even_times_are_numpys_linspace(t0, t1, count):
+    """The probe's and the window's sampling times (gyrostat.accuracy.even_times, cheaper than
+    np.linspace): NumPy's linspace to 2 ulp of the span (a different order of the same
+    arithmetic), both ends exact (the runs end on them), monotone in the run's direction."""
+    from gyrostat.accuracy import even_times
+
+    made, numpy = even_times(t0, t1, count), np.linspace(t0, t1, count)
+    assert np.max(np.abs(made - numpy)) <= 2 * np.spacing(abs(t1 - t0)) + np.spacing(max(abs(t0), abs(t1)))
+    assert made[0] == t0 and made[-1] == t1
+    assert np.all(np.sign(np.diff(made)) == np.sign(t1 - t0))

@@ -32,8 +32,8 @@ import time
 
 import numpy as np
 
-from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, apart, copy_options, estimate_runs, grow,
-                               ratio, running_maxima, tighter, window_error, window_estimates)
+from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, apart, copy_options, estimate_runs,
+                               even_times, grow, ratio, running_maxima, tighter, window_error, window_estimates)
 
 PROBE = 1.0 / 16.0
 """The fraction of the span the accuracy's probe covers (to choose rtol)."""
@@ -95,7 +95,7 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
     probe's runs' (rtol, seconds) appended to ``seconds`` when given); (``first``, None) when the
     first run predicts a whole run cheaper than the probe (:data:`CHEAP_EVALUATIONS`)."""
     window = t0 + PROBE * (t1 - t0)
-    grid = np.linspace(t0, window, PROBE_SAMPLES)
+    grid = even_times(t0, window, PROBE_SAMPLES)
     members = list(range(len(cores)))
     rho = ratio(opts.method)
     first = max(first, ENGINE_RTOL * rho * rho)
