@@ -1,6 +1,7 @@
 """SIMD batch ensembles against heyoka's batch mode, at equal error, in one run.
 
     PYTHONPATH=python python bench/batch_ensemble.py [--members 1024] [--out bench/results] [--quick]
+    GYROSTAT_SIMD=avx2 python bench/batch_ensemble.py --quick --heyoka-width 4   # an AVX2 machine's forms
 
 Problem (issue 12): the torque-free body I = (2, 3, 4), N members with ω0 uniform in [−1, 1]³
 (seed 1), t = 200, outputs at t0 and t1 only. Error: the largest over the members of
@@ -79,12 +80,16 @@ def gyrostat_run(y0s, method, rtol, batch, threads):
     return best_time(run), final
 
 
+HEYOKA_WIDTH = 0
+"""heyoka's batch width (0: ``hy.recommended_simd_size()``; ``--heyoka-width 4`` stands for an AVX2 machine's)."""
+
+
 def heyoka_batch(y0s, tol, ensemble=False):
     import heyoka as hy
 
     p, q, r = hy.make_vars("p", "q", "r")
     system = [(p, (J[1] - J[2]) / J[0] * q * r), (q, (J[2] - J[0]) / J[1] * r * p), (r, (J[0] - J[1]) / J[2] * p * q)]
-    W = hy.recommended_simd_size()
+    W = HEYOKA_WIDTH or hy.recommended_simd_size()
     n = len(y0s)
     if n % W:
         raise ValueError(f"{n} members: give a multiple of heyoka's SIMD width {W}")
@@ -152,7 +157,12 @@ def main(argv=None):
     parser.add_argument("--members", type=int, default=1024)
     parser.add_argument("--out", type=Path, default=HERE / "out")
     parser.add_argument("--quick", action="store_true", help="fewer tolerances and no throughput sweep")
+    parser.add_argument("--heyoka-width", type=int, default=0,
+                        help="heyoka's batch width (default: its recommended SIMD size; 4 with GYROSTAT_SIMD=avx2 "
+                             "stands for an AVX2 machine)")
     args = parser.parse_args(argv)
+    global HEYOKA_WIDTH
+    HEYOKA_WIDTH = args.heyoka_width
     try:
         import heyoka as hy  # noqa: F401
     except ImportError:
