@@ -198,15 +198,25 @@ def tighter(opts, fresh: bool = False) -> tuple[object, float, str]:
     given splitting step halved), the factor turning the difference into the run's own error, and
     what was tightened (words). ``fresh``: ``opts`` is a copy of the caller's own, tightened in place."""
     made = opts if fresh else copy_options(opts)
+    gain = companion_gain(opts)
     if opts.method == "splitting" and opts.step > 0:
         made.step = opts.step / 2.0
-        gain = 2.0 ** opts.splitting_order
-        return made, gain / (gain - 1.0), f"the step halved (Richardson, order {opts.splitting_order})"
+        return made, gain, f"the step halved (Richardson, order {opts.splitting_order})"
+    if not math.isfinite(gain):  # the run is at the engine's least tolerance: nothing tighter to compare with
+        return made, gain, "nothing: the run's rtol is the engine's least"
     rho = min(ratio(opts.method), opts.rtol / ENGINE_RTOL)
-    if rho < 2.0:  # the run is at the engine's least tolerance: nothing tighter to compare with
-        return made, math.inf, "nothing: the run's rtol is the engine's least"
     made.rtol, made.atol = max(opts.rtol / rho, ENGINE_RTOL), opts.atol / rho  # (no rounding below the least)
-    return made, rho / (rho - 1.0), f"rtol and atol / {rho:g}"
+    return made, gain, f"rtol and atol / {rho:g}"
+
+
+def companion_gain(opts) -> float:
+    """The factor :func:`tighter`'s companion turns a difference into the run's own error by
+    (ρ/(ρ−1), or 2^p/(2^p−1) for a halved splitting step; ∞ where nothing tighter can run)."""
+    if opts.method == "splitting" and opts.step > 0:
+        gain = 2.0 ** opts.splitting_order
+        return gain / (gain - 1.0)
+    rho = min(ratio(opts.method), opts.rtol / ENGINE_RTOL)
+    return rho / (rho - 1.0) if rho >= 2.0 else math.inf
 
 
 def copy_options(opts, t_eval=None):

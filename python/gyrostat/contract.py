@@ -32,8 +32,9 @@ import time
 
 import numpy as np
 
-from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, apart, copy_options, estimate_runs,
-                               even_times, grow, ratio, running_maxima, tighter, window_error, window_estimates)
+from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, apart, companion_gain, copy_options,
+                               estimate_runs, even_times, grow, ratio, running_maxima, window_error,
+                               window_estimates)
 
 PROBE = 1.0 / 16.0
 """The fraction of the span the accuracy's probe covers (to choose rtol)."""
@@ -103,7 +104,9 @@ def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: f
     runs = []
     for r in tolerances:
         started = time.perf_counter()
-        runs.append(run(copy_options(with_tolerances(opts, r, atol_of(r)), grid), window, members))
+        probing = copy_options(opts, grid)  # (its events, dense output and every_step off)
+        probing.rtol, probing.atol = float(r), float(atol_of(r))
+        runs.append(run(probing, window, members))
         if seconds is not None:
             seconds.append((r, time.perf_counter() - started))
         if len(runs) == 1 and all(r.success for r in runs[0]) and \
@@ -297,7 +300,7 @@ def _measure(run: Runner, cores: list, tried, t0: float, t1: float, results: lis
         over = estimate_runs(run, cores, tried, t0, t1, [results[i] if i in spanned and results[i] is not None
                                                         else _EMPTY for i in range(len(results))],
                              full=True, companions=companions)
-        gain = tighter(tried)[1]
+        gain = companion_gain(tried)
         for i in spanned:
             measured[i] = over[i]
             if over[i] is not None and math.isfinite(over[i].value) and math.isfinite(gain):
