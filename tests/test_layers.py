@@ -39,7 +39,8 @@ FLOORS = (  # bottom up: a module imports (anywhere in it, functions included) i
                  "gyrostat.contract")),
     ("models", ("gyrostat.torques", "gyrostat.modelbase")),
     ("runs", ("gyrostat.solve", "gyrostat.answer", "gyrostat.ensemble", "gyrostat.ladder", "gyrostat.ladder.rungs",
-              "gyrostat.ladder.probe", "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures")),
+              "gyrostat.ladder.probe", "gyrostat.ladder.choosing", "gyrostat.ladder.switching", "gyrostat.figures",
+              "gyrostat.sensitivity")),
     ("kinds", ("gyrostat.kind",)),
     ("families", ("gyrostat.families",)),  # and every module under gyrostat/families/
     ("re-exports", ("gyrostat.model", "gyrostat.averaged", "gyrostat.lagrange", "gyrostat.orthogonal")),

@@ -332,6 +332,45 @@ Examples
         py::arg("interval") = 0.1);
 
     m.def(
+        "solve_sensitivities",
+        [](const BoundModel& model, const std::vector<py::tuple>& given, const Eigen::VectorXd& y0, double t0, double t1,
+           const Options& options, py::object progress, double interval) {
+            // each column: (component, None, None, 0, atol) or (-1, plus model, minus model, step, atol)
+            std::vector<SensitivityColumn> columns;
+            for (const py::tuple& c : given) {
+                if (c.size() != 5) throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol)");
+                SensitivityColumn column;
+                column.component = c[0].cast<int>();
+                if (!c[1].is_none()) column.plus = &c[1].cast<const BoundModel&>().model;
+                if (!c[2].is_none()) column.minus = &c[2].cast<const BoundModel&>().model;
+                column.step = c[3].cast<double>();
+                column.atol = c[4].cast<double>();
+                columns.push_back(column);
+            }
+            PythonControl control(std::move(progress), interval);
+            reset_python_torques(model.model);
+            SensitivityRun run;
+            {
+                py::gil_scoped_release release;
+                run = solve_sensitivities(model.model, columns, t0, y0, t1, options, control.get());
+            }
+            control.rethrow();
+            rethrow_python_torques(model.model);
+            const auto rows = static_cast<py::ssize_t>(run.result.t.size()), width = static_cast<py::ssize_t>(columns.size());
+            const auto n = static_cast<py::ssize_t>(run.result.dim), n_out = static_cast<py::ssize_t>(run.result.output_names.size());
+            py::array_t<double> state({rows, n, width}), outputs({rows, n_out, width});
+            std::copy(run.state.begin(), run.state.end(), state.mutable_data());
+            std::copy(run.outputs.begin(), run.outputs.end(), outputs.mutable_data());
+            return py::make_tuple(std::move(run.result), state, outputs);
+        },
+        py::arg("model"), py::arg("columns"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("options"),
+        py::arg("progress") = py::none(), py::arg("interval") = 0.1,
+        "The run with its forward sensitivities (the variational equations by DOP853): (Result, d state / d column "
+        "[time, component, column], d outputs / d column [time, output, column]). A column is (component, None, None, "
+        "0, atol) for an initial component, (-1, model with the parameter + step, model with it - step, step, atol) for a "
+        "parameter.");
+
+    m.def(
         "solve_ensemble",
         [](const std::vector<const BoundModel*>& bound, const py::object& y0s, double t0, double t1, const Options& options,
            int threads, py::object progress, double interval, bool batch) {

@@ -30,6 +30,59 @@ class SolutionViews:
     __slots__ = ()
 
     @property
+    def sensitivities(self) -> tuple[str, ...]:
+        """The names of the sensitivities the run carries (``gyrostat.solve(..., sensitivities=...)``);
+        empty without.
+
+        Examples
+        --------
+        >>> gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 1.0), sensitivities=["p", "moments[0]"]).sensitivities
+        ('p', 'moments[0]')
+        """
+        found = getattr(self, "_sensitivities", None)
+        return tuple(found) if found else ()
+
+    def sensitivity(self, name: str, of: str | None = None) -> np.ndarray:
+        """∂y(t)/∂``name`` at every output time.
+
+        Parameters
+        ----------
+        name : str
+            One of :attr:`sensitivities`: a state component (the initial one's) or a parameter
+            (:mod:`gyrostat.sensitivity`).
+        of : str, optional
+            A state component or a named output: that quantity's derivative alone.
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, dim) in the state's order; (n,) with ``of``. KeyError for a name the run does not carry.
+
+        Examples
+        --------
+        A torque-free body: the rotation's sensitivity to its own initial rate is 1 at t = 0.
+
+        >>> run = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 1.0), n_out=3, sensitivities="r")
+        >>> run.sensitivity("r")[0, :3]
+        array([0., 0., 1.])
+        >>> run.sensitivity("r", of="r").shape
+        (3,)
+        """
+        found = getattr(self, "_sensitivities", None) or {}
+        if name not in found:
+            raise KeyError(f"no sensitivity {name!r} in this run (it carries: {', '.join(found) or 'none'}; "
+                           "ask for it with solve(..., sensitivities=[...]))")
+        state, outputs = found[name]
+        if of is None:
+            return state
+        if of in self.state_names:
+            return state[:, self.state_names.index(of)]
+        if of in self.output_names:
+            return outputs[:, self.output_names.index(of)]
+        raise KeyError(f"no state component or output {of!r}: state {', '.join(self.state_names)}; "
+                       f"outputs {', '.join(self.output_names)}")
+
+    @property
     def units(self) -> dict[str, str]:
         """The SI unit of every column (t, each state component, each output; "1":
         dimensionless), as the C++ model declares them.

@@ -16,6 +16,7 @@ import numpy as np
 from gyrostat import _core
 from gyrostat import accuracy as _accuracy
 from gyrostat import progress as _bars
+from gyrostat import sensitivity as _sensitivity
 from gyrostat.answer import BASE_CHECK, accuracy_asked, attach, checked, estimate_mode, measured
 from gyrostat.arguments import flag, floats
 from gyrostat.ensemble import ensemble_results, solve_ensemble
@@ -42,13 +43,40 @@ def _continuation(previous: Solution, t0, opts: Options, first_step) -> tuple[np
     return previous.y_last, opts
 
 
+def _with_sensitivities(model, core, y0, t0, t1, opts, names, asked, mode, report, check_validity) -> Solution:
+    """A run with its forward sensitivities (:mod:`gyrostat.sensitivity`), its error estimate
+    measured on the state as a plain run's."""
+    if asked is not None:
+        raise ValueError("sensitivities are integrated at the rtol and atol given (the variational equations by "
+                         "dop853): the accuracy contract does not choose them yet; give rtol instead of accuracy")
+    if opts.method != "dop853":
+        raise ValueError(f"sensitivities are integrated by dop853 (the variational equations), not by method "
+                         f"{opts.method!r}: leave method out or give 'dop853'")
+    names, columns = _sensitivity.columns(model, names, opts.atol)
+    try:
+        result, state, outputs = _core.solve_sensitivities(core, columns, y0, t0, t1, opts, report)
+        estimate = None
+        if mode and t1 != t0 and result.success:
+            estimate = measured([result], [core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+                                opts, t0, t1, mode, None, True, 0.0)[1][0]
+    finally:
+        if report is not None:
+            _bars.close(report)
+    solution = Solution(result, model)
+    _sensitivity.attach(solution, names, state, outputs)
+    if estimate is not None:
+        attach(solution, estimate)
+    return checked(solution, model, check_validity)
+
+
 def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = None, atol: float | None = None,
           t_eval=None, n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
           first_step: float | None = None, max_step: float | None = None, step: float | None = None,
           splitting_order: int | None = None, options: Options | None = None,
           events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
           check_validity: bool = True, accuracy: float | None = None,
-          error_estimate: bool | str = True, compare: Callable | None = None) -> Solution:
+          error_estimate: bool | str = True, compare: Callable | None = None,
+          sensitivities: str | list[str] | None = None) -> Solution:
     """Solves any model from the initial state ``y0`` over ``t_span = (t0, t1)``.
 
     Parameters
@@ -136,6 +164,14 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         ``compare(solution) -> (n, m) array``: the quantities ``accuracy`` and the estimate apply
         to, instead of :func:`gyrostat.accuracy.quantities` (one quantity, ``"compared"``, relative
         to its largest row norm): e.g. |G| and T alone when ω's phase does not matter.
+    sensitivities : str or list of str, optional
+        Forward sensitivities to integrate with the run: the derivatives of the solution with
+        respect to initial state components (by their names) and parameters (``"moments[0]"``,
+        ``"LinearDamping.matrix[0,0]"``, ``"ViscousCavity.viscosity"``, …:
+        :func:`gyrostat.sensitivity.parameter_names`), read with ``solution.sensitivity(name)``.
+        Integrated by dop853 on the variational equations at the rtol and atol given (each
+        sensitivity's error controlled with the state's); not with ``accuracy``, events, dense
+        output or another method (a ValueError says so).
     check_validity : bool, optional
         For an averaged model, check its assumptions along the solution; broken ones are warned
         about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.
@@ -191,6 +227,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     if compare is not None and not callable(compare):
         raise TypeError(f"compare must be a callable solution -> (n, m) array, not {type(compare).__name__}")
     asked = accuracy_asked(accuracy) if accuracy is not None else None
+    if sensitivities is not None:
+        return _with_sensitivities(model, core, y0, t0, t1, opts, sensitivities, asked, mode, report, check_validity)
     try:
         if asked is None:
             result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates

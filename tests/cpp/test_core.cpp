@@ -746,6 +746,46 @@ int main() {
                     rel(K, DD(2.5780921133481733, -4.9364080809104914e-17)), rel(Pi, DD(1.2935438634279695, -5.1288853337107177e-17)));
     }
 
+    {
+        // Forward sensitivities (engine.hpp: solve_sensitivities) on a spherical body (A = 2) under
+        // isotropic damping d: ω(t) = ω0 exp(−d t / A) exactly, so ∂ω/∂ω0_k = e_k exp(−d t / A) and
+        // ∂ω/∂d = −(t / A) ω(t). Bound 1e-8 relative at rtol 1e-11: the run's own error (~1e-11)
+        // and the central difference of the right-hand side in d (exact here: it is affine in d)
+        // leave three orders of margin.
+        const double A = 2.0, d = 0.3;
+        auto damped_by = [&](double gain) {
+            return AnyModel(model::Gyrostat<false>(Body(Vec3(A, A, A)), TorqueSet({torque::LinearDamping(gain * Mat3::Identity())})));
+        };
+        const AnyModel nominal = damped_by(d), plus = damped_by(d + 1e-6), minus = damped_by(d - 1e-6);
+        std::vector<SensitivityColumn> columns(2);
+        columns[0].component = 1, columns[0].atol = 1e-13;
+        columns[1].plus = &plus, columns[1].minus = &minus, columns[1].step = 1e-6, columns[1].atol = 1e-13;
+        integrate::Options o;
+        o.rtol = 1e-11, o.atol = 1e-13, o.n_out = 5;
+        const Eigen::Vector3d w0(0.4, -0.2, 1.0);
+        const SensitivityRun run = solve_sensitivities(nominal, columns, 0.0, w0, 4.0, o);
+        CHECK(run.result.success() && run.result.t.size() == 5, "sensitivities: the run succeeds with its 5 outputs");
+        double worst = 0.0;
+        for (std::size_t k = 0; k < run.result.t.size(); ++k) {
+            const double t = run.result.t[k], decay = std::exp(-d * t / A);
+            for (int i = 0; i < 3; ++i) {
+                const double by_q0 = run.state[(k * 3 + i) * 2], by_d = run.state[(k * 3 + i) * 2 + 1];
+                worst = std::max(worst, std::abs(by_q0 - (i == 1 ? decay : 0.0)));
+                worst = std::max(worst, std::abs(by_d + t / A * w0[i] * decay) / (t / A * std::abs(w0[i]) + 1e-300 + (t == 0.0)));
+            }
+        }
+        std::printf("sensitivities against the exponential: worst error %.2e\n", worst);
+        CHECK(worst < 1e-8, "sensitivities: dω/dω0 and dω/dd against the exponential");
+        bool refused = false;
+        try {
+            o.method = Method::CvodeBdf;
+            solve_sensitivities(nominal, columns, 0.0, w0, 4.0, o);
+        } catch (const std::invalid_argument&) {
+            refused = true;
+        }
+        CHECK(refused, "sensitivities: a method other than dop853 is refused");
+    }
+
     std::printf("%d passed, %d skipped, %d failed\n", passes, skips, failures);
     return failures == 0 ? 0 : 1;
 }

@@ -114,6 +114,37 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
                                               const integrate::Options& options, int threads = 0,
                                               const integrate::Control* control = nullptr, bool batch = true);
 
+/// One sensitivity asked of a run (solve_sensitivities): the derivative of the solution with
+/// respect to the initial state's component `component` (in the user's frame), or, with
+/// `component` < 0, to a parameter, given as the model built with it moved by +step (`plus`) and
+/// by −step (`minus`), models of the same type as the run's.
+struct SensitivityColumn {
+    int component = -1;
+    const AnyModel* plus = nullptr;
+    const AnyModel* minus = nullptr;
+    double step = 0.0;
+    /// The absolute tolerance of this column's error control (the run's atol over the parameter's
+    /// size: CVODES's p̄ scaling; the run's atol for an initial component).
+    double atol = 0.0;
+};
+/// A run with its sensitivities: `result` as `solve` gives it at the output times (states in the
+/// user's frame, the outputs, statistics, status and message), `state` the sensitivities of the
+/// state, `outputs` those of the named outputs, each row-major [time][component][column].
+struct SensitivityRun {
+    integrate::Result result;
+    std::vector<double> state;
+    std::vector<double> outputs;
+};
+/// Solves `model` from (t0, y0) to t1 together with its variational equations for each column
+/// (model/variational.hpp) by DOP853 on the whole augmented state (integrate/variational.hpp;
+/// options.method must be dop853; events, dense output and every_step are not offered). The
+/// outputs' sensitivities: central differences of the model's outputs along each column at each
+/// output time. Bad input throws std::invalid_argument naming it (a closed-form model, a column's
+/// model of another type, a component outside the state, a step that is not finite and > 0).
+SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<SensitivityColumn>& columns, double t0,
+                                   const Eigen::VectorXd& y0, double t1, const integrate::Options& options,
+                                   const integrate::Control* control = nullptr);
+
 /// The integration of one model type: the whole engine (every method) instantiated for it. Each
 /// alternative of AnyModel is instantiated in the translation unit src/solve_models.cpp
 /// (solve_system.hpp: GYROSTAT_SOLVED_MODELS).

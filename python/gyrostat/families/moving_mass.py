@@ -81,6 +81,13 @@ class MovingMassModel(ModelBase):
         self._core = _core.moving_mass_model(body, mass, arm, frequency, damping, self.torques)  # checks the numbers
         self.mass, self.arm, self.frequency, self.damping = float(mass), float(arm), float(frequency), float(damping)
 
+    _numbers = ("mass", "arm", "frequency", "damping")  # its own parameters (gyrostat.sensitivity)
+
+    def _arguments(self) -> dict:
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
+        return {"body": self.body, "mass": self.mass, "arm": self.arm, "frequency": self.frequency,
+                "damping": self.damping, "torques": self.torques}
+
     def damper(self) -> _core.MovingMassDamper:
         """The reduced (quasi-static) torque of the same mass, spring and damper.
 

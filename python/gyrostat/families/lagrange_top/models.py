@@ -54,6 +54,12 @@ class _TopModel(ModelBase):
         self.torques = check_torques(torques)
         self._core = self._make(self.body, self.mu, self.torques)
 
+    _numbers = ("A", "C", "mu")  # its own parameters (gyrostat.sensitivity)
+
+    def _arguments(self) -> dict:
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
+        return {"A": self.A, "C": self.C, "mu": self.mu, "torques": self.torques}
+
     def __repr__(self) -> str:
         return f"{type(self).__name__}(A={self.A}, C={self.C}, mu={self.mu}, torques={list(self.torques)!r})"
 

@@ -75,6 +75,11 @@ class OrthogonalModel(ModelBase):
         self._core = _core.orthogonal_model(body, law, self.torques, flag(attitude, "attitude"), self.eta,
                                             regularisation == "smooth")
 
+    def _arguments(self) -> dict:
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
+        return {"body": self.body, "law": self.law, "torques": self.torques, "attitude": self.attitude,
+                "eta": self.eta, "regularisation": self.regularisation}
+
     @property
     def moments(self) -> np.ndarray:
         """The body's principal moments (A1, A2, A3), in kg m^2.

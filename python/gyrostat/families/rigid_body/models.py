@@ -80,6 +80,10 @@ class Model(ModelBase):
         attitude = orbit is not None if attitude is None else flag(attitude, "attitude")
         self._core = _core.gyrostat_model(body, self.torques, attitude, orbit)
 
+    def _arguments(self) -> dict:
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
+        return {"body": self.body, "torques": self.torques, "attitude": self.attitude, "orbit": self.orbit}
+
     @property
     def orbit(self) -> _core.Orbit | None:
         """The model's orbit: the one given, or the one its orbit torques were given (None: none).
@@ -219,6 +223,10 @@ class AveragedModel(ModelBase):
         self.body = check_body(body)
         self.torques = check_torques(torques)
         self._core = _core.averaged_model(body, self.torques)
+
+    def _arguments(self) -> dict:
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
+        return {"body": self.body, "torques": self.torques}
 
     @property
     def A(self) -> float:

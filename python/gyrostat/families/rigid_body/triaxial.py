@@ -59,6 +59,10 @@ class TriaxialAveragedModel(ModelBase):
         self.torques = check_torques(torques)
         self._core = _core.averaged_triaxial_model(body, self.torques)
 
+    def _arguments(self) -> dict:
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
+        return {"body": self.body, "torques": self.torques}
+
     def omegas_of(self, states, outputs: dict | None = None) -> np.ndarray:
         """ω of the free motion at each state's phase (in the model's principal axes): the motion
         the torques' own validity numbers are measured over.

@@ -1,0 +1,216 @@
+// DOP853 on a state whose size is known only at run time: the variational equations of a model
+// (model/variational.hpp), y and its sensitivities S = ∂y/∂p integrated together. The tableau,
+// the step-size controller and the 7th-order dense output are dop853.hpp's (same constants, same
+// monomials); what differs is the state's storage (one dynamic vector, allocated once) and the
+// error norm, taken on each block (y, then every sensitivity column) and the largest kept, so
+// that many sensitivities do not dilute the control of the state (CVODES's errconS = true, with
+// each column's own absolute tolerance: see `scale` below).
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/dop853.hpp"
+#include "gyrostat/integrate/options.hpp"
+#include "gyrostat/integrate/recorder.hpp"
+#include "gyrostat/numeric/dop853_tableau.hpp"
+
+namespace gyrostat::integrate {
+
+/// What a variational run returns: the augmented state at each output time reached.
+struct VariationalRun {
+    std::vector<double> t;               ///< the output times reached, in order
+    std::vector<Eigen::VectorXd> state;  ///< the augmented state (y, then S column by column) at each
+    Stats stats;
+    Status status = Status::Success;
+    std::string message;
+};
+
+/// Integrates Y' = rhs(t, Y) from (t0, Y0) to t1, Y = (y, S_1, …, S_m) with blocks of `block`
+/// components, recording Y at `times` (in the run's direction, inside the span). `atol[b]` is
+/// block b's absolute tolerance (rtol is shared). `project(Y)` runs after each accepted step
+/// (the model's manifold, on y) and says whether the model has one. Fails as dop853 does (max_steps, a step below the resolution of t,
+/// a non-finite state) with the partial record and a message.
+template <class Rhs, class Project>
+VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen::Index block, double t0,
+                                  Eigen::VectorXd y, double t1, const std::vector<double>& times,
+                                  const std::vector<double>& atol, const Options& options, const Control* control) {
+    namespace tab = dop853_tableau;
+    using namespace dop853_detail;
+    const Eigen::Index size = y.size(), blocks = size / block;
+    const double direction = t1 >= t0 ? 1.0 : -1.0, span = std::abs(t1 - t0), rtol = options.rtol;
+    VariationalRun run;
+    std::size_t next = 0;  // the next output time
+    auto record = [&](double time, const Eigen::VectorXd& value) {
+        run.t.push_back(time);
+        run.state.push_back(value);
+        ++next;
+    };
+    auto fail = [&](Status status, std::string message) {
+        run.status = status;
+        run.message = std::move(message);
+        return run;
+    };
+    // The error of a step: DOP853's combination of its 5th- and 3rd-order estimates on each
+    // block, the largest.
+    auto error_norm = [&](const Eigen::VectorXd& e5, const Eigen::VectorXd& e3, const Eigen::VectorXd& scale, double h) {
+        double worst = 0.0;
+        for (Eigen::Index b = 0; b < blocks; ++b) {
+            double s5 = 0.0, s3 = 0.0;
+            for (Eigen::Index i = b * block; i < (b + 1) * block; ++i) {
+                if (e5[i] != 0.0) s5 += (e5[i] / scale[i]) * (e5[i] / scale[i]);
+                if (e3[i] != 0.0) s3 += (e3[i] / scale[i]) * (e3[i] / scale[i]);
+            }
+            if (s5 != 0.0 || s3 != 0.0)
+                worst = std::max(worst, h * s5 / std::sqrt((s5 + 0.01 * s3) * static_cast<double>(block)));
+        }
+        return worst;
+    };
+    // The working vectors, allocated once here (none in the loop).
+    Eigen::VectorXd scale(size), absolute(size);
+    for (Eigen::Index i = 0; i < size; ++i) absolute[i] = atol[static_cast<std::size_t>(i / block)];
+    auto scale_of = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) -> const Eigen::VectorXd& {
+        scale = absolute + rtol * a.cwiseAbs().cwiseMax(b.cwiseAbs());
+        return scale;
+    };
+
+    project(y);
+    double t = t0;
+    while (next < times.size() && times[next] == t0) record(t0, y);
+    std::array<Eigen::VectorXd, tab::n_stages_extended> k;
+    Eigen::VectorXd f(size), y_new(size), f_new(size), stage(size), e5(size), e3(size), sum(size), value(size);
+    for (Eigen::VectorXd& stage_rate : k) stage_rate.resize(size);
+    std::array<Eigen::VectorXd, 7> F;  // the dense output's coefficients, then its monomials c
+    std::array<Eigen::VectorXd, 8> c;
+    for (Eigen::VectorXd& v : F) v.resize(size);
+    for (Eigen::VectorXd& v : c) v.resize(size);
+    rhs(t, y, f);
+    ++run.stats.rhs_evals;
+    if (t0 == t1) return run;
+    if (!y.allFinite() || !f.allFinite())
+        return fail(Status::NonFiniteState, "the right-hand side is not finite at the initial state (t = " + format_number(t0) + ")");
+
+    // The first step (Hairer's rule, as dop853.hpp's, on the whole state).
+    double h_abs = options.first_step;
+    if (h_abs == 0.0) {
+        const Eigen::VectorXd& first_scale = scale_of(y, y);
+        auto rms_over = [&](const Eigen::VectorXd& v) {  // weighted as dop853.hpp's: 0/0 = 0
+            double squares = 0.0;
+            for (Eigen::Index i = 0; i < size; ++i)
+                if (v[i] != 0.0) squares += (v[i] / first_scale[i]) * (v[i] / first_scale[i]);
+            return std::sqrt(squares / static_cast<double>(size));
+        };
+        const double d0 = rms_over(y), d1 = rms_over(f);
+        const double h0 = std::min(d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1, span);
+        rhs(t + h0 * direction, y + h0 * direction * f, f_new);
+        ++run.stats.rhs_evals;
+        const double d2 = rms_over(f_new - f) / h0;
+        const double h1 = d1 <= 1e-15 && d2 <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / std::max(d1, d2), 1.0 / 8.0);
+        h_abs = std::min({100 * h0, h1, span});
+        if (!std::isfinite(h_abs) || h_abs <= 0.0) h_abs = std::min(1e-6, span);
+    }
+    auto compute_stage = [&](int s, double h) {
+        sum.noalias() = tab::a[s][0] * k[0];
+        for (int j = 1; j < s; ++j)
+            if (tab::a[s][j] != 0.0) sum.noalias() += tab::a[s][j] * k[j];
+        stage.noalias() = y + h * sum;
+        rhs(t + tab::c[s] * h, stage, k[s]);
+    };
+    Ticker ticker(control, t0, t1);
+    bool rejected = false;
+    int non_finite_trials = 0;
+    while (true) {
+        if (!ticker.keep_going(t))
+            return fail(Status::Interrupted, "interrupted at t = " + format_number(t) + " (the outputs up to there are kept)");
+        if (run.stats.steps >= options.max_steps)
+            return fail(Status::MaxStepsReached, "max_steps = " + std::to_string(options.max_steps) + " reached at t = " +
+                                                     format_number(t) + " before t1 = " + format_number(t1));
+        const double smallest = min_step(t, direction);
+        if (!rejected) h_abs = std::max(std::min(h_abs, options.max_step), smallest);
+        if (h_abs < smallest || non_finite_trials >= kMaxNonFiniteTrials)
+            return fail(non_finite_trials > 0 ? Status::NonFiniteState : Status::StepSizeUnderflow,
+                        (non_finite_trials > 0 ? "the state or its sensitivities became non-finite on every trial step from t = "
+                                               : "step size underflow at t = ") + format_number(t, 17));
+        double t_new = t + h_abs * direction;
+        if (direction * (t_new - t1) > 0.0) t_new = t1;
+        const double h = t_new - t;
+        h_abs = std::abs(h);
+
+        k[0] = f;
+        for (int s = 1; s < tab::n_stages; ++s) compute_stage(s, h);
+        sum.noalias() = tab::b[0] * k[0];
+        for (int j = 1; j < tab::n_stages; ++j)
+            if (tab::b[j] != 0.0) sum.noalias() += tab::b[j] * k[j];
+        y_new.noalias() = y + h * sum;
+        rhs(t_new, y_new, f_new);
+        k[tab::n_stages] = f_new;
+        run.stats.rhs_evals += tab::n_stages;
+        e5.setZero();
+        e3.setZero();
+        for (int j = 0; j <= tab::n_stages; ++j) {
+            if (tab::e5[j] != 0.0) e5 += tab::e5[j] * k[j];
+            if (tab::e3[j] != 0.0) e3 += tab::e3[j] * k[j];
+        }
+        const double err = error_norm(e5, e3, scale_of(y, y_new), h_abs);
+        if (!std::isfinite(err) || !y_new.allFinite()) {
+            ++non_finite_trials, ++run.stats.rejected_steps;
+            h_abs *= kMinFactor;
+            rejected = true;
+            continue;
+        }
+        if (err >= 1.0) {
+            h_abs *= std::max(kMinFactor, kSafety * std::pow(err, kErrorExponent));
+            ++run.stats.rejected_steps;
+            rejected = true;
+            continue;
+        }
+        double factor = err == 0.0 ? kMaxFactor : std::min(kMaxFactor, kSafety * std::pow(err, kErrorExponent));
+        if (rejected) factor = std::min(1.0, factor);
+        non_finite_trials = 0;
+        ++run.stats.steps;
+        run.stats.last_step = h_abs;
+
+        // The outputs inside the step, from the 7th-order dense output (its three extra stages).
+        if (next < times.size() && direction * (times[next] - t_new) <= 0.0) {
+            for (int s = tab::n_stages + 1; s < tab::n_stages_extended; ++s) compute_stage(s, h);
+            run.stats.rhs_evals += tab::n_stages_extended - tab::n_stages - 1;
+            F[0].noalias() = y_new - y;
+            F[1].noalias() = h * k[0] - F[0];
+            F[2].noalias() = 2.0 * F[0] - h * (f_new + k[0]);
+            for (int r = 0; r < 4; ++r) {
+                sum.noalias() = tab::d[r][0] * k[0];
+                for (int j = 1; j < tab::n_stages_extended; ++j)
+                    if (tab::d[r][j] != 0.0) sum.noalias() += tab::d[r][j] * k[j];
+                F[3 + r].noalias() = h * sum;
+            }
+            monomials(F, y, c.data());
+            while (next < times.size() && direction * (times[next] - t_new) <= 0.0) {
+                if (times[next] == t_new) {
+                    record(t_new, y_new);
+                    continue;
+                }
+                const double x = (times[next] - t) / h;
+                value = c[7];
+                for (int r = 6; r >= 0; --r) value = c[r] + x * value;
+                record(times[next], value);
+            }
+        }
+        y = y_new;
+        t = t_new;
+        f = f_new;
+        if (project(y)) {  // back on the model's manifold: the rate there
+            rhs(t, y, f);
+            ++run.stats.rhs_evals;
+        }
+        h_abs *= factor;
+        rejected = false;
+        if (t == t1) return run;
+    }
+}
+
+}  // namespace gyrostat::integrate

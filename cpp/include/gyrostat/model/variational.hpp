@@ -1,0 +1,104 @@
+// The variational equations of any model (model/system.hpp): its state y and the sensitivities
+// S_j = ∂y/∂p_j of the solution to an initial component or a parameter p_j, integrated together
+// (integrate/variational.hpp):
+//
+//   y'   = f(t, y; p),
+//   S_j' = ∂f/∂y (t, y; p) · S_j + ∂f/∂p_j (t, y; p),      S_j(t0) = ∂y(t0)/∂p_j,
+//
+// (Hairer, Nørsett & Wanner, Solving ODEs I, §I.14). The terms:
+// * ∂f/∂y · S_j: the model's analytic Jacobian where it gives one (every full model), else the
+//   directional central difference (f(y + δ S_j) − f(y − δ S_j)) / 2δ with δ‖S_j‖ = ε^{1/3} ‖y‖
+//   (truncation and rounding both ~ε^{2/3} ≈ 4e-11 relative: the averaged models);
+// * ∂f/∂p_j: (f(t, y; p_j + h_j) − f(t, y; p_j − h_j)) / 2h_j on the two models the caller built
+//   with the parameter moved (truncation O(h²): ~1e-11 relative at h_j = ε^{1/3} |p_j|; exact up to
+//   rounding where f is affine in p_j, as in every torque's gain). A column for an initial
+//   component has no such term.
+// The models name their parameters in Python (gyrostat/sensitivity.py) and build the moved ones;
+// nothing here knows what a parameter is.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "gyrostat/model/system.hpp"
+
+namespace gyrostat::model {
+
+/// One sensitivity column of a model of type M: a parameter (the model built with it moved by
+/// ±step) or, with `plus` null, a component of the initial state.
+template <class M>
+struct Varied {
+    const M* plus = nullptr;
+    const M* minus = nullptr;
+    double step = 0.0;
+};
+
+/// The augmented system (y, S_1, …, S_m) of `model`, m = columns.size(), state of size
+/// M::dim · (1 + m), S_j after y.
+template <class M>
+class Variational {
+public:
+    using State = typename M::State;
+    static constexpr int dim = M::dim;
+
+    Variational(const M& model, std::vector<Varied<M>> columns) : model_(model), columns_(std::move(columns)) {}
+
+    void rhs(double t, const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const {
+        dY.resize(Y.size());
+        const State y = Y.template head<dim>();
+        State f;
+        model_.rhs(t, y, f);
+        dY.template head<dim>() = f;
+        [[maybe_unused]] system::Jacobian<M> jacobian;
+        if constexpr (system::has_jacobian<M>::value) model_.jacobian(t, y, jacobian);
+        for (std::size_t j = 0; j < columns_.size(); ++j) {
+            const Eigen::Index at = dim * static_cast<Eigen::Index>(1 + j);
+            const State s = Y.template segment<dim>(at);
+            State rate;
+            if constexpr (system::has_jacobian<M>::value) {
+                rate.noalias() = jacobian * s;
+            } else {
+                rate = directional(t, y, s);
+            }
+            const Varied<M>& column = columns_[j];
+            if (column.plus) {
+                State f_plus, f_minus;
+                column.plus->rhs(t, y, f_plus);
+                column.minus->rhs(t, y, f_minus);
+                rate += (f_plus - f_minus) / (2.0 * column.step);
+            }
+            dY.template segment<dim>(at) = rate;
+        }
+    }
+
+    /// The model's projection of y (|q| = 1), the sensitivities as they are; false: it has none.
+    bool project(Eigen::VectorXd& Y) const {
+        if constexpr (system::has_projection<M>::value) {
+            State y = Y.template head<dim>();
+            model_.project(y);
+            Y.template head<dim>() = y;
+            return true;
+        } else {
+            return false;
+        }
+    }
+
+private:
+    /// ∂f/∂y · s by the central difference along s.
+    State directional(double t, const State& y, const State& s) const {
+        const double size = s.norm();
+        if (size == 0.0) return State::Zero();
+        const double delta = std::cbrt(std::numeric_limits<double>::epsilon()) * std::max(y.norm(), 1e-300) / size;
+        State plus = y + delta * s, minus = y - delta * s, f_plus, f_minus;
+        model_.rhs(t, plus, f_plus);
+        model_.rhs(t, minus, f_minus);
+        return (f_plus - f_minus) / (2.0 * delta);
+    }
+
+    const M& model_;
+    std::vector<Varied<M>> columns_;
+};
+
+}  // namespace gyrostat::model

@@ -1,0 +1,163 @@
+// The engine's forward sensitivities: a model's variational equations (model/variational.hpp)
+// integrated by DOP853 on the augmented state (integrate/variational.hpp), for every model that
+// integrates (a closed form has no right-hand side to vary).
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "gyrostat/engine.hpp"
+#include "gyrostat/integrate/recorder.hpp"
+#include "gyrostat/integrate/variational.hpp"
+#include "gyrostat/model/frame.hpp"
+#include "gyrostat/model/variational.hpp"
+
+namespace gyrostat {
+
+namespace {
+
+using model::frame::To;
+
+/// The run of one model type.
+template <class M>
+SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn>& columns, double t0,
+                                 const Eigen::VectorXd& given, double t1, const integrate::Options& options,
+                                 const integrate::Control* control) {
+    constexpr int n = M::dim;
+    const Eigen::Index width = static_cast<Eigen::Index>(columns.size());
+    std::vector<model::Varied<M>> varied(columns.size());
+    std::vector<double> atol{options.atol};
+    Eigen::VectorXd start = Eigen::VectorXd::Zero(n * (1 + width));
+    start.head<n>() = model::frame::initial_state(m, given);
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+        const SensitivityColumn& c = columns[j];
+        const std::string which = "sensitivity " + std::to_string(j) + ": ";
+        if (c.component >= 0) {
+            if (c.component >= n)
+                throw std::invalid_argument(which + "state component " + std::to_string(c.component) + " of a state of " +
+                                            std::to_string(n) + " (" + model::system::join_names(M::states) + ")");
+            Eigen::Matrix<double, n, 1> unit = Eigen::Matrix<double, n, 1>::Unit(c.component);
+            model::frame::convert(m, unit.data(), To::Principal);  // linear: a direction converts as a state
+            start.segment<n>(n * static_cast<Eigen::Index>(1 + j)) = unit;
+        } else {
+            const M* plus = c.plus ? std::get_if<M>(c.plus) : nullptr;
+            const M* minus = c.minus ? std::get_if<M>(c.minus) : nullptr;
+            if (!plus || !minus)
+                throw std::invalid_argument(which + "the models with the parameter moved must be '" + M::family +
+                                            "' models, as the run's");
+            if (!(std::isfinite(c.step) && c.step > 0.0))
+                throw std::invalid_argument(which + "the parameter's step must be finite and > 0, got " +
+                                            integrate::format_number(c.step, 17));
+            varied[j] = {plus, minus, c.step};
+            // The state the run starts from may depend on the parameter (an averaged model's slow
+            // variables from the ω given): S_j(t0) = ∂y(t0)/∂p_j, by the same central difference.
+            start.segment<n>(n * static_cast<Eigen::Index>(1 + j)) =
+                (model::frame::initial_state(*plus, given) - model::frame::initial_state(*minus, given)) / (2.0 * c.step);
+        }
+        if (!(std::isfinite(c.atol) && c.atol > 0.0))
+            throw std::invalid_argument(which + "its absolute tolerance must be finite and > 0, got " +
+                                        integrate::format_number(c.atol, 17));
+        atol.push_back(c.atol);
+    }
+    const model::Variational<M> system(m, std::move(varied));
+    const std::vector<double> times = integrate::output_times(options, t0, t1);
+    integrate::VariationalRun run = integrate::variational_dop853(
+        [&](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) { system.rhs(t, y, dy); },
+        [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start, t1, times, atol, options, control);
+
+    SensitivityRun out;
+    integrate::Result& r = out.result;
+    integrate::describe<M>(r, &m);
+    r.method = integrate::method_name(integrate::Method::Dop853);
+    r.methods_used = {r.method};
+    r.options = options;
+    r.stats = run.stats;
+    r.status = run.status;
+    r.message = run.message;
+    constexpr int n_out = model::system::n_outputs<M>();
+    const std::size_t rows = run.t.size();
+    r.t = run.t;
+    r.y.reserve(rows * n);
+    r.outputs.reserve(rows * n_out);
+    out.state.reserve(rows * n * columns.size());
+    out.outputs.reserve(rows * n_out * columns.size());
+    constexpr double kRoot3Eps = 6.0554544523933395e-06;  // ε^{1/3}: a central difference's best step
+    for (std::size_t k = 0; k < rows; ++k) {
+        const Eigen::VectorXd& Y = run.state[k];
+        const typename M::State y = Y.head<n>();
+        double outputs[n_out > 0 ? n_out : 1], plus[n_out > 0 ? n_out : 1], minus[n_out > 0 ? n_out : 1];
+        if constexpr (n_out > 0) model::system::outputs(m, run.t[k], y, outputs);
+        typename M::State user = y;
+        model::frame::convert(m, user.data(), To::User);
+        r.y.insert(r.y.end(), user.data(), user.data() + n);
+        r.outputs.insert(r.outputs.end(), outputs, outputs + n_out);
+        // ∂y/∂p in the user's frame, [component][column].
+        Eigen::Matrix<double, n, Eigen::Dynamic> S(n, width);
+        for (Eigen::Index j = 0; j < width; ++j) {
+            typename M::State s = Y.segment<n>(n * (1 + j));
+            model::frame::convert(m, s.data(), To::User);
+            S.col(j) = s;
+        }
+        for (int i = 0; i < n; ++i)
+            for (Eigen::Index j = 0; j < width; ++j) out.state.push_back(S(i, j));
+        if constexpr (n_out > 0) {
+            // ∂out/∂p = ∂out/∂y · S_j (+ ∂out/∂p_j): central differences along S_j, and between the
+            // models with p_j moved.
+            Eigen::Matrix<double, n_out, Eigen::Dynamic> D(n_out, width);
+            for (Eigen::Index j = 0; j < width; ++j) {
+                const typename M::State s = Y.segment<n>(n * (1 + j));
+                Eigen::Matrix<double, n_out, 1> d = Eigen::Matrix<double, n_out, 1>::Zero();
+                if (s.norm() > 0.0) {
+                    const double delta = kRoot3Eps * std::max(y.norm(), 1e-300) / s.norm();
+                    const typename M::State y_plus = y + delta * s, y_minus = y - delta * s;
+                    model::system::outputs(m, run.t[k], y_plus, plus);
+                    model::system::outputs(m, run.t[k], y_minus, minus);
+                    for (int o = 0; o < n_out; ++o) d[o] = (plus[o] - minus[o]) / (2.0 * delta);
+                }
+                const SensitivityColumn& c = columns[static_cast<std::size_t>(j)];
+                if (c.component < 0) {
+                    model::system::outputs(*std::get_if<M>(c.plus), run.t[k], y, plus);
+                    model::system::outputs(*std::get_if<M>(c.minus), run.t[k], y, minus);
+                    for (int o = 0; o < n_out; ++o) d[o] += (plus[o] - minus[o]) / (2.0 * c.step);
+                }
+                D.col(j) = d;
+            }
+            for (int o = 0; o < n_out; ++o)
+                for (Eigen::Index j = 0; j < width; ++j) out.outputs.push_back(D(o, j));
+        }
+    }
+    if (rows > 0) {
+        r.t_last = r.t.back();
+        r.y_last.assign(r.y.end() - n, r.y.end());
+    }
+    if (run.status == integrate::Status::Interrupted) r.notes.push_back(run.message);
+    return out;
+}
+
+}  // namespace
+
+SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<SensitivityColumn>& columns, double t0,
+                                   const Eigen::VectorXd& y0, double t1, const integrate::Options& options,
+                                   const integrate::Control* control) {
+    integrate::validate(options, t0, t1);
+    if (options.method != integrate::Method::Dop853)
+        throw std::invalid_argument(std::string("sensitivities are integrated by dop853 (the variational equations on the "
+                                                "whole augmented state), not by method '") +
+                                    integrate::method_name(options.method) + "'");
+    if (!options.events.empty() || options.dense_output || options.every_step)
+        throw std::invalid_argument("sensitivities are recorded at the output times (t_eval or n_out): events, "
+                                    "dense_output and every_step are not offered with them");
+    return std::visit(
+        [&](const auto& m) -> SensitivityRun {
+            using M = std::decay_t<decltype(m)>;
+            if constexpr (model::system::is_closed_form<M>::value) {
+                throw std::invalid_argument(std::string("the '") + M::family +
+                                            "' closed form has no right-hand side to vary: its sensitivities are those "
+                                            "of gyrostat.Model(body) (Euler's equations without torques)");
+            } else {
+                return solve_variational(m, columns, t0, y0, t1, options, control);
+            }
+        },
+        model);
+}
+
+}  // namespace gyrostat
