@@ -228,7 +228,7 @@ def test_the_option_names_are_written_once(monkeypatch):
         if name != "t_eval":
             assert type(getattr(g.Options(), name)) is kind, name
     others = {"model", "models", "y0", "y0s", "t_span", "threads", "options", "events", "dense_output", "progress",
-              "check_validity", "batch", "accuracy", "error_estimate", "compare"}
+              "check_validity", "batch", "accuracy", "error_estimate", "compare", "sensitivities"}
     for function in (g.solve, g.solve_ensemble, ensemble_results):
         keywords = set(inspect.signature(function).parameters) - others
         assert keywords == set(options.OPTION_NAMES), function.__name__

@@ -100,6 +100,37 @@ std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
 
 }  // namespace
 
+namespace {
+/// The engine's sensitivity columns from Python's tuples: (component, None, None, 0, atol) or
+/// (-1, model with the parameter + step, model with it − step, step, atol).
+std::vector<SensitivityColumn> sensitivity_columns(const std::vector<py::tuple>& given) {
+    std::vector<SensitivityColumn> columns;
+    for (const py::tuple& c : given) {
+        if (c.size() != 5) throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol)");
+        SensitivityColumn column;
+        column.component = c[0].cast<int>();
+        if (!c[1].is_none()) column.plus = &c[1].cast<const BoundModel&>().model;
+        if (!c[2].is_none()) column.minus = &c[2].cast<const BoundModel&>().model;
+        column.step = c[3].cast<double>();
+        column.atol = c[4].cast<double>();
+        columns.push_back(column);
+    }
+    return columns;
+}
+/// (Result, d state [time, component, column], d outputs [time, output, column]).
+py::tuple sensitivity_tuple(SensitivityRun run, std::size_t width) {
+    const auto rows = static_cast<py::ssize_t>(run.result.t.size()), m = static_cast<py::ssize_t>(width);
+    const auto n = static_cast<py::ssize_t>(run.result.dim), n_out = static_cast<py::ssize_t>(run.result.output_names.size());
+    const bool whole = run.state.size() == static_cast<std::size_t>(rows * n * m);  // (a failed member has none)
+    py::array_t<double> state({whole ? rows : 0, n, m}), outputs({whole ? rows : 0, n_out, m});
+    if (whole) {
+        std::copy(run.state.begin(), run.state.end(), state.mutable_data());
+        std::copy(run.outputs.begin(), run.outputs.end(), outputs.mutable_data());
+    }
+    return py::make_tuple(std::move(run.result), state, outputs);
+}
+}  // namespace
+
 void expose_integrate(py::module_& m) {
     // An Interruption that leaves the core (a user's torque that saw Ctrl-C, called outside a run:
     // Model.rhs, the torque itself) is the KeyboardInterrupt it came from.
@@ -335,18 +366,7 @@ Examples
         "solve_sensitivities",
         [](const BoundModel& model, const std::vector<py::tuple>& given, const Eigen::VectorXd& y0, double t0, double t1,
            const Options& options, py::object progress, double interval) {
-            // each column: (component, None, None, 0, atol) or (-1, plus model, minus model, step, atol)
-            std::vector<SensitivityColumn> columns;
-            for (const py::tuple& c : given) {
-                if (c.size() != 5) throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol)");
-                SensitivityColumn column;
-                column.component = c[0].cast<int>();
-                if (!c[1].is_none()) column.plus = &c[1].cast<const BoundModel&>().model;
-                if (!c[2].is_none()) column.minus = &c[2].cast<const BoundModel&>().model;
-                column.step = c[3].cast<double>();
-                column.atol = c[4].cast<double>();
-                columns.push_back(column);
-            }
+            const std::vector<SensitivityColumn> columns = sensitivity_columns(given);
             PythonControl control(std::move(progress), interval);
             reset_python_torques(model.model);
             SensitivityRun run;
@@ -356,12 +376,7 @@ Examples
             }
             control.rethrow();
             rethrow_python_torques(model.model);
-            const auto rows = static_cast<py::ssize_t>(run.result.t.size()), width = static_cast<py::ssize_t>(columns.size());
-            const auto n = static_cast<py::ssize_t>(run.result.dim), n_out = static_cast<py::ssize_t>(run.result.output_names.size());
-            py::array_t<double> state({rows, n, width}), outputs({rows, n_out, width});
-            std::copy(run.state.begin(), run.state.end(), state.mutable_data());
-            std::copy(run.outputs.begin(), run.outputs.end(), outputs.mutable_data());
-            return py::make_tuple(std::move(run.result), state, outputs);
+            return sensitivity_tuple(std::move(run), columns.size());
         },
         py::arg("model"), py::arg("columns"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("options"),
         py::arg("progress") = py::none(), py::arg("interval") = 0.1,
@@ -369,6 +384,33 @@ Examples
         "[time, component, column], d outputs / d column [time, output, column]). A column is (component, None, None, "
         "0, atol) for an initial component, (-1, model with the parameter + step, model with it - step, step, atol) for a "
         "parameter.");
+
+    m.def(
+        "solve_sensitivities_ensemble",
+        [](const std::vector<const BoundModel*>& bound, const std::vector<std::vector<py::tuple>>& given, const py::object& y0s,
+           double t0, double t1, const Options& options, int threads, py::object progress, double interval) {
+            const auto starts = initial_states(y0s);
+            std::vector<const AnyModel*> models;
+            for (const BoundModel* b : bound) models.push_back(&b->model), reset_python_torques(b->model);
+            std::vector<std::vector<SensitivityColumn>> columns;
+            for (const auto& member : given) columns.push_back(sensitivity_columns(member));
+            PythonControl control(std::move(progress), interval);
+            std::vector<SensitivityRun> runs;
+            {
+                py::gil_scoped_release release;
+                runs = solve_sensitivities_ensemble(models, columns, starts, t0, t1, options, threads, control.get());
+            }
+            control.rethrow();
+            for (const BoundModel* b : bound) rethrow_python_torques(b->model);
+            py::list made;
+            for (std::size_t i = 0; i < runs.size(); ++i)
+                made.append(sensitivity_tuple(std::move(runs[i]), columns[columns.size() == 1 ? 0 : i].size()));
+            return made;
+        },
+        py::arg("models"), py::arg("columns"), py::arg("y0s"), py::arg("t0"), py::arg("t1"), py::arg("options"),
+        py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("interval") = 0.1,
+        "solve_sensitivities for every member on a pool of threads (models and column sets: one, or one per member); "
+        "a list of (Result, d state, d outputs), a member with bad input with status invalid_input and empty arrays.");
 
     m.def(
         "solve_ensemble",

@@ -6,8 +6,10 @@
 #include <string>
 
 #include "gyrostat/engine.hpp"
+#include "gyrostat/ensemble.hpp"
 #include "gyrostat/integrate/recorder.hpp"
 #include "gyrostat/integrate/variational.hpp"
+#include "gyrostat/integrate/variational_bdf.hpp"
 #include "gyrostat/model/frame.hpp"
 #include "gyrostat/model/variational.hpp"
 
@@ -16,6 +18,8 @@ namespace gyrostat {
 namespace {
 
 using model::frame::To;
+
+constexpr double kRoot3Eps = 6.0554544523933395e-06;  // ε^{1/3}: a central difference's best step
 
 /// The run of one model type.
 template <class M>
@@ -37,6 +41,16 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
                                             std::to_string(n) + " (" + model::system::join_names(M::states) + ")");
             Eigen::Matrix<double, n, 1> unit = Eigen::Matrix<double, n, 1>::Unit(c.component);
             model::frame::convert(m, unit.data(), To::Principal);  // linear: a direction converts as a state
+            // The run starts from the projection of the state given (|q| = 1): the column starts as
+            // that projection's derivative along e_k (central difference; e_k where none).
+            if constexpr (model::system::has_projection<M>::value) {
+                const typename M::State y0 = start.head<n>();
+                const double delta = kRoot3Eps * std::max(y0.norm(), 1.0);
+                typename M::State plus = y0 + delta * unit, minus = y0 - delta * unit;
+                m.project(plus);
+                m.project(minus);
+                unit = (plus - minus) / (2.0 * delta);
+            }
             start.segment<n>(n * static_cast<Eigen::Index>(1 + j)) = unit;
         } else {
             const M* plus = c.plus ? std::get_if<M>(c.plus) : nullptr;
@@ -60,14 +74,28 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     }
     const model::Variational<M> system(m, std::move(varied));
     const std::vector<double> times = integrate::output_times(options, t0, t1);
-    integrate::VariationalRun run = integrate::variational_dop853(
-        [&](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) { system.rhs(t, y, dy); },
-        [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start, t1, times, atol, options, control);
+    auto rate = [&](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) { system.rhs(t, y, dy); };
+    integrate::VariationalRun run;
+    if (options.method == integrate::Method::CvodeBdf) {
+        // Newton's matrix from the model's analytic ∂f/∂y where it gives one (block diagonal)
+        auto block_jacobian = [&](double t, const Eigen::Map<const Eigen::VectorXd>& y, Eigen::MatrixXd& J) {
+            if constexpr (model::system::has_jacobian<M>::value) {
+                model::system::Jacobian<M> j;
+                m.jacobian(t, typename M::State(y.head<n>()), j);
+                J = j;
+            }
+        };
+        run = integrate::variational_bdf(rate, model::system::has_jacobian<M>::value ? &block_jacobian : nullptr, n, t0,
+                                         start, t1, times, atol, options, control);
+    } else {
+        run = integrate::variational_dop853(rate, [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start,
+                                            t1, times, atol, options, control);
+    }
 
     SensitivityRun out;
     integrate::Result& r = out.result;
     integrate::describe<M>(r, &m);
-    r.method = integrate::method_name(integrate::Method::Dop853);
+    r.method = integrate::method_name(options.method);
     r.methods_used = {r.method};
     r.options = options;
     r.stats = run.stats;
@@ -80,7 +108,6 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     r.outputs.reserve(rows * n_out);
     out.state.reserve(rows * n * columns.size());
     out.outputs.reserve(rows * n_out * columns.size());
-    constexpr double kRoot3Eps = 6.0554544523933395e-06;  // ε^{1/3}: a central difference's best step
     for (std::size_t k = 0; k < rows; ++k) {
         const Eigen::VectorXd& Y = run.state[k];
         const typename M::State y = Y.head<n>();
@@ -139,9 +166,9 @@ SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<Sens
                                    const Eigen::VectorXd& y0, double t1, const integrate::Options& options,
                                    const integrate::Control* control) {
     integrate::validate(options, t0, t1);
-    if (options.method != integrate::Method::Dop853)
-        throw std::invalid_argument(std::string("sensitivities are integrated by dop853 (the variational equations on the "
-                                                "whole augmented state), not by method '") +
+    if (options.method != integrate::Method::Dop853 && options.method != integrate::Method::CvodeBdf)
+        throw std::invalid_argument(std::string("sensitivities are integrated by dop853 or cvode_bdf (the variational "
+                                                "equations on the whole augmented state), not by method '") +
                                     integrate::method_name(options.method) + "'");
     if (!options.events.empty() || options.dense_output || options.every_step)
         throw std::invalid_argument("sensitivities are recorded at the output times (t_eval or n_out): events, "
@@ -158,6 +185,32 @@ SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<Sens
             }
         },
         model);
+}
+
+std::vector<SensitivityRun> solve_sensitivities_ensemble(const std::vector<const AnyModel*>& models,
+                                                         const std::vector<std::vector<SensitivityColumn>>& columns,
+                                                         const std::vector<Eigen::VectorXd>& y0s, double t0, double t1,
+                                                         const integrate::Options& options, int threads,
+                                                         const integrate::Control* control) {
+    const std::size_t n = y0s.size();
+    if (models.empty() || columns.empty()) throw std::invalid_argument("solve_sensitivities_ensemble: no model or no columns given");
+    if ((models.size() != 1 && models.size() != n) || (columns.size() != 1 && columns.size() != n))
+        throw std::invalid_argument("solve_sensitivities_ensemble: " + std::to_string(models.size()) + " models and " +
+                                    std::to_string(columns.size()) + " column sets for " + std::to_string(n) +
+                                    " initial states (give 1 or " + std::to_string(n) + " of each)");
+    std::vector<SensitivityRun> runs(n);
+    std::vector<integrate::Result> results = run_ensemble(
+        n,
+        [&](std::size_t i, const integrate::Control* member) {
+            SensitivityRun run = solve_sensitivities(*models[models.size() == 1 ? 0 : i], columns[columns.size() == 1 ? 0 : i],
+                                                     t0, y0s[i], t1, options, member);
+            runs[i].state = std::move(run.state);
+            runs[i].outputs = std::move(run.outputs);
+            return std::move(run.result);
+        },
+        threads, control);
+    for (std::size_t i = 0; i < n; ++i) runs[i].result = std::move(results[i]);
+    return runs;
 }
 
 }  // namespace gyrostat

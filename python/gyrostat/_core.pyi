@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_sensitivities', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector']
 class Body:
     """
     A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -2528,9 +2528,13 @@ def solve(model: Model, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64]
     ...
 def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1, batch: bool = True) -> list[Result]:
     ...
-def solve_sensitivities(model: Model, columns: collections.abc.Sequence[tuple], y0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> tuple[Result, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+def solve_sensitivities(model: Model, columns: collections.abc.Sequence[tuple], y0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> tuple:
     """
     The run with its forward sensitivities (the variational equations by DOP853): (Result, d state / d column [time, component, column], d outputs / d column [time, output, column]). A column is (component, None, None, 0, atol) for an initial component, (-1, model with the parameter + step, model with it - step, step, atol) for a parameter.
+    """
+def solve_sensitivities_ensemble(models: collections.abc.Sequence[Model], columns: collections.abc.Sequence[collections.abc.Sequence[tuple]], y0s: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> list:
+    """
+    solve_sensitivities for every member on a pool of threads (models and column sets: one, or one per member); a list of (Result, d state, d outputs), a member with bad input with status invalid_input and empty arrays.
     """
 def summaries(results: list, state_names: collections.abc.Sequence[str], output_names: collections.abc.Sequence[str], extrema: bool = False) -> dict:
     """

@@ -11,6 +11,7 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat import progress as _bars
+from gyrostat import sensitivity as _sensitivity
 from gyrostat.answer import accuracy_asked, attach, checked, estimate_mode, measured
 from gyrostat.arguments import flag, floats, shown
 from gyrostat.modelbase import ModelBase, core_of
@@ -26,7 +27,7 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
                    splitting_order: int | None = None, options: Options | None = None,
                    events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
                    check_validity: bool = True, batch: bool = True, accuracy: float | None = None,
-                   error_estimate: bool | str = True) -> list[Solution]:
+                   error_estimate: bool | str = True, sensitivities: str | list[str] | None = None) -> list[Solution]:
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
 
     ``models`` is one model for every member or a sequence of N (different parameters, or
@@ -104,6 +105,9 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         whose measured error still exceeds it run again, tighter); each member's own estimate.
     error_estimate : bool or "full", optional
         As in :func:`solve`: each member's measured error (``error_estimate``), default True.
+    sensitivities : str or list of str, optional
+        As in :func:`solve`: each member's derivatives with respect to these names (its own
+        parameters moved on its own model), ``solutions[i].sensitivity(name)``.
 
     Returns
     -------
@@ -127,25 +131,28 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     check_validity = flag(check_validity, "check_validity")
     models, results, estimates = ensemble_results(
         models, y0s, t_span, threads=threads, **given, options=options, events=events, dense_output=dense_output,
-        progress=progress, batch=batch, accuracy=accuracy, error_estimate=error_estimate)
+        progress=progress, batch=batch, accuracy=accuracy, error_estimate=error_estimate, sensitivities=sensitivities)
     solutions = [attach(Solution(r, models[0] if len(models) == 1 else models[i]), e)
                  for i, (r, e) in enumerate(zip(results, estimates))]
+    for solution, found in zip(solutions, getattr(results, "sensitivities", ())):
+        _sensitivity.attach(solution, *found)
     return [checked(s, s.model, check_validity) if s.success or s.accuracy_warnings else s for s in solutions]
 
 
 def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
                       n_out=None, every_step=None, max_steps=None, first_step=None, max_step=None, step=None,
                       splitting_order=None, options=None, events=None, dense_output=False, progress=None,
-                      batch=True, accuracy=None, error_estimate=False) -> tuple[list, list, list]:
+                      batch=True, accuracy=None, error_estimate=False, sensitivities=None) -> tuple[list, list, list]:
     """:func:`solve_ensemble` up to the engine's results, without a :class:`Solution` per member:
     for callers that summarise many members at once (:func:`gyrostat.sweeps.solve_chunk`).
 
     Parameters
     ----------
     models, y0s, t_span, threads, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, \
-step, splitting_order, options, events, dense_output, progress, batch, accuracy, error_estimate
+step, splitting_order, options, events, dense_output, progress, batch, accuracy, error_estimate, sensitivities
         As in :func:`solve_ensemble` (which checks them the same way); ``error_estimate`` defaults
-        to False here.
+        to False here. With ``sensitivities``, the results are a
+        :class:`gyrostat.sensitivity.MemberResults` (each member's derivatives beside its Result).
 
     Returns
     -------
@@ -211,6 +218,19 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
         return _core.solve_ensemble(chosen, starts, t0, t_end, o, int(threads), None, batch=batch)
 
     try:
+        if sensitivities is not None:
+            _sensitivity.check(asked, opts)
+            if len(opts.events) or opts.dense_output:  # the engine's runs; the derivatives along them
+                results = _sensitivity.ensemble_along(models, cores, y0s, t0, opts, sensitivities,
+                                                      run(opts, t1, list(range(count))), events)
+            else:
+                results = _sensitivity.ensemble(models, cores, y0s, t0, t1, opts, sensitivities, int(threads), report)
+            estimates = [None] * count
+            if mode:
+                size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
+                estimates = measured(list(results), cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
+                                     None, True, size)[1]
+            return models, results, estimates
         if not mode and asked is None:
             return models, run(opts, t1, list(range(count))), [None] * count
         explicit = rtol is not None or atol is not None or step is not None or options is not None

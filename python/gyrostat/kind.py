@@ -257,6 +257,11 @@ ACCURACY = Field(float, default=None, check=positive,
                      "says so when it cannot; model = 'auto' takes the cheapest model whose measured error "
                      f"estimate is below it (left out: the runs keep rtol and atol, model = 'auto' takes "
                      f"{_ladder.ACCURACY:g}); each run reports its measured error either way")
+SENSITIVITIES = Field(ListOf(str, min_len=1), default=None,
+                      doc="forward sensitivities to integrate with each run (gyrostat.sensitivity): initial state "
+                          "components by name and parameters ('moments[0]', 'ViscousCavity.viscosity', "
+                          "'LinearDamping.matrix[0,1]', ...); written beside the state as d_<component>__d_<name> "
+                          "(method 'auto' then runs dop853, the one the variational equations take)")
 PHASE = Field(float, default=0.0, unit="rad", check=finite,
               doc="model = 'auto': the fast phase at which a switch up the ladder lifts the slow variables")
 
@@ -292,7 +297,7 @@ def integration_table(model: Field | None = None, *, rtol: Field = RTOL, atol: F
     fields["accuracy"] = ACCURACY
     if model is not None:
         fields["phase"] = PHASE
-    fields.update(method=METHOD, rtol=rtol, atol=atol, **own, n_out=n_out)
+    fields.update(method=METHOD, rtol=rtol, atol=atol, **own, n_out=n_out, sensitivities=SENSITIVITIES)
     if max_steps:
         fields["max_steps"] = MAX_STEPS
     if splitting:
@@ -371,6 +376,10 @@ def integration(doc: dict, kind: Kind, **extra) -> dict:
             raise SceneError(f"[integration] method = 'splitting' is not offered for {kind.name} scenes (their models "
                              f"do not split into the free-body flow and a perturbation; it is for {splits})")
         options.update(step=integ.get("step"), splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
+    if integ.get("sensitivities"):
+        options["sensitivities"] = list(integ["sensitivities"])
+        if options["method"] == "auto":
+            options["method"] = "dop853"
     if integ.get("accuracy") is not None:
         options["accuracy"] = integ["accuracy"]
         if isinstance(integ["rtol"], Unstated) and isinstance(integ["atol"], Unstated) and not integ.get("step"):

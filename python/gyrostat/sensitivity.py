@@ -49,14 +49,23 @@ def _moved(value, index: tuple, new: float):
     return [m for m in array] if array.ndim == 3 else array
 
 
-def _torque_parameters(torque) -> dict[str, tuple[float, float, Callable]]:
-    """A torque's stored parameters: suffix → (value, scale, rebuild(new value) → torque)."""
-    stored = [p["name"] for p in torque.parameters if p["stored"]]
+_STORED: dict[type, list[str]] = {}  # a torque type's stored parameters, read once from its declaration
+
+
+def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
+    """A torque's stored parameters (or the entry named ``only``, e.g. ``matrix[2,2]``): suffix →
+    (value, scale, rebuild(new value) → torque)."""
+    stored = _STORED.get(type(torque))
+    if stored is None:
+        stored = _STORED[type(torque)] = [p["name"] for p in torque.parameters if p["stored"]]
+    wanted, _, entry = (only or "").partition("[")
     made = {}
-    for name in stored:
+    for name in stored if only is None else [n for n in stored if n == wanted]:
         value = getattr(torque, name)
         scale = float(np.max(np.abs(value))) if np.size(value) else 0.0
         for suffix, index in _entries(value):
+            if only is not None and suffix != ("[" + entry if entry else ""):
+                continue
             def rebuild(new, name=name, value=value, index=index):
                 arguments = {p: getattr(torque, p) for p in stored}
                 arguments[name] = _moved(value, index, new)
@@ -65,9 +74,10 @@ def _torque_parameters(torque) -> dict[str, tuple[float, float, Callable]]:
     return made
 
 
-def parameters(model) -> dict[str, tuple[float, float, Callable]]:
-    """Every parameter a model offers: name → (value, its scale, rebuild(new value) → the model
-    with that parameter changed). Empty for a model that cannot be rebuilt (a closed form)."""
+def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
+    """Every parameter a model offers (or those of the one named ``only``, made alone): name →
+    (value, its scale, rebuild(new value) → the model with that parameter changed). Empty for a
+    model that cannot be rebuilt (a closed form)."""
     arguments = getattr(model, "_arguments", None)
     if arguments is None:
         return {}
@@ -77,8 +87,9 @@ def parameters(model) -> dict[str, tuple[float, float, Callable]]:
     def rebuilt(**changes):
         return type(model)(**{**given, **changes})
 
+    selector, _, wanted_parameter = (only or "").partition(".")
     body = given.get("body")
-    if body is not None and body.principal:
+    if body is not None and body.principal and (only is None or only.startswith(("moments[", "rotor["))):
         for vector in ("moments", "rotor"):
             values = np.array(getattr(body, vector), dtype=float)
             for k in range(3):
@@ -92,9 +103,9 @@ def parameters(model) -> dict[str, tuple[float, float, Callable]]:
     torques = tuple(given.get("torques", ()))
     kinds = [type(t).__name__ for t in torques]
     for n, torque in enumerate(torques):
-        if kinds[n] == "CustomTorque":
+        if kinds[n] == "CustomTorque" or (only is not None and selector not in (f"torques[{n}]", kinds[n])):
             continue
-        for suffix, (value, scale, rebuild_torque) in _torque_parameters(torque).items():
+        for suffix, (value, scale, rebuild_torque) in _torque_parameters(torque, wanted_parameter or None).items():
             def rebuild(new, n=n, rebuild_torque=rebuild_torque):
                 changed = list(torques)
                 changed[n] = rebuild_torque(new)
@@ -102,7 +113,7 @@ def parameters(model) -> dict[str, tuple[float, float, Callable]]:
             made[f"torques[{n}].{suffix}"] = (value, scale, rebuild)
             if kinds.count(kinds[n]) == 1:
                 made[f"{kinds[n]}.{suffix}"] = (value, scale, rebuild)
-    for name in getattr(model, "_numbers", ()):
+    for name in getattr(model, "_numbers", ()) if only is None else [n for n in getattr(model, "_numbers", ()) if n == only]:
         value = float(given[name])
         made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}))
     return made
@@ -147,7 +158,6 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
     if not names:
         raise ValueError("sensitivities: give at least one name (a state component or a parameter)")
     states = list(model.state_names)
-    offered = None
     made = []
     for name in names:
         if not isinstance(name, str) or not _NAME.match(name.replace(" ", "")):
@@ -156,9 +166,9 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
         if name in states:
             made.append((states.index(name), None, None, 0.0, atol))
             continue
-        if offered is None:
-            offered = parameters(model)
+        offered = parameters(model, name)
         if name not in offered:
+            offered = parameters(model)
             raise ValueError(f"sensitivities: no parameter or state component {name!r} in this "
                              f"{type(model).__name__}; state: {', '.join(states)}; parameters: "
                              + (", ".join(offered) if offered else "none"))
@@ -175,6 +185,117 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
     return tuple(name.replace(" ", "") for name in names), made
 
 
-def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndarray) -> None:
-    """Gives a Solution its sensitivities (``Solution.sensitivity``)."""
-    solution._sensitivities = {name: (state[:, :, j], outputs[:, :, j]) for j, name in enumerate(names)}
+def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndarray, events=None) -> None:
+    """Gives a Solution its sensitivities (``Solution.sensitivity``); ``events[k]``: (occurrences,
+    columns) ∂t/∂p of event k's occurrences."""
+    solution._sensitivities = {name: (state[:, :, j], outputs[:, :, j],
+                                      None if events is None else [times[:, j] for times in events])
+                               for j, name in enumerate(names)}
+
+
+def along(core, columns_made: list, y0, t0: float, plain, opts, events, report) -> tuple:
+    """The sensitivities of a run made already (``plain``: its events and dense output the
+    engine's), at its output times and its events' times: (∂y/∂p, ∂outputs/∂p, per event the
+    (occurrences, columns) ∂t_event/∂p). The variational run goes to where ``plain`` stopped (a
+    terminal event), its output times those of ``plain`` and every event's.
+
+    An event g(t, y) = 0 at t_e moves with p as ∂t_e/∂p = −(∂g/∂y · S + ∂g/∂p) / (dg/dt) (the
+    implicit function theorem; dg/dt = ∂g/∂t + ∂g/∂y · f): for an event on a state component, g's
+    gradient is that component's row of S and dg/dt its rate; on a named output, its sensitivity
+    (explicit dependence on p included) and the central difference of the output along (1, f); on
+    a function of the user's, central differences of it along S_j and along (1, f)."""
+    from gyrostat.options import make_options  # (options are a floor below: imported where used)
+
+    occurrences = [np.asarray(t, dtype=float) for t in plain.t_events]
+    times = np.concatenate([np.asarray(plain.t, dtype=float)] + occurrences) if len(plain.t) or occurrences else np.zeros(0)
+    direction = 1.0 if plain.t_last >= t0 else -1.0
+    times = np.unique(times) if direction > 0 else -np.unique(-times)
+    made = make_options(opts)
+    made.events, made.dense_output, made.t_eval = [], False, times
+    end = float(plain.t_last) if np.isfinite(plain.t_last) else float(times[-1] if len(times) else t0)
+    result, state, outputs = _core.solve_sensitivities(core, columns_made, y0, t0, end, made, report)
+    if not result.success:
+        raise RuntimeError(f"the sensitivities' run did not reach t = {end!r} where the run with events stopped: "
+                           f"{result.message}")
+    reached = np.asarray(result.t)
+    rows = np.searchsorted(reached, plain.t) if direction > 0 else np.searchsorted(-reached, -np.asarray(plain.t))
+    listed = list(events) if isinstance(events, (list, tuple)) else [events]
+    derivatives = []
+    for k, when in enumerate(occurrences):
+        at = np.searchsorted(reached, when) if direction > 0 else np.searchsorted(-reached, -when)
+        derivatives.append(np.array([_event_time_derivative(core, listed[k] if k < len(listed) else None,
+                                                            reached[j], result.y[j], state[j], outputs[j])
+                                     for j in at]).reshape(len(when), len(columns_made)))
+    return state[rows], outputs[rows], derivatives
+
+
+def _event_time_derivative(core, event, t: float, y: np.ndarray, state: np.ndarray, outputs: np.ndarray) -> np.ndarray:
+    """∂t_e/∂p for every column at one occurrence (NaN for an engine event given as it is)."""
+    from gyrostat.events import Event
+
+    rate = np.asarray(core.rhs(t, y), dtype=float)
+    delta = STEP * max(float(np.linalg.norm(y)), 1e-300) / max(float(np.linalg.norm(rate)), 1e-300)
+    if isinstance(event, Event) and event.quantity in core.state_names:
+        index = list(core.state_names).index(event.quantity)
+        gradient, change = state[index], rate[index]
+    elif isinstance(event, Event):
+        index = list(core.output_names).index(event.quantity)
+        gradient = outputs[index]
+        change = (core.outputs_at(t + delta, y + delta * rate)[index]
+                  - core.outputs_at(t - delta, y - delta * rate)[index]) / (2 * delta)
+    elif callable(event):
+        gradient = np.empty(state.shape[1])
+        for j in range(state.shape[1]):
+            s = state[:, j]
+            step = STEP * max(float(np.linalg.norm(y)), 1e-300) / max(float(np.linalg.norm(s)), 1e-300)
+            gradient[j] = (event(t, y + step * s) - event(t, y - step * s)) / (2 * step) if np.any(s) else 0.0
+        change = (event(t + delta, y + delta * rate) - event(t - delta, y - delta * rate)) / (2 * delta)
+    else:
+        return np.full(state.shape[1], np.nan)
+    return -np.asarray(gradient, dtype=float) / change
+
+
+def check(asked, opts) -> None:
+    """What a run with sensitivities cannot take, refused by name (the accuracy contract, another method)."""
+    if asked is not None:
+        raise ValueError("sensitivities are integrated at the rtol and atol given (the variational equations by "
+                         "dop853): the accuracy contract does not choose them yet; give rtol instead of accuracy")
+    if opts.method not in ("dop853", "cvode_bdf"):
+        raise ValueError(f"sensitivities are integrated by dop853 or cvode_bdf (the variational equations), not by "
+                         f"method {opts.method!r}: leave method out (dop853), or give 'cvode_bdf' for a stiff model")
+
+
+class MemberResults(list):
+    """The members' engine Results (a list, as :func:`gyrostat.solve.ensemble_results` gives them),
+    with each member's sensitivities beside: ``sensitivities[i]`` = (names, ∂y/∂p, ∂outputs/∂p),
+    the arrays [time, component, column]."""
+
+    sensitivities: list
+
+
+def ensemble(models, cores, y0s, t0, t1, opts, names, threads: int, report) -> MemberResults:
+    """Every member's run with its sensitivities (``_core.solve_sensitivities_ensemble``), each
+    member's parameters moved on its own model."""
+    made = [columns(model, names, opts.atol) for model in models]
+    runs = _core.solve_sensitivities_ensemble(cores, [c for _, c in made], y0s, t0, t1, opts, threads, report)
+    results = MemberResults(result for result, _, _ in runs)
+    results.sensitivities = [(made[0][0], state, outputs) for _, state, outputs in runs]
+    return results
+
+
+def ensemble_along(models, cores, y0s, t0, opts, names, plain: list, events) -> MemberResults:
+    """Every member's sensitivities along its run made already (with events or dense output:
+    :func:`along`, one member after another); a member whose run failed has none (empty arrays)."""
+    results = MemberResults(plain)
+    results.sensitivities = []
+    for i, result in enumerate(plain):
+        model, core = (models[0], cores[0]) if len(models) == 1 else (models[i], cores[i])
+        names_made, made = columns(model, names, opts.atol)
+        if result.success:
+            state, outputs, times = along(core, made, y0s[i], t0, result, opts, events, None)
+        else:
+            state, outputs = np.zeros((0, core.dim, len(made))), np.zeros((0, len(core.output_names), len(made)))
+            times = [np.zeros((0, len(made))) for _ in result.t_events]
+        results.sensitivities.append((names_made, state, outputs, times))
+    return results
+

@@ -6,9 +6,17 @@ quaternion and its Euler angles. Made from what the Solution holds, without phys
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 _RATES = ("p", "q", "r")
+
+
+def sensitivity_column(quantity: str, name: str) -> str:
+    """The column of ∂quantity/∂name in files and Datasets: ``d_<quantity>__d_<name>``, the name's
+    brackets and commas as underscores (``LinearDamping.matrix[0,1]`` → ``LinearDamping.matrix_0_1``)."""
+    return f"d_{quantity}__d_" + re.sub(r"[^0-9A-Za-z_.]+", "_", name).strip("_")
 
 
 class SolutionViews:
@@ -42,7 +50,7 @@ class SolutionViews:
         found = getattr(self, "_sensitivities", None)
         return tuple(found) if found else ()
 
-    def sensitivity(self, name: str, of: str | None = None) -> np.ndarray:
+    def sensitivity(self, name: str, of: str | None = None, event: int | None = None) -> np.ndarray:
         """∂y(t)/∂``name`` at every output time.
 
         Parameters
@@ -52,11 +60,15 @@ class SolutionViews:
             (:mod:`gyrostat.sensitivity`).
         of : str, optional
             A state component or a named output: that quantity's derivative alone.
+        event : int, optional
+            The derivative of event ``event``'s times instead (one per occurrence, as
+            :attr:`t_events` holds them): ∂t_event/∂``name``.
 
         Returns
         -------
         numpy.ndarray
-            (n, dim) in the state's order; (n,) with ``of``. KeyError for a name the run does not carry.
+            (n, dim) in the state's order; (n,) with ``of``; (occurrences,) with ``event``. KeyError
+            for a name the run does not carry.
 
         Examples
         --------
@@ -72,7 +84,11 @@ class SolutionViews:
         if name not in found:
             raise KeyError(f"no sensitivity {name!r} in this run (it carries: {', '.join(found) or 'none'}; "
                            "ask for it with solve(..., sensitivities=[...]))")
-        state, outputs = found[name]
+        state, outputs, events = found[name]
+        if event is not None:
+            if events is None or not 0 <= event < len(events):
+                raise KeyError(f"no event {event!r} in this run's sensitivities ({len(events or ())} events)")
+            return events[event]
         if of is None:
             return state
         if of in self.state_names:
@@ -96,6 +112,9 @@ class SolutionViews:
         units = {"t": "s", **dict(zip(r.state_names, r.state_units)), **dict(zip(r.output_names, r.output_units))}
         if self.rung is not None:
             units["rung"] = "1"
+        for name in self.sensitivities:
+            units.update({sensitivity_column(c, name): f"{units[c]} per unit of {name}"
+                          for c in (*r.state_names, *r.output_names)})
         return units
 
     @property
@@ -124,6 +143,9 @@ class SolutionViews:
         columns.update(self.outputs)
         if self.rung is not None:
             columns["rung"] = self.rung
+        for name, (state, outputs, _) in (getattr(self, "_sensitivities", None) or {}).items():
+            columns.update({sensitivity_column(c, name): state[:, i] for i, c in enumerate(self._result.state_names)})
+            columns.update({sensitivity_column(o, name): outputs[:, i] for i, o in enumerate(self._result.output_names)})
         return columns
 
     @property

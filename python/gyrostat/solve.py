@@ -43,18 +43,18 @@ def _continuation(previous: Solution, t0, opts: Options, first_step) -> tuple[np
     return previous.y_last, opts
 
 
-def _with_sensitivities(model, core, y0, t0, t1, opts, names, asked, mode, report, check_validity) -> Solution:
+def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mode, report, check_validity) -> Solution:
     """A run with its forward sensitivities (:mod:`gyrostat.sensitivity`), its error estimate
     measured on the state as a plain run's."""
-    if asked is not None:
-        raise ValueError("sensitivities are integrated at the rtol and atol given (the variational equations by "
-                         "dop853): the accuracy contract does not choose them yet; give rtol instead of accuracy")
-    if opts.method != "dop853":
-        raise ValueError(f"sensitivities are integrated by dop853 (the variational equations), not by method "
-                         f"{opts.method!r}: leave method out or give 'dop853'")
+    _sensitivity.check(asked, opts)
     names, columns = _sensitivity.columns(model, names, opts.atol)
     try:
-        result, state, outputs = _core.solve_sensitivities(core, columns, y0, t0, t1, opts, report)
+        event_times = None
+        if len(opts.events) or opts.dense_output:  # the answer is the engine's run; the derivatives along it
+            result = _core.solve(core, y0, t0, t1, opts, report)
+            state, outputs, event_times = _sensitivity.along(core, columns, y0, t0, result, opts, events, report)
+        else:
+            result, state, outputs = _core.solve_sensitivities(core, columns, y0, t0, t1, opts, report)
         estimate = None
         if mode and t1 != t0 and result.success:
             estimate = measured([result], [core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
@@ -63,7 +63,7 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, asked, mode, repor
         if report is not None:
             _bars.close(report)
     solution = Solution(result, model)
-    _sensitivity.attach(solution, names, state, outputs)
+    _sensitivity.attach(solution, names, state, outputs, event_times)
     if estimate is not None:
         attach(solution, estimate)
     return checked(solution, model, check_validity)
@@ -169,9 +169,10 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         respect to initial state components (by their names) and parameters (``"moments[0]"``,
         ``"LinearDamping.matrix[0,0]"``, ``"ViscousCavity.viscosity"``, …:
         :func:`gyrostat.sensitivity.parameter_names`), read with ``solution.sensitivity(name)``.
-        Integrated by dop853 on the variational equations at the rtol and atol given (each
-        sensitivity's error controlled with the state's); not with ``accuracy``, events, dense
-        output or another method (a ValueError says so).
+        Integrated by dop853 (or ``method="cvode_bdf"`` for a stiff model) on the variational
+        equations at the rtol and atol given (each sensitivity's error controlled with the
+        state's); with ``events``, ``solution.sensitivity(name, event=k)`` gives the event times'
+        derivatives. Not with ``accuracy`` or another method (a ValueError says so).
     check_validity : bool, optional
         For an averaged model, check its assumptions along the solution; broken ones are warned
         about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.
@@ -228,7 +229,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         raise TypeError(f"compare must be a callable solution -> (n, m) array, not {type(compare).__name__}")
     asked = accuracy_asked(accuracy) if accuracy is not None else None
     if sensitivities is not None:
-        return _with_sensitivities(model, core, y0, t0, t1, opts, sensitivities, asked, mode, report, check_validity)
+        return _with_sensitivities(model, core, y0, t0, t1, opts, sensitivities, events, asked, mode, report,
+                                   check_validity)
     try:
         if asked is None:
             result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates

@@ -136,14 +136,24 @@ struct SensitivityRun {
     std::vector<double> outputs;
 };
 /// Solves `model` from (t0, y0) to t1 together with its variational equations for each column
-/// (model/variational.hpp) by DOP853 on the whole augmented state (integrate/variational.hpp;
-/// options.method must be dop853; events, dense output and every_step are not offered). The
+/// (model/variational.hpp) by DOP853 or CVODE's BDF on the whole augmented state
+/// (integrate/variational.hpp, variational_bdf.hpp; options.method dop853 or cvode_bdf; events,
+/// dense output and every_step are not offered: the Python layer runs them on the plain run). The
 /// outputs' sensitivities: central differences of the model's outputs along each column at each
 /// output time. Bad input throws std::invalid_argument naming it (a closed-form model, a column's
 /// model of another type, a component outside the state, a step that is not finite and > 0).
 SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<SensitivityColumn>& columns, double t0,
                                    const Eigen::VectorXd& y0, double t1, const integrate::Options& options,
                                    const integrate::Control* control = nullptr);
+
+/// Member i solves models[i] (or models[0]) with columns[i] (or columns[0]) from (t0, y0s[i]) to t1
+/// as solve_sensitivities does, on `threads` threads (ensemble.hpp: run_ensemble; a member with bad
+/// input gets status InvalidInput and empty sensitivities, the others run).
+std::vector<SensitivityRun> solve_sensitivities_ensemble(const std::vector<const AnyModel*>& models,
+                                                         const std::vector<std::vector<SensitivityColumn>>& columns,
+                                                         const std::vector<Eigen::VectorXd>& y0s, double t0, double t1,
+                                                         const integrate::Options& options, int threads = 0,
+                                                         const integrate::Control* control = nullptr);
 
 /// The integration of one model type: the whole engine (every method) instantiated for it. Each
 /// alternative of AnyModel is instantiated in the translation unit src/solve_models.cpp

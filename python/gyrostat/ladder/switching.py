@@ -216,6 +216,7 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
                            f"ladder's choice): not located" for e in missing]
         return solution
     kept.pop("accuracy", None)  # a switching run keeps the rungs' tolerances; its estimate is the model's
+    dropped = kept.pop("sensitivities", None)  # (not carried across a switch: said in the run's notes below)
     grid = np.asarray(options["t_eval"], float) if options.get("t_eval") is not None else np.linspace(t0, t1, n_out)
     # each rung's options made once per run, its events included (each segment sets its output times)
     opts = {False: make_options(**kept), True: make_options(**kept)}
@@ -254,9 +255,11 @@ def run(choice: Choice, span: tuple[float, float], options: dict, phase: float =
             wanted.record(top, rest, 0)
             switches.append((t, rung.name, top.name, f"more than {MAX_SWITCHES} switches: stays on the top"))
             break
-    if not switches and not wanted:
-        return segments[0][1]
-    return _join(rung, segments, switches, wanted)
+    made = segments[0][1] if not switches and not wanted else _join(rung, segments, switches, wanted)
+    if dropped:
+        made.notes.append(f"sensitivities {list(dropped)} not computed: a run that may switch between models (the "
+                          f"{rung.name} rung watches its assumptions) carries none; give model = 'full' for them")
+    return made
 
 
 def run_estimate(choice: Choice, solution: Solution) -> Solution:

@@ -17,6 +17,7 @@ from gyrostat.events import variable_name
 from gyrostat.kind import reusing
 from gyrostat.schema import SceneError
 from gyrostat.solution import Solution
+from gyrostat.solution_views import sensitivity_column
 from gyrostat.sweeps.plan import Plan
 
 STATS = ("steps", "rhs_evals", "rejected_steps", "jacobian_evals", "nonlinear_conv_failures")
@@ -42,6 +43,9 @@ def _blank(plan: Plan, count: int, trajectories: bool, extrema: tuple[str, ...])
     for name in extrema:
         arrays[f"min_{name}"] = np.full(count, np.nan)
         arrays[f"max_{name}"] = np.full(count, np.nan)
+    for name in plan.sensitivities:
+        for quantity in plan.names:
+            arrays[f"final_{sensitivity_column(quantity, name)}"] = np.full(count, np.nan)
     for label in plan.event_labels:
         arrays[f"first_{variable_name(label)}"] = np.full(count, np.nan)
         arrays[f"count_{variable_name(label)}"] = np.zeros(count, dtype=np.int64)
@@ -100,6 +104,8 @@ def _record_results(arrays: dict, rows: list[int], results: list, models: list, 
     than the plan's, and every member of a sweep that keeps trajectories or events, by
     :func:`_record`. Returns each member's first accuracy warning ("" for none)."""
     model_of = (lambda k: models[0]) if len(models) == 1 else models.__getitem__
+    for j, found in zip(rows, getattr(results, "sensitivities", ())):
+        _record_sensitivities(arrays, j, found, plan)
     if trajectories or plan.event_labels:
         for k, (j, r) in enumerate(zip(rows, results)):
             _record(arrays, j, Solution(r, model_of(k)), plan, trajectories, extrema)
@@ -123,6 +129,20 @@ def _record_results(arrays: dict, rows: list[int], results: list, models: list, 
             arrays[f"min_{name}"][chosen] = columns["min"][bulk, c]
             arrays[f"max_{name}"][chosen] = columns["max"][bulk, c]
     return columns["warning"]
+
+
+def _record_sensitivities(arrays: dict, j: int, found: tuple, plan: Plan) -> None:
+    """A member's derivatives of its final state and outputs (``found``: names, ∂y/∂p, ∂outputs/∂p
+    at its output times, as :class:`gyrostat.sensitivity.MemberResults` holds them)."""
+    names, state, outputs = found[:3]
+    if not len(state):
+        return
+    final = np.vstack([state[-1], outputs[-1]])  # (state + outputs, columns), in the plan's order
+    for c, name in enumerate(names):
+        for k, quantity in enumerate(plan.names[:len(final)]):
+            key = f"final_{sensitivity_column(quantity, name)}"
+            if key in arrays:
+                arrays[key][j] = final[k, c]
 
 
 def _put_values(arrays: dict, plan: Plan, drawn: list[tuple[float, ...]]) -> None:
@@ -196,7 +216,8 @@ def _members(plan: Plan, start: int, stop: int, trajectories: bool, extrema: tup
                 except (SceneError, ValueError) as error:
                     arrays["status"][j], arrays["message"][j] = "invalid_input", " ".join(str(error).split())
                     continue
-                options = tuple(sorted((k, v) for k, v in run.options.items() if k != "events"))
+                options = tuple(sorted((k, tuple(v) if isinstance(v, list) else v)  # (lists, e.g. sensitivities: as keys)
+                                       for k, v in run.options.items() if k != "events"))
                 key = (run.t_span, options, tuple(run.options.get("events", ())))
                 groups.setdefault(key, []).append((j, run))
     finally:

@@ -96,6 +96,7 @@ class Plan:
         self.output_names = tuple(base.model.output_names)
         self.units = base.model.units  # as the C++ model declares them
         self.event_labels = tuple(labels(base.options.get("events", ())))
+        self.sensitivities = tuple(base.options.get("sensitivities") or ())  # each member's d(final)/d(name)
         self.n_out = int(base.options.get("n_out", _core.Options().n_out))
         self.parameters = _parameters(vary)
         self._targets()  # every path checked now, before any member runs

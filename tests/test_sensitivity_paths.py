@@ -1,0 +1,144 @@
+"""Sensitivities on every path a user meets them: against heyoka's variational equations (a peer),
+through solve_ensemble (each member as its own run), with events (∂t_event/∂p against central
+differences of the event times), in a scene file's outputs and in a sweep's Dataset, and the
+inputs they refuse. tests/test_sensitivities.py checks the derivatives of every family."""
+
+import json
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gyrostat
+from gyrostat.events import Event
+
+DATA = Path(__file__).resolve().parent / "data"
+
+
+@pytest.mark.parametrize("case", ["free", "damped"])
+def test_against_heyoka_variational_equations(case):
+    """heyoka 7.13's var_ode_sys at its default tolerance (ε, order 20; checked in
+    tests/data/make_heyoka_sensitivities.py against an 80-bit run and 9-point differences to 3e-15)."""
+    data = json.loads((DATA / "heyoka_sensitivities.json").read_text())["cases"][case]
+    torques = [gyrostat.LinearDamping(matrix=data["D"])] if np.any(data["D"]) else []
+    model = gyrostat.Model(gyrostat.Body(data["moments"]), torques)
+    sol = gyrostat.solve(model, data["omega0"], (0.0, data["t"][-1]), t_eval=data["t"], rtol=1e-13, atol=1e-15,
+                         sensitivities=data["parameters"])
+    assert np.allclose(sol.y, data["y"], rtol=0, atol=1e-12)
+    for name in data["parameters"]:
+        reference = np.array(data["sensitivity"][name])
+        scale = np.max(np.abs(reference), axis=1, keepdims=True)
+        # the issue's 1e-10, relative to each vector's size: our run at rtol 1e-13 is good to ~1e-12, the
+        # parameter's central difference of the right-hand side is exact (affine) or ~1e-11 (the moments)
+        assert np.all(np.abs(sol.sensitivity(name) - reference) <= 1e-10 * scale), name
+
+
+def _cavity_model(viscosity=0.8):
+    body = gyrostat.Body([10.0, 10.0, 14.0])
+    return gyrostat.Model(body, [gyrostat.ViscousCavity(density=10.0, viscosity=viscosity, p0=0.02),
+                                 gyrostat.LinearDamping(diagonal=[0.0, 0.0, 0.02])])
+
+
+def test_ensemble_members_equal_their_single_runs():
+    model = _cavity_model()
+    names = ["ViscousCavity.viscosity", "p"]
+    y0s = np.array([[0.3, 0.0, 1.0], [0.2, 0.0, 1.0], [0.1, 0.05, 1.2]])
+    members = gyrostat.solve_ensemble([model, _cavity_model(0.9), model], y0s, (0.0, 50.0), n_out=6, rtol=1e-10,
+                                      sensitivities=names, threads=2)
+    for i, member in enumerate(members):
+        single = gyrostat.solve([model, _cavity_model(0.9), model][i], y0s[i], (0.0, 50.0), n_out=6, rtol=1e-10,
+                                sensitivities=names)
+        assert member.sensitivities == tuple(names)
+        for name in names:  # the same code on the same data: bit for bit
+            assert np.array_equal(member.sensitivity(name), single.sensitivity(name)), (i, name)
+        assert np.isfinite(member.error_estimate)
+
+
+def _event_times(viscosity, p0, events):
+    run = gyrostat.solve(_cavity_model(viscosity), [p0, 0.0, 1.0], (0.0, 200.0), n_out=6, rtol=1e-13, atol=1e-15,
+                         events=events)
+    return run.t_events
+
+
+def test_event_time_derivatives_against_central_differences():
+    events = [Event("nutation_angle", 0.1, direction=-1), Event("r", 0.9, terminal=True),
+              lambda t, y: y[0] - 0.05]
+    sol = gyrostat.solve(_cavity_model(), [0.3, 0.0, 1.0], (0.0, 200.0), n_out=6, rtol=1e-11, events=events,
+                         sensitivities=["ViscousCavity.viscosity", "p"])
+    assert sol.terminal_event == 1 and sol.t[-1] <= sol.t_events[1][0]
+    for name, value, step, at in (("ViscousCavity.viscosity", 0.8, 1e-5 * 0.8, lambda v: (v, 0.3)),
+                                  ("p", 0.3, 1e-6, lambda v: (0.8, v))):
+        plus, minus = _event_times(*at(value + step), events), _event_times(*at(value - step), events)
+        for k in range(3):
+            central = (np.asarray(plus[k]) - np.asarray(minus[k])) / (2 * step)
+            derivative = sol.sensitivity(name, event=k)
+            assert derivative.shape == central.shape == (len(sol.t_events[k]),)
+            # runs at rtol 1e-13 over steps of 1e-5 relative: the central differences hold ~1e-7 of the value
+            assert np.allclose(derivative, central, rtol=1e-6, atol=1e-6 * np.max(np.abs(central))), (name, k)
+
+
+def test_scene_files_and_sweeps_carry_them(tmp_path):
+    scene = (Path(gyrostat.__file__).parent / "scenes" / "forced_damped.toml").read_text()
+    scene = scene.replace("n_out = 2001", 'n_out = 21\nsensitivities = ["LinearDamping.matrix[0,0]", "p"]')
+    scene = scene.replace('plots = ["omega", "invariants", "euler_angles"]', "plots = []")
+    path = tmp_path / "forced.toml"
+    path.write_text(scene)
+    from gyrostat.runner import run_scene
+    run_scene(path, tmp_path / "out", progress=False)
+    saved = np.load(tmp_path / "out" / "forced" / "result.npz")
+    from gyrostat.scene import Scene
+    loaded = Scene.from_file(path)
+    run = loaded.runs[0]
+    direct = gyrostat.solve(run.model, run.y0, run.t_span, **run.options)
+    assert np.array_equal(saved["d_r__d_LinearDamping.matrix_0_0"], direct.sensitivity("LinearDamping.matrix[0,0]", of="r"))
+    assert np.array_equal(saved["d_kinetic_energy__d_p"], direct.sensitivity("p", of="kinetic_energy"))
+
+    from gyrostat import sweeps
+    plan = sweeps.Plan(path, {"torques[0].moment[2]": [0.05, 0.1]})
+    chunk = sweeps.solve_chunk(plan, 0, 2, trajectories=False)
+    again = gyrostat.solve(run.model, run.y0, run.t_span, **run.options)
+    # member 0 is the scene as written (moment[2] = 0.05): its final derivatives are the run's
+    assert chunk["final_d_r__d_p"][0] == again.sensitivity("p", of="r")[-1]
+    assert np.isfinite(chunk["final_d_nutation_angle__d_LinearDamping.matrix_0_0"]).all()
+
+
+def test_what_they_refuse():
+    model = _cavity_model()
+    with pytest.raises(ValueError, match="accuracy"):
+        gyrostat.solve(model, [0.3, 0.0, 1.0], (0.0, 10.0), accuracy=1e-6, sensitivities="p")
+    with pytest.raises(ValueError, match="closed form"):
+        gyrostat.solve(gyrostat.TorqueFreeModel(gyrostat.Body([1.0, 2.0, 3.0])), [0.3, 0.0, 1.0], (0.0, 10.0),
+                       sensitivities="p")
+    with pytest.raises(ValueError, match="asked twice"):
+        gyrostat.solve(model, [0.3, 0.0, 1.0], (0.0, 10.0), sensitivities=["p", "p"])
+    with pytest.raises(ValueError, match="'auto'"):
+        gyrostat.solve(model, [0.3, 0.0, 1.0], (0.0, 10.0), method="auto", sensitivities="p")
+    # a parameter whose move breaks the model's own rule is refused with the parameter named
+    averaged = gyrostat.lagrange.LagrangeAveraged(2.0, 1.0, 0.5, [gyrostat.LinearDamping(diagonal=[0.01, 0.01, 0.01])])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrostat.ValidityWarning)
+        with pytest.raises(ValueError, match=r"LinearDamping.matrix\[0,0\] = 0.01 cannot be moved"):
+            gyrostat.solve(averaged, [0.1, 0.0, 5.0, 1.0, 0.0, 0.0, 0.0], (0.0, 1.0),
+                           sensitivities="LinearDamping.matrix[0,0]")
+
+
+def test_bdf_on_a_stiff_moving_mass():
+    """The stiff moving mass of bench/auto_method.py (Ω = 100, λ = 2e4: |λ|·t ~ 1e5): cvode_bdf's
+    sensitivities against dop853's at a tight tolerance (which pays the stability limit but is
+    accurate) and against central differences of plain BDF runs."""
+    model = gyrostat.MovingMassModel(gyrostat.Body([4.0, 4.0, 2.0]), mass=1.0, arm=1.0, frequency=100.0,
+                                     damping=2e4)
+    y0 = [0.2, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    names = ["damping", "p"]
+    bdf = gyrostat.solve(model, y0, (0.0, 5.0), n_out=6, method="cvode_bdf", rtol=1e-9, atol=1e-12,
+                         sensitivities=names)
+    explicit = gyrostat.solve(model, y0, (0.0, 5.0), n_out=6, rtol=1e-11, atol=1e-14, sensitivities=names)
+    assert bdf.stats["steps"] < explicit.stats["steps"] / 5, "BDF is the method for this model"
+    for name, size in (("damping", 2e4), ("p", 0.2)):
+        for quantity in ("p", "q", "r", "kinetic_energy"):
+            # the change of the quantity for a relative change of the parameter, against the quantity's
+            # size: BDF's global error at rtol 1e-9 over this span is ~1e-7 of it (measured 2e-8)
+            scale = np.max(np.abs(explicit[quantity]))
+            change = size * (bdf.sensitivity(name, of=quantity) - explicit.sensitivity(name, of=quantity))
+            assert np.max(np.abs(change)) < 1e-6 * scale, (name, quantity)
