@@ -142,3 +142,29 @@ def test_bdf_on_a_stiff_moving_mass():
             scale = np.max(np.abs(explicit[quantity]))
             change = size * (bdf.sensitivity(name, of=quantity) - explicit.sensitivity(name, of=quantity))
             assert np.max(np.abs(change)) < 1e-6 * scale, (name, quantity)
+
+
+@pytest.mark.parametrize("method", ["dop853", "cvode_bdf"])
+def test_dense_output_carries_them(method):
+    """sol.sensitivity(name, t=...) between the output times, against a run with those times as its
+    outputs; the state's dense output (sol(t)) is the run's as before."""
+    model = gyrostat.Model(gyrostat.Body([1.0, 1.4, 2.1]), [gyrostat.ViscousCavity(density=1.0, viscosity=0.1, p0=0.5)],
+                           attitude=True)
+    names = ["ViscousCavity.viscosity", "q"]
+    middle = np.linspace(0.37, 19.6, 23)
+    rtol = 1e-10 if method == "dop853" else 1e-8
+    sol = gyrostat.solve(model, [0.15, 0.3, 1.0], (0.0, 20.0), n_out=5, rtol=rtol, atol=1e-12, method=method,
+                         dense_output=True, sensitivities=names)
+    there = gyrostat.solve(model, [0.15, 0.3, 1.0], (0.0, 20.0), t_eval=middle, rtol=rtol, atol=1e-12, method=method,
+                           sensitivities=names)
+    for name in names:
+        reference = there.sensitivity(name)
+        scale = np.max(np.abs(reference))
+        # two runs with different output grids take different steps (BDF's interpolant is of its own order):
+        # they agree to their tolerance's reach, ~100 rtol of the sensitivity's size
+        assert np.allclose(sol.sensitivity(name, t=middle), reference, rtol=0, atol=100 * rtol * scale), name
+        assert np.allclose(sol.sensitivity(name, t=sol.t), sol.sensitivity(name), rtol=0, atol=10 * rtol * scale), name
+        assert np.allclose(sol.sensitivity(name, of="r", t=middle), reference[:, 2], rtol=0, atol=100 * rtol * scale)
+    assert np.allclose(sol(middle)[:, :3], there.y[:, :3], rtol=0, atol=100 * rtol)
+    with pytest.raises(ValueError, match="dense_output=True"):
+        there.sensitivity(names[0], t=1.0)

@@ -117,6 +117,22 @@ std::vector<SensitivityColumn> sensitivity_columns(const std::vector<py::tuple>&
     }
     return columns;
 }
+using Times = py::array_t<double, py::array::c_style | py::array::forcecast>;
+/// The first `width` components of what a run's dense output keeps, at the times t: [time, width].
+py::array_t<double> dense_at(const integrate::Result& r, const Times& t, int width) {
+    if (!r.dense) throw py::value_error("this solution keeps no dense output: solve with dense_output=True");
+    py::array_t<double> out({static_cast<py::ssize_t>(t.size()), static_cast<py::ssize_t>(width)});
+    double* data = out.mutable_data();
+    const double* times = t.data();
+    {
+        py::gil_scoped_release release;
+        for (py::ssize_t i = 0; i < t.size(); ++i) {
+            const Eigen::VectorXd y = (*r.dense)(times[i]);
+            std::copy(y.data(), y.data() + width, data + i * width);
+        }
+    }
+    return out;
+}
 /// (Result, d state [time, component, column], d outputs [time, output, column]).
 py::tuple sensitivity_tuple(SensitivityRun run, std::size_t width) {
     const auto rows = static_cast<py::ssize_t>(run.result.t.size()), m = static_cast<py::ssize_t>(width);
@@ -305,21 +321,13 @@ Examples
         .def_readonly("terminal_event", &Result::terminal_event)
         .def_property_readonly("has_dense", [](const Result& r) { return static_cast<bool>(r.dense); })
         .def("dense",
-             [](const Result& r, py::array_t<double, py::array::c_style | py::array::forcecast> t) {
-                 if (!r.dense) throw py::value_error("this solution keeps no dense output: solve with dense_output=True");
-                 py::array_t<double> out({static_cast<py::ssize_t>(t.size()), static_cast<py::ssize_t>(r.dim)});
-                 double* data = out.mutable_data();
-                 const double* times = t.data();
-                 {
-                     py::gil_scoped_release release;
-                     for (py::ssize_t i = 0; i < t.size(); ++i) {
-                         const Eigen::VectorXd y = (*r.dense)(times[i]);
-                         std::copy(y.data(), y.data() + r.dim, data + i * r.dim);
-                     }
-                 }
-                 return out;
-             },
+             [](const Result& r, const Times& t) { return dense_at(r, t, r.dim); },
              py::arg("t"), "The solution at the times t (1-D), from each step's continuous extension.")
+        .def("dense_whole",
+             [](const Result& r, const Times& t) { return dense_at(r, t, r.dense ? r.dense->dim() : r.dim); },
+             py::arg("t"),
+             "Everything the dense output keeps at the times t: the state, then what a run integrated beside it "
+             "(a run with sensitivities: each sensitivity's column after the state, [time, (1 + columns) * dim]).")
         .def_readonly("stats", &Result::stats)
         .def_readonly("methods_used", &Result::methods_used,
                       "The integrators that carried the run, in order of first use.")

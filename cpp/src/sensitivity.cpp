@@ -3,10 +3,12 @@
 // integrates (a closed form has no right-hand side to vary).
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "gyrostat/engine.hpp"
 #include "gyrostat/ensemble.hpp"
+#include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/recorder.hpp"
 #include "gyrostat/integrate/variational.hpp"
 #include "gyrostat/integrate/variational_bdf.hpp"
@@ -75,6 +77,16 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     const model::Variational<M> system(m, std::move(varied));
     const std::vector<double> times = integrate::output_times(options, t0, t1);
     auto rate = [&](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy) { system.rhs(t, y, dy); };
+    // With dense output: the whole augmented state's, each block in the user's frame on evaluation
+    // (a direction converts as a state: the map is linear).
+    std::shared_ptr<integrate::DenseOutput> dense;
+    if (options.dense_output) {
+        dense = std::make_shared<integrate::DenseOutput>(static_cast<int>(start.size()), -1);
+        if (model::frame::rotated(m))
+            dense->set_transform([body = m.body(), blocks = 1 + width](double* y) {
+                for (Eigen::Index b = 0; b < blocks; ++b) model::frame::convert_state<M>(body, y + b * n, To::User);
+            });
+    }
     integrate::VariationalRun run;
     if (options.method == integrate::Method::CvodeBdf) {
         // Newton's matrix from the model's analytic ∂f/∂y where it gives one (block diagonal)
@@ -86,10 +98,10 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             }
         };
         run = integrate::variational_bdf(rate, model::system::has_jacobian<M>::value ? &block_jacobian : nullptr, n, t0,
-                                         start, t1, times, atol, options, control);
+                                         start, t1, times, atol, options, control, dense.get());
     } else {
         run = integrate::variational_dop853(rate, [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start,
-                                            t1, times, atol, options, control);
+                                            t1, times, atol, options, control, dense.get());
     }
 
     SensitivityRun out;
@@ -101,6 +113,7 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     r.stats = run.stats;
     r.status = run.status;
     r.message = run.message;
+    r.dense = dense;  // (its first block is the state: Result::dense evaluates it; the rest, dense_whole)
     constexpr int n_out = model::system::n_outputs<M>();
     const std::size_t rows = run.t.size();
     r.t = run.t;
@@ -170,9 +183,10 @@ SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<Sens
         throw std::invalid_argument(std::string("sensitivities are integrated by dop853 or cvode_bdf (the variational "
                                                 "equations on the whole augmented state), not by method '") +
                                     integrate::method_name(options.method) + "'");
-    if (!options.events.empty() || options.dense_output || options.every_step)
-        throw std::invalid_argument("sensitivities are recorded at the output times (t_eval or n_out): events, "
-                                    "dense_output and every_step are not offered with them");
+    if (!options.events.empty() || options.every_step)
+        throw std::invalid_argument("sensitivities are recorded at the output times (t_eval or n_out) and in the dense "
+                                    "output: events and every_step are not offered with them here (the Python layer "
+                                    "locates events on the plain run)");
     return std::visit(
         [&](const auto& m) -> SensitivityRun {
             using M = std::decay_t<decltype(m)>;

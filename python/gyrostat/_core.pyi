@@ -2213,6 +2213,10 @@ class Result:
         """
         The solution at the times t (1-D), from each step's continuous extension.
         """
+    def dense_whole(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Everything the dense output keeps at the times t: the state, then what a run integrated beside it (a run with sensitivities: each sensitivity's column after the state, [time, (1 + columns) * dim]).
+        """
     @property
     def dim(self) -> int:
         ...

@@ -220,7 +220,7 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
     try:
         if sensitivities is not None:
             _sensitivity.check(asked, opts)
-            if len(opts.events) or opts.dense_output:  # the engine's runs; the derivatives along them
+            if len(opts.events):  # the engine's runs, their events located there; the derivatives along them
                 results = _sensitivity.ensemble_along(models, cores, y0s, t0, opts, sensitivities,
                                                       run(opts, t1, list(range(count))), events)
             else:

@@ -185,18 +185,22 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
     return tuple(name.replace(" ", "") for name in names), made
 
 
-def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndarray, events=None) -> None:
+def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndarray, events=None, dense=None) -> None:
     """Gives a Solution its sensitivities (``Solution.sensitivity``); ``events[k]``: (occurrences,
-    columns) ∂t/∂p of event k's occurrences."""
+    columns) ∂t/∂p of event k's occurrences; ``dense``: the variational run's Result whose dense
+    output keeps them between the output times (``Result.dense_whole``: the state, then each
+    column's block)."""
     solution._sensitivities = {name: (state[:, :, j], outputs[:, :, j],
-                                      None if events is None else [times[:, j] for times in events])
+                                      None if events is None else [times[:, j] for times in events],
+                                      None if dense is None or not dense.has_dense else (dense, j))
                                for j, name in enumerate(names)}
 
 
 def along(core, columns_made: list, y0, t0: float, plain, opts, events, report) -> tuple:
     """The sensitivities of a run made already (``plain``: its events and dense output the
     engine's), at its output times and its events' times: (∂y/∂p, ∂outputs/∂p, per event the
-    (occurrences, columns) ∂t_event/∂p). The variational run goes to where ``plain`` stopped (a
+    (occurrences, columns) ∂t_event/∂p, the variational run's Result: its dense output with
+    ``dense_output``). The variational run goes to where ``plain`` stopped (a
     terminal event), its output times those of ``plain`` and every event's.
 
     An event g(t, y) = 0 at t_e moves with p as ∂t_e/∂p = −(∂g/∂y · S + ∂g/∂p) / (dg/dt) (the
@@ -211,7 +215,7 @@ def along(core, columns_made: list, y0, t0: float, plain, opts, events, report) 
     direction = 1.0 if plain.t_last >= t0 else -1.0
     times = np.unique(times) if direction > 0 else -np.unique(-times)
     made = make_options(opts)
-    made.events, made.dense_output, made.t_eval = [], False, times
+    made.events, made.t_eval = [], times  # (dense_output as asked: the sensitivities' own, between the outputs)
     end = float(plain.t_last) if np.isfinite(plain.t_last) else float(times[-1] if len(times) else t0)
     result, state, outputs = _core.solve_sensitivities(core, columns_made, y0, t0, end, made, report)
     if not result.success:
@@ -226,7 +230,7 @@ def along(core, columns_made: list, y0, t0: float, plain, opts, events, report) 
         derivatives.append(np.array([_event_time_derivative(core, listed[k] if k < len(listed) else None,
                                                             reached[j], result.y[j], state[j], outputs[j])
                                      for j in at]).reshape(len(when), len(columns_made)))
-    return state[rows], outputs[rows], derivatives
+    return state[rows], outputs[rows], derivatives, result
 
 
 def _event_time_derivative(core, event, t: float, y: np.ndarray, state: np.ndarray, outputs: np.ndarray) -> np.ndarray:
@@ -279,7 +283,7 @@ def ensemble(models, cores, y0s, t0, t1, opts, names, threads: int, report) -> M
     made = [columns(model, names, opts.atol) for model in models]
     runs = _core.solve_sensitivities_ensemble(cores, [c for _, c in made], y0s, t0, t1, opts, threads, report)
     results = MemberResults(result for result, _, _ in runs)
-    results.sensitivities = [(made[0][0], state, outputs) for _, state, outputs in runs]
+    results.sensitivities = [(made[0][0], state, outputs, None, result) for result, state, outputs in runs]
     return results
 
 
@@ -291,11 +295,12 @@ def ensemble_along(models, cores, y0s, t0, opts, names, plain: list, events) -> 
     for i, result in enumerate(plain):
         model, core = (models[0], cores[0]) if len(models) == 1 else (models[i], cores[i])
         names_made, made = columns(model, names, opts.atol)
+        dense = None
         if result.success:
-            state, outputs, times = along(core, made, y0s[i], t0, result, opts, events, None)
+            state, outputs, times, dense = along(core, made, y0s[i], t0, result, opts, events, None)
         else:
             state, outputs = np.zeros((0, core.dim, len(made))), np.zeros((0, len(core.output_names), len(made)))
             times = [np.zeros((0, len(made))) for _ in result.t_events]
-        results.sensitivities.append((names_made, state, outputs, times))
+        results.sensitivities.append((names_made, state, outputs, times, dense))
     return results
 

@@ -50,7 +50,7 @@ class SolutionViews:
         found = getattr(self, "_sensitivities", None)
         return tuple(found) if found else ()
 
-    def sensitivity(self, name: str, of: str | None = None, event: int | None = None) -> np.ndarray:
+    def sensitivity(self, name: str, of: str | None = None, event: int | None = None, t=None) -> np.ndarray:
         """∂y(t)/∂``name`` at every output time.
 
         Parameters
@@ -63,12 +63,15 @@ class SolutionViews:
         event : int, optional
             The derivative of event ``event``'s times instead (one per occurrence, as
             :attr:`t_events` holds them): ∂t_event/∂``name``.
+        t : float or array_like, optional
+            Times anywhere in the span instead of the output times (a run with
+            ``dense_output=True``: each step's continuous extension; state components only).
 
         Returns
         -------
         numpy.ndarray
-            (n, dim) in the state's order; (n,) with ``of``; (occurrences,) with ``event``. KeyError
-            for a name the run does not carry.
+            (n, dim) in the state's order; (n,) with ``of``; (occurrences,) with ``event``; (len(t),
+            dim) or (len(t),) with ``t``. KeyError for a name the run does not carry.
 
         Examples
         --------
@@ -84,7 +87,17 @@ class SolutionViews:
         if name not in found:
             raise KeyError(f"no sensitivity {name!r} in this run (it carries: {', '.join(found) or 'none'}; "
                            "ask for it with solve(..., sensitivities=[...]))")
-        state, outputs, events = found[name]
+        state, outputs, events, dense = found[name]
+        if t is not None:
+            if dense is None:
+                raise ValueError("this run keeps no dense output of its sensitivities: solve with dense_output=True")
+            if of is not None and of not in self.state_names:
+                raise ValueError(f"between the output times only the state's sensitivities are kept: {of!r} is not a "
+                                 f"state component ({', '.join(self.state_names)})")
+            result, j = dense
+            dim = len(self.state_names)
+            block = result.dense_whole(np.atleast_1d(np.asarray(t, dtype=float)))[:, dim * (1 + j):dim * (2 + j)]
+            return block if of is None else block[:, self.state_names.index(of)]
         if event is not None:
             if events is None or not 0 <= event < len(events):
                 raise KeyError(f"no event {event!r} in this run's sensitivities ({len(events or ())} events)")
@@ -143,7 +156,7 @@ class SolutionViews:
         columns.update(self.outputs)
         if self.rung is not None:
             columns["rung"] = self.rung
-        for name, (state, outputs, _) in (getattr(self, "_sensitivities", None) or {}).items():
+        for name, (state, outputs, *_) in (getattr(self, "_sensitivities", None) or {}).items():
             columns.update({sensitivity_column(c, name): state[:, i] for i, c in enumerate(self._result.state_names)})
             columns.update({sensitivity_column(o, name): outputs[:, i] for i, o in enumerate(self._result.output_names)})
         return columns

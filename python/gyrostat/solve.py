@@ -50,11 +50,13 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
     names, columns = _sensitivity.columns(model, names, opts.atol)
     try:
         event_times = None
-        if len(opts.events) or opts.dense_output:  # the answer is the engine's run; the derivatives along it
+        if len(opts.events):  # the answer is the engine's run, its events located there; the derivatives along it
             result = _core.solve(core, y0, t0, t1, opts, report)
-            state, outputs, event_times = _sensitivity.along(core, columns, y0, t0, result, opts, events, report)
+            state, outputs, event_times, variational = _sensitivity.along(core, columns, y0, t0, result, opts, events,
+                                                                          report)
         else:
-            result, state, outputs = _core.solve_sensitivities(core, columns, y0, t0, t1, opts, report)
+            variational, state, outputs = _core.solve_sensitivities(core, columns, y0, t0, t1, opts, report)
+            result = variational
         estimate = None
         if mode and t1 != t0 and result.success:
             estimate = measured([result], [core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
@@ -63,7 +65,7 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
         if report is not None:
             _bars.close(report)
     solution = Solution(result, model)
-    _sensitivity.attach(solution, names, state, outputs, event_times)
+    _sensitivity.attach(solution, names, state, outputs, event_times, variational)
     if estimate is not None:
         attach(solution, estimate)
     return checked(solution, model, check_validity)

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gyrostat/integrate/recorder.hpp"
 
@@ -61,6 +62,23 @@ struct NonlinearSolverDeleter {
 using Matrix = std::unique_ptr<_generic_SUNMatrix, MatrixDeleter>;
 using LinearSolver = std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter>;
 using NonlinearSolver = std::unique_ptr<_generic_SUNNonlinearSolver, NonlinearSolverDeleter>;
+
+/// The interpolant of a step that ended at t, h long, as monomials in s = (t' − t)/h for a
+/// DenseOutput: c_k = y⁽ᵏ⁾(t) hᵏ/k!, k = 0 … degree, `derivative(k)` giving y⁽ᵏ⁾(t) (null where the
+/// solver cannot: the polynomial stops there). Returns its degree.
+template <class Derivative>
+int step_polynomial(const Derivative& derivative, int degree, double h, std::size_t size, std::vector<double>& coefficients) {
+    coefficients.clear();
+    double factor = 1.0;
+    int k = 0;
+    for (; k <= degree; ++k) {
+        const double* d = derivative(k);
+        if (d == nullptr) break;
+        for (std::size_t i = 0; i < size; ++i) coefficients.push_back(d[i] * factor);
+        factor *= h / (k + 1);
+    }
+    return k - 1;
+}
 
 /// Throws std::runtime_error("<what> failed") when a SUNDIALS constructor returned null.
 template <class Pointer>

@@ -113,15 +113,13 @@ bool drive(const System& system, Stepper& stepper, N_Vector y, double t0, Record
             if (result.dense && t != t_before) {  // y(t') = Σ y⁽ᵏ⁾(t) (t' − t)ᵏ/k!, in s = (t' − t)/h
                 const double h = t - t_before;
                 std::vector<double> coefficients;
-                double factor = 1.0;
-                for (int k = 0; k <= stepper.degree(); ++k) {
-                    if (stepper.derivative(t, k, interpolated.get()) < 0) break;
-                    const double* d = N_VGetArrayPointer(interpolated.get());
-                    for (int i = 0; i < System::dim; ++i) coefficients.push_back(d[i] * factor);
-                    factor *= h / (k + 1);
-                }
-                result.dense->add(t_before, std::isnan(t_stop) ? t : t_stop, t, h,
-                                  static_cast<int>(coefficients.size()) / System::dim - 1, coefficients.data());
+                const int degree = step_polynomial(
+                    [&](int k) {
+                        return stepper.derivative(t, k, interpolated.get()) < 0 ? nullptr
+                                                                                 : N_VGetArrayPointer(interpolated.get());
+                    },
+                    stepper.degree(), h, System::dim, coefficients);
+                result.dense->add(t_before, std::isnan(t_stop) ? t : t_stop, t, h, degree, coefficients.data());
             }
             if (cursor.inside(t, t_stop, dense)) {  // a terminal event inside the step: outputs up to it, then stop
                 result.stats = stats();

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/dop853.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
@@ -34,12 +35,15 @@ struct VariationalRun {
 /// Integrates Y' = rhs(t, Y) from (t0, Y0) to t1, Y = (y, S_1, …, S_m) with blocks of `block`
 /// components, recording Y at `times` (in the run's direction, inside the span). `atol[b]` is
 /// block b's absolute tolerance (rtol is shared). `project(Y)` runs after each accepted step
-/// (the model's manifold, on y) and says whether the model has one. Fails as dop853 does (max_steps, a step below the resolution of t,
-/// a non-finite state) with the partial record and a message.
+/// (the model's manifold, on y) and says whether the model has one. With a `dense` output, every
+/// step's continuous extension goes into it (the whole augmented state). Fails as dop853 does
+/// (max_steps, a step below the resolution of t, a non-finite state) with the partial record and
+/// a message.
 template <class Rhs, class Project>
 VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen::Index block, double t0,
                                   Eigen::VectorXd y, double t1, const std::vector<double>& times,
-                                  const std::vector<double>& atol, const Options& options, const Control* control) {
+                                  const std::vector<double>& atol, const Options& options, const Control* control,
+                                  DenseOutput* dense = nullptr) {
     namespace tab = dop853_tableau;
     using namespace dop853_detail;
     const Eigen::Index size = y.size(), blocks = size / block;
@@ -89,6 +93,7 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
     std::array<Eigen::VectorXd, 8> c;
     for (Eigen::VectorXd& v : F) v.resize(size);
     for (Eigen::VectorXd& v : c) v.resize(size);
+    std::vector<double> coefficients(dense ? 8 * static_cast<std::size_t>(size) : 0);  // c_0 … c_7, for `dense`
     rhs(t, y, f);
     ++run.stats.rhs_evals;
     if (t0 == t1) return run;
@@ -175,8 +180,9 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
         ++run.stats.steps;
         run.stats.last_step = h_abs;
 
-        // The outputs inside the step, from the 7th-order dense output (its three extra stages).
-        if (next < times.size() && direction * (times[next] - t_new) <= 0.0) {
+        // The outputs inside the step, from the 7th-order dense output (its three extra stages);
+        // every step's, with a `dense` output.
+        if (dense || (next < times.size() && direction * (times[next] - t_new) <= 0.0)) {
             for (int s = tab::n_stages + 1; s < tab::n_stages_extended; ++s) compute_stage(s, h);
             run.stats.rhs_evals += tab::n_stages_extended - tab::n_stages - 1;
             F[0].noalias() = y_new - y;
@@ -189,6 +195,10 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
                 F[3 + r].noalias() = h * sum;
             }
             monomials(F, y, c.data());
+            if (dense) {
+                for (int r = 0; r < 8; ++r) std::copy(c[r].data(), c[r].data() + size, coefficients.data() + r * size);
+                dense->add(t, t_new, t, h, 7, coefficients.data());  // y(t + s h) = Σ c_r s^r
+            }
             while (next < times.size() && direction * (times[next] - t_new) <= 0.0) {
                 if (times[next] == t_new) {
                     record(t_new, y_new);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "gyrostat/integrate/control.hpp"
+#include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/integrate/options.hpp"
 #include "gyrostat/integrate/recorder.hpp"
 #include "gyrostat/integrate/sundials.hpp"
@@ -74,11 +75,13 @@ struct CvodeDeleter {
 
 /// Integrates Y' = rhs(t, Y) by CVODE's BDF from (t0, Y0) to t1, recording Y at `times` (as
 /// variational_dop853). `jacobian(t, Y, J)`, when not null, gives the model's ∂f/∂y at Y's first
-/// block (block × block).
+/// block (block × block). With a `dense` output, every step's interpolant goes into it (CVODE's
+/// Nordsieck polynomial, as sundials_driver.hpp keeps it).
 template <class Rhs, class BlockJacobian>
 VariationalRun variational_bdf(const Rhs& rhs, const BlockJacobian* jacobian, Eigen::Index block, double t0,
                                const Eigen::VectorXd& y0, double t1, const std::vector<double>& times,
-                               const std::vector<double>& atol, const Options& options, const Control* control) {
+                               const std::vector<double>& atol, const Options& options, const Control* control,
+                               DenseOutput* dense = nullptr) {
     using namespace sundials;
     const Eigen::Index size = y0.size();
     const double direction = t1 >= t0 ? 1.0 : -1.0;
@@ -124,6 +127,7 @@ VariationalRun variational_bdf(const Rhs& rhs, const BlockJacobian* jacobian, Ei
     };
     Ticker ticker(control, t0, t1);
     double t = t0;
+    std::vector<double> coefficients;
     while (true) {
         if (!ticker.keep_going(t)) {
             statistics();
@@ -140,6 +144,7 @@ VariationalRun variational_bdf(const Rhs& rhs, const BlockJacobian* jacobian, Ei
                           " before t1 = " + format_number(t1);
             return run;
         }
+        const double t_before = t;
         const int flag = CVode(mem, t1, y.get(), &t, CV_ONE_STEP);
         if (callbacks.error) std::rethrow_exception(callbacks.error);
         if (flag < 0) {
@@ -153,6 +158,14 @@ VariationalRun variational_bdf(const Rhs& rhs, const BlockJacobian* jacobian, Ei
             run.message = "CVODE (BDF, with the sensitivities) failed at t = " + format_number(t) + ": " +
                           (log.last_error.empty() ? std::string("flag ") + std::to_string(flag) : log.last_error);
             return run;
+        }
+        if (dense && t != t_before) {  // y(t') = Σ y⁽ᵏ⁾(t) (t' − t)ᵏ/k!, in s = (t' − t)/h
+            int order = 0;
+            CVodeGetLastOrder(mem, &order);
+            const int degree = step_polynomial(
+                [&](int k) { return CVodeGetDky(mem, t, k, at.get()) < 0 ? nullptr : N_VGetArrayPointer(at.get()); }, order,
+                t - t_before, static_cast<std::size_t>(size), coefficients);
+            dense->add(t_before, t, t, t - t_before, degree, coefficients.data());
         }
         while (next < times.size() && direction * (times[next] - t) <= 0.0) {
             check(CVodeGetDky(mem, times[next], 0, at.get()), "CVodeGetDky");
