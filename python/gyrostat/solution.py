@@ -76,6 +76,7 @@ class Solution(SolutionViews, SolutionJoin):
     __slots__ = {
         "_result": "the engine's result",
         "_sensitivities": "name → (∂y/∂p, ∂outputs/∂p) at the output times (gyrostat.sensitivity.attach)",
+        "_sensitivity_errors": "name → the sensitivity's measured relative error (gyrostat.sensitivity.measure)",
         "_columns": "name → (array, column), made on first look-up",
         "notes": """What the run says about its own answer (the splitting's chosen step and estimated
         error; every :class:`AccuracyWarning`), then remarks added after the run (assumptions

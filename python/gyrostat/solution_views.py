@@ -50,6 +50,20 @@ class SolutionViews:
         found = getattr(self, "_sensitivities", None)
         return tuple(found) if found else ()
 
+    @property
+    def sensitivity_errors(self) -> dict[str, float]:
+        """Each sensitivity's measured global error, relative to its largest size over the run (a
+        companion run at tighter tolerances: the basis is in :attr:`notes`); empty when not
+        measured (``error_estimate=False``).
+
+        Examples
+        --------
+        >>> run = gyrostat.solve(model, [0.1, 0.2, 1.0], (0.0, 1.0), rtol=1e-8, sensitivities="r")
+        >>> bool(run.sensitivity_errors["r"] < 1e-6)
+        True
+        """
+        return dict(getattr(self, "_sensitivity_errors", None) or {})
+
     def sensitivity(self, name: str, of: str | None = None, event: int | None = None, t=None) -> np.ndarray:
         """∂y(t)/∂``name`` at every output time.
 

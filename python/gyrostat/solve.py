@@ -64,8 +64,11 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
     finally:
         if report is not None:
             _bars.close(report)
+    errors = None
+    if mode and t1 != t0 and result.success:
+        errors = _sensitivity.measure([core], [columns], [y0], t0, t1, opts, [state], names)[0]
     solution = Solution(result, model)
-    _sensitivity.attach(solution, names, state, outputs, event_times, variational)
+    _sensitivity.attach(solution, names, state, outputs, event_times, variational, errors)
     if estimate is not None:
         attach(solution, estimate)
     return checked(solution, model, check_validity)
