@@ -226,16 +226,19 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
             else:
                 results = _sensitivity.ensemble(models, cores, y0s, t0, t1, opts, sensitivities, int(threads), report)
             estimates = [None] * count
-            if mode:
-                # each member's sensitivities measured as solve measures one run's (gyrostat.sensitivity.measure)
+            if mode:  # each member measured as solve measures one run with sensitivities
                 column_sets = [_sensitivity.columns(m, sensitivities, opts.atol)[1] for m in models]
                 found = results.sensitivities
-                errors = _sensitivity.measure(cores, column_sets, y0s, t0, t1, opts, [f[1] for f in found],
-                                              found[0][0] if found else (), int(threads))
+                names, states = (found[0][0] if found else ()), [f[1] for f in found]
+                if len(opts.events):  # plain answers: their states as every plain run's
+                    errors = _sensitivity.measure(cores, column_sets, y0s, t0, t1, opts, states, names, int(threads))
+                    size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
+                    estimates = measured(list(results), cores * count if len(cores) == 1 else cores, run, opts, t0, t1,
+                                         mode, None, True, size)[1]
+                else:  # the variational runs are the answers: one tighter variational run measures both
+                    estimates, errors = _sensitivity.estimates(cores, column_sets, y0s, t0, opts, list(results), states,
+                                                               names, int(threads))
                 results.sensitivities = [f + (e,) for f, e in zip(found, errors)]
-                size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
-                estimates = measured(list(results), cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
-                                     None, True, size)[1]
             return models, results, estimates
         if not mode and asked is None:
             return models, run(opts, t1, list(range(count))), [None] * count

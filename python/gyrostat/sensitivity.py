@@ -29,7 +29,7 @@ from collections.abc import Callable
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.accuracy import tighter
+from gyrostat.accuracy import span_estimates, tighter
 
 STEP = float(np.finfo(float).eps) ** (1.0 / 3.0)  # a central difference's best relative step
 PARAMETER_FLOOR = 1e-10
@@ -316,32 +316,63 @@ def ensemble_along(models, cores, y0s, t0, opts, names, plain: list, events) -> 
 def measure(cores, column_sets, y0s, t0: float, t1: float, opts, states, names, threads: int = 1) -> list:
     """Each run's sensitivities' global errors, measured: the same variational runs at tighter
     tolerances (:func:`gyrostat.accuracy.tighter`: rtol and atol ρ times smaller) at the same
-    output times, each sensitivity's largest difference over them relative to its largest size,
-    times the companion's gain ρ/(ρ−1) (the run's own error, the companion's being ρ^(order)
-    times smaller). A parameter's column is given at least PARAMETER_FLOOR: the central difference
-    of the right-hand side between the moved models is the same in both runs, and no companion
-    sees its error (measured against heyoka: up to 8.5e-11 for a moment of inertia at rtol 1e-10).
-    Per run: ({name: relative error (NaN: not measured)}, the basis in words)."""
+    output times (:func:`compared`). Per run: ({name: relative error (NaN: not measured)}, the
+    basis in words)."""
     made, gain, words = tighter(opts)
     if not np.isfinite(gain):
         return [({name: np.nan for name in names}, f"not measured: {words}")] * len(states)
     runs = _core.solve_sensitivities_ensemble(cores, column_sets, y0s, t0, t1, made, threads, None)
+    sets = column_sets * len(states) if len(column_sets) == 1 else column_sets
+    return [compared(names, columns_made, state, tight, gain, words)
+            for (_, tight, _), state, columns_made in zip(runs, states, sets)]
+
+
+def compared(names, columns_made, state, tight, gain: float, words: str) -> tuple[dict, str]:
+    """A run's sensitivities against its companion's (``tight``, rows from the same output times):
+    each one's largest difference relative to its largest size, times the companion's gain ρ/(ρ−1)
+    (the run's own error, the companion's being ρ^(order) times smaller). A parameter's column is
+    given at least PARAMETER_FLOOR: the central difference of the right-hand side between the moved
+    models is the same in both runs, and no companion sees its error (measured against heyoka: up to
+    8.5e-11 for a moment of inertia at rtol 1e-10)."""
     basis = (f"each against the same run with {words}, the largest difference over the output times relative to "
              f"the sensitivity's largest size, times {gain:.3g}; a parameter's at least {PARAMETER_FLOOR:g} (its "
              f"central difference of the right-hand side)")
-    measured = []
-    for (companion, tight, _), state, columns_made in zip(runs, states, column_sets * len(states)
-                                                          if len(column_sets) == 1 else column_sets):
-        rows = len(state)
-        errors = {}
-        for j, name in enumerate(names):
-            if len(tight) < rows or rows == 0:
-                errors[name] = np.nan
-                continue
-            size = max(float(np.max(np.abs(tight[:rows, :, j]))), 1e-300)
-            errors[name] = gain * float(np.max(np.abs(state[:, :, j] - tight[:rows, :, j]))) / size
-            if columns_made[j][0] < 0:
-                errors[name] = max(errors[name], PARAMETER_FLOOR)
-        measured.append((errors, basis))
-    return measured
+    rows = len(state)
+    errors = {}
+    for j, name in enumerate(names):
+        if tight is None or len(tight) < rows or rows == 0 or not np.isfinite(gain):
+            errors[name] = np.nan
+            continue
+        size = max(float(np.max(np.abs(tight[:rows, :, j]))), 1e-300)
+        errors[name] = gain * float(np.max(np.abs(state[:, :, j] - tight[:rows, :, j]))) / size
+        if columns_made[j][0] < 0:
+            errors[name] = max(errors[name], PARAMETER_FLOOR)
+    return errors, basis
 
+
+def estimates(cores, column_sets, y0s, t0: float, opts, results, states, names, threads: int = 1) -> tuple[list, list]:
+    """The errors of runs made with their sensitivities (the variational runs are the answers: their
+    states are more accurate than a plain run's at the same rtol, since each sensitivity's error is
+    controlled with the state's), from one companion each: the same variational run at tighter
+    tolerances over the whole span (:func:`gyrostat.accuracy.span_estimates`), which measures the
+    state (each run's Estimate) and the sensitivities (:func:`compared`). Returns (Estimates,
+    sensitivities' errors), per run."""
+    kept: dict = {}
+    one = len(cores) == 1
+
+    def runner(o, t_end, members):
+        runs = _core.solve_sensitivities_ensemble([cores[0 if one else m] for m in members],
+                                                  [column_sets[0 if one else m] for m in members],
+                                                  [y0s[m] for m in members], t0, t_end, o, threads, None)
+        kept.update(zip(members, runs))
+        return [run[0] for run in runs]
+
+    members = [i for i, r in enumerate(results) if r.success and len(r.t) and r.t_last != t0]
+    made_estimates: list = [None] * len(results)
+    spans = span_estimates(runner, [cores[0 if one else i] for i in range(len(results))], opts, list(results), members)
+    for m, e in zip(members, spans):
+        made_estimates[m] = e
+    _, gain, words = tighter(opts)
+    errors = [compared(names, column_sets[0 if one else i], states[i], kept[i][1] if i in kept else None, gain, words)
+              for i in range(len(results))]
+    return made_estimates, errors

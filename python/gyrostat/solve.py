@@ -44,8 +44,10 @@ def _continuation(previous: Solution, t0, opts: Options, first_step) -> tuple[np
 
 
 def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mode, report, check_validity) -> Solution:
-    """A run with its forward sensitivities (:mod:`gyrostat.sensitivity`), its error estimate
-    measured on the state as a plain run's."""
+    """A run with its forward sensitivities (:mod:`gyrostat.sensitivity`). Its errors measured: a run
+    with events is the engine's plain run (its state measured as every plain run's, its
+    sensitivities against a tighter variational run); otherwise the variational run is the answer,
+    and one tighter variational run over the whole span measures its state and its sensitivities."""
     _sensitivity.check(asked, opts)
     names, columns = _sensitivity.columns(model, names, opts.atol)
     try:
@@ -57,16 +59,16 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
         else:
             variational, state, outputs = _core.solve_sensitivities(core, columns, y0, t0, t1, opts, report)
             result = variational
-        estimate = None
-        if mode and t1 != t0 and result.success:
+        estimate = errors = None
+        if mode and t1 != t0 and result.success and event_times is not None:
             estimate = measured([result], [core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
                                 opts, t0, t1, mode, None, True, 0.0)[1][0]
+            errors = _sensitivity.measure([core], [columns], [y0], t0, t1, opts, [state], names)[0]
+        elif mode and t1 != t0 and result.success:
+            (estimate,), (errors,) = _sensitivity.estimates([core], [columns], [y0], t0, opts, [result], [state], names)
     finally:
         if report is not None:
             _bars.close(report)
-    errors = None
-    if mode and t1 != t0 and result.success:
-        errors = _sensitivity.measure([core], [columns], [y0], t0, t1, opts, [state], names)[0]
     solution = Solution(result, model)
     _sensitivity.attach(solution, names, state, outputs, event_times, variational, errors)
     if estimate is not None:
