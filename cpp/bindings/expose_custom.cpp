@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <functional>
 #include <tuple>
+#include <type_traits>
 #include <memory>
 #include <string>
 
@@ -138,8 +139,68 @@ std::string label_of(const py::handle& function, const py::object& name) {
     return py::str(py::type::of(function).attr("__name__"));
 }
 
-torque::Custom make_custom(const py::object& function, const py::object& jacobian, bool attitude, const py::object& name) {
-    const std::string label = label_of(function, name);
+/// What a CustomTorque was made from (torque::Custom::origin): the factory and its keyword
+/// arguments when it was given `parameters`, and the function and Jacobian the core calls. The
+/// last reference may go on any thread: the GIL is taken to release the objects.
+struct Origin {
+    py::object factory, jacobian_factory, function, jacobian;
+    py::dict arguments;
+    ~Origin() {
+        if (!Py_IsInitialized()) {  // at exit: leak rather than touch a finalised interpreter
+            factory.release(), jacobian_factory.release(), function.release(), jacobian.release(), arguments.release();
+            return;
+        }
+        py::gil_scoped_acquire gil;
+        factory = jacobian_factory = function = jacobian = py::object();
+        arguments = py::dict();
+    }
+};
+
+/// The origin's `part` (None, or an empty dict, for a torque made in C++ without one).
+template <class Part>
+py::object origin_part(const torque::Custom& x, Part Origin::*part) {
+    if (!x.origin) return std::is_same_v<Part, py::dict> ? py::object(py::dict()) : py::object(py::none());
+    return static_cast<const Origin*>(x.origin.get())->*part;
+}
+
+/// `parameters` as a dict of names (str) to the factories' keyword arguments (sensitivities move
+/// the numbers among them).
+py::dict named_arguments(const py::object& parameters, const std::string& what) {
+    if (!py::isinstance<py::dict>(parameters))
+        throw py::type_error(what + ": parameters must be a dict of names to values, got " + shown(parameters));
+    py::dict arguments;
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(parameters)) {
+        if (!py::isinstance<py::str>(key))
+            throw py::type_error(what + ": a parameter's name must be a str, got " + shown(py::reinterpret_borrow<py::object>(key)));
+        arguments[key] = value;
+    }
+    return arguments;
+}
+
+/// factory(**arguments), the factory checked to be a Python callable.
+py::object made_by(const py::object& factory, const py::dict& arguments, const std::string& what) {
+    if (is_low_level_callable(factory) || !PyCallable_Check(factory.ptr()))
+        throw py::type_error(what + ": with parameters, give a factory (a Python callable) that takes them as keyword "
+                             "arguments and returns the torque function (or its Jacobian), got " + shown(factory));
+    return factory(**arguments);
+}
+
+torque::Custom make_custom(const py::object& given_function, const py::object& given_jacobian, bool attitude,
+                           const py::object& name, const py::object& parameters) {
+    auto origin = std::make_shared<Origin>();
+    origin->arguments = parameters.is_none() ? py::dict() : named_arguments(parameters, "CustomTorque '" + label_of(given_function, name) + "'");
+    if (!parameters.is_none()) {
+        const std::string what = "CustomTorque '" + label_of(given_function, name) + "'";
+        origin->factory = given_function, origin->jacobian_factory = given_jacobian;
+        origin->function = made_by(given_function, origin->arguments, what);
+        origin->jacobian = given_jacobian.is_none() ? py::none() : made_by(given_jacobian, origin->arguments, what + " Jacobian");
+    } else {
+        origin->factory = origin->jacobian_factory = py::none();
+        origin->function = given_function, origin->jacobian = given_jacobian;
+    }
+    const py::object& function = origin->function;
+    const py::object& jacobian = origin->jacobian;
+    const std::string label = label_of(name.is_none() && !parameters.is_none() ? given_function : function, name);
     const std::string what = "CustomTorque '" + label + "'";
     const bool low_level = is_low_level_callable(function);
     if (!low_level && !PyCallable_Check(function.ptr()))
@@ -169,7 +230,9 @@ torque::Custom make_custom(const py::object& function, const py::object& jacobia
     } else {
         core = std::make_shared<PythonTorqueFunction>(function, jacobian, label);
     }
-    return torque::Custom(core, label, attitude);
+    torque::Custom custom(core, label, attitude);
+    custom.origin = std::move(origin);
+    return custom;
 }
 
 }  // namespace
@@ -248,6 +311,12 @@ attitude : bool
     The function takes the quaternion; only models with the attitude take the torque.
 name : str, optional
     The name in messages and the repr (default: the function's name).
+parameters : dict of str, optional
+    The torque's own parameters (numbers, or any value a factory takes). Then ``function`` (and ``jacobian``) are factories: called once
+    here as ``function(**parameters)``, they return the torque function (a Python callable or a
+    ``scipy.LowLevelCallable``) as above. Sensitivities (``gyrostat.solve(..., sensitivities=
+    ["CustomTorque.c"])``) move a number among them by calling the factory again, and take dM/dc
+    as a central difference quotient of the two torques made.
 
 Examples
 --------
@@ -255,9 +324,13 @@ Examples
 >>> drag = g.CustomTorque(lambda t, omega: -0.1 * omega, name="drag")
 >>> drag(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
 array([-0.1, -0. , -0. ])
+>>> def drag_with(c):
+...     return lambda t, omega: -c * omega
+>>> g.CustomTorque(drag_with, parameters={"c": 0.2}, name="drag")(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
+array([-0.2, -0. , -0. ])
 )doc");
     cls.def(py::init(&make_custom), py::arg("function"), py::arg("jacobian") = py::none(), py::kw_only(),
-             py::arg("attitude") = false, py::arg("name") = py::none())
+             py::arg("attitude") = false, py::arg("name") = py::none(), py::arg("parameters") = py::none())
         .def("__call__",
              [](const Custom& x, const py::object& t, const py::object& omega, const py::object& moments,
                 const py::object& quaternion) {
@@ -310,6 +383,55 @@ Examples
 >>> g.CustomTorque(lambda t, omega, q: -omega, attitude=True).attitude
 True
 )doc")
+        .def_property_readonly("function", [](const Custom& x) { return origin_part(x, &Origin::function); },
+                               R"doc(The torque function the core calls (made by the factory when the torque has
+parameters).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega: -0.3 * omega).function(0.0, 1.0)
+-0.3
+)doc")
+        .def_property_readonly("jacobian", [](const Custom& x) { return origin_part(x, &Origin::jacobian); },
+                               R"doc(The Jacobian dM/domega the core calls, or None (difference quotients).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda t, omega: -omega).jacobian is None
+True
+)doc")
+        .def_property_readonly("factory", [](const Custom& x) { return origin_part(x, &Origin::factory); },
+                               R"doc(The factory that made the function from ``arguments``, or None (a torque
+given without parameters).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> def drag_with(c):
+...     return lambda t, omega: -c * omega
+>>> g.CustomTorque(drag_with, parameters={"c": 0.2}).factory is drag_with
+True
+)doc")
+        .def_property_readonly("jacobian_factory", [](const Custom& x) { return origin_part(x, &Origin::jacobian_factory); },
+                               R"doc(The factory that made the Jacobian from ``arguments``, or None.
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda c: (lambda t, omega: -c * omega), parameters={"c": 0.2}).jacobian_factory is None
+True
+)doc")
+        .def_property_readonly("arguments", [](const Custom& x) { return py::dict(origin_part(x, &Origin::arguments)); },
+                               R"doc(The parameters the factories were called with (a dict; empty without parameters).
+
+Examples
+--------
+>>> import gyrostat as g
+>>> g.CustomTorque(lambda c: (lambda t, omega: -c * omega), parameters={"c": 0.2}).arguments
+{'c': 0.2}
+)doc")
         .def_property_readonly("vectorised", [](const Custom& x) { return x.function->vector_form().function != nullptr; },
                                R"doc(Whether the function is compiled with the vectorised signature (bool): then the
 ensembles' SIMD batches take its members.
@@ -340,7 +462,9 @@ Examples
 []
 )doc")
         .def("__repr__", [](const Custom& x) {
-            return "CustomTorque(" + x.label + (x.attitude ? ", attitude=True" : "") + ")";
+            const py::dict arguments = origin_part(x, &Origin::arguments);
+            return "CustomTorque(" + x.label + (x.attitude ? ", attitude=True" : "") +
+                   (arguments.empty() ? std::string() : ", parameters=" + std::string(py::str(arguments))) + ")";
         });
     cls.attr("kind") = std::string(Custom::name);
     cls.attr("description") = std::string(Custom::description);

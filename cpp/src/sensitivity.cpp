@@ -66,8 +66,11 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             varied[j] = {plus, minus, c.step};
             // The state the run starts from may depend on the parameter (an averaged model's slow
             // variables from the ω given): S_j(t0) = ∂y(t0)/∂p_j, by the same central difference.
-            start.segment<n>(n * static_cast<Eigen::Index>(1 + j)) =
-                (model::frame::initial_state(*plus, given) - model::frame::initial_state(*minus, given)) / (2.0 * c.step);
+            // (Each in this model's axes: a body's parameter turns the moved models' principal axes.)
+            typename M::State y_plus = model::frame::initial_state(*plus, given), y_minus = model::frame::initial_state(*minus, given);
+            model::frame::reframe(*plus, m, y_plus.data());
+            model::frame::reframe(*minus, m, y_minus.data());
+            start.segment<n>(n * static_cast<Eigen::Index>(1 + j)) = (y_plus - y_minus) / (2.0 * c.step);
         }
         if (!(std::isfinite(c.atol) && c.atol > 0.0))
             throw std::invalid_argument(which + "its absolute tolerance must be finite and > 0, got " +
@@ -155,8 +158,12 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
                 }
                 const SensitivityColumn& c = columns[static_cast<std::size_t>(j)];
                 if (c.component < 0) {
-                    model::system::outputs(*std::get_if<M>(c.plus), run.t[k], y, plus);
-                    model::system::outputs(*std::get_if<M>(c.minus), run.t[k], y, minus);
+                    const M &moved_plus = *std::get_if<M>(c.plus), &moved_minus = *std::get_if<M>(c.minus);
+                    typename M::State there_plus = y, there_minus = y;
+                    model::frame::reframe(m, moved_plus, there_plus.data());
+                    model::frame::reframe(m, moved_minus, there_minus.data());
+                    model::system::outputs(moved_plus, run.t[k], there_plus, plus);
+                    model::system::outputs(moved_minus, run.t[k], there_minus, minus);
                     for (int o = 0; o < n_out; ++o) d[o] += (plus[o] - minus[o]) / (2.0 * c.step);
                 }
                 D.col(j) = d;

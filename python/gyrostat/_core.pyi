@@ -1707,6 +1707,12 @@ class CustomTorque:
         The function takes the quaternion; only models with the attitude take the torque.
     name : str, optional
         The name in messages and the repr (default: the function's name).
+    parameters : dict of str, optional
+        The torque's own parameters (numbers, or any value a factory takes). Then ``function`` (and ``jacobian``) are factories: called once
+        here as ``function(**parameters)``, they return the torque function (a Python callable or a
+        ``scipy.LowLevelCallable``) as above. Sensitivities (``gyrostat.solve(..., sensitivities=
+        ["CustomTorque.c"])``) move a number among them by calling the factory again, and take dM/dc
+        as a central difference quotient of the two torques made.
     
     Examples
     --------
@@ -1714,6 +1720,10 @@ class CustomTorque:
     >>> drag = g.CustomTorque(lambda t, omega: -0.1 * omega, name="drag")
     >>> drag(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
     array([-0.1, -0. , -0. ])
+    >>> def drag_with(c):
+    ...     return lambda t, omega: -c * omega
+    >>> g.CustomTorque(drag_with, parameters={"c": 0.2}, name="drag")(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
+    array([-0.2, -0. , -0. ])
     """
     description: typing.ClassVar[str] = 'a torque the user writes: M = f(t, omega) or f(t, omega, quaternion) in body axes, a Python callable or a compiled function'
     has_averaged: typing.ClassVar[bool] = False
@@ -1746,7 +1756,7 @@ class CustomTorque:
         >>> g.CustomTorque(lambda t, omega: -0.5 * omega)(0.0, [0.0, 0.0, 2.0], [1.0, 1.0, 1.0])
         array([-0., -0., -1.])
         """
-    def __init__(self, function: typing.Any, jacobian: typing.Any = None, *, attitude: bool = False, name: typing.Any = None) -> None:
+    def __init__(self, function: typing.Any, jacobian: typing.Any = None, *, attitude: bool = False, name: typing.Any = None, parameters: typing.Any = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -1771,6 +1781,17 @@ class CustomTorque:
         []
         """
     @property
+    def arguments(self) -> dict:
+        """
+        The parameters the factories were called with (a dict; empty without parameters).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda c: (lambda t, omega: -c * omega), parameters={"c": 0.2}).arguments
+        {'c': 0.2}
+        """
+    @property
     def attitude(self) -> bool:
         """
         Whether the function takes the quaternion (bool).
@@ -1779,6 +1800,54 @@ class CustomTorque:
         --------
         >>> import gyrostat as g
         >>> g.CustomTorque(lambda t, omega, q: -omega, attitude=True).attitude
+        True
+        """
+    @property
+    def factory(self) -> typing.Any:
+        """
+        The factory that made the function from ``arguments``, or None (a torque
+        given without parameters).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> def drag_with(c):
+        ...     return lambda t, omega: -c * omega
+        >>> g.CustomTorque(drag_with, parameters={"c": 0.2}).factory is drag_with
+        True
+        """
+    @property
+    def function(self) -> typing.Any:
+        """
+        The torque function the core calls (made by the factory when the torque has
+        parameters).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega: -0.3 * omega).function(0.0, 1.0)
+        -0.3
+        """
+    @property
+    def jacobian(self) -> typing.Any:
+        """
+        The Jacobian dM/domega the core calls, or None (difference quotients).
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda t, omega: -omega).jacobian is None
+        True
+        """
+    @property
+    def jacobian_factory(self) -> typing.Any:
+        """
+        The factory that made the Jacobian from ``arguments``, or None.
+        
+        Examples
+        --------
+        >>> import gyrostat as g
+        >>> g.CustomTorque(lambda c: (lambda t, omega: -c * omega), parameters={"c": 0.2}).jacobian_factory is None
         True
         """
     @property

@@ -5,9 +5,11 @@ augmented state, ``integrate/variational.hpp``).
 
 A parameter is named as a user writes it (:func:`parameter_names` lists a model's):
 
-* ``"moments[k]"``, ``"rotor[k]"``: the body's principal moment or rotor momentum component k
-  (a body given by its principal moments; the inertia tensor's entries are not offered: moving one
-  turns the principal axes the model runs in);
+* ``"moments[k]"``, ``"rotor[k]"``: the body's principal moment or rotor momentum component k (a
+  body given by its principal moments); ``"inertia[i,j]"`` (i ≤ j, the symmetric pair moved
+  together) and ``"rotor[k]"`` for a body given by its inertia tensor with products of inertia
+  (the principal axes the model runs in turn with the entry: the moved models' right-hand sides
+  are taken through the user's frame, ``model/variational.hpp``);
 * ``"<Torque>.<parameter>"``, ``"<Torque>.<parameter>[i]"``, ``"<Torque>.<parameter>[i,j]"`` (and
   ``[k,i,j]`` for a list of matrices): a stored parameter of a torque the model holds once (e.g.
   ``"ViscousCavity.viscosity"``, ``"LinearDamping.matrix[0,0]"``), or ``"torques[n]."`` + the same
@@ -17,8 +19,10 @@ A parameter is named as a user writes it (:func:`parameter_names` lists a model'
 
 ∂f/∂p is the central difference of the right-hand side between the model built with the parameter
 moved by ±h, h = ε^(1/3) |p| (truncation ~1e-11 relative; exact up to rounding where the right-hand
-side is affine in p, as in every torque's gain). A ``CustomTorque``'s parameters are the user's
-function's own and are not offered.
+side is affine in p, as in every torque's gain). A ``CustomTorque`` given ``parameters`` (its
+function made by a factory) offers them by name (``"CustomTorque.c"``): the factory is called again
+with c moved, and ∂M/∂c is the difference quotient of the two torques made (the run's notes say
+so); one given without parameters offers none.
 """
 
 from __future__ import annotations
@@ -78,6 +82,54 @@ def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float
     return made
 
 
+def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
+    """A ``CustomTorque``'s parameters (the keyword arguments its factory was called with that are
+    numbers), as :func:`_torque_parameters` gives a declared torque's: moved by calling the factory
+    again."""
+    arguments = torque.arguments
+    numbers = [n for n, v in arguments.items() if isinstance(v, (int, float, np.floating, np.integer))
+               and not isinstance(v, bool)]
+    made = {}
+    for name in numbers if only is None else [n for n in numbers if n == only]:
+        def rebuild(new, name=name):
+            return type(torque)(torque.factory, torque.jacobian_factory, attitude=torque.attitude, name=torque.name,
+                                parameters={**arguments, name: new})
+        made[name] = (float(arguments[name]), abs(float(arguments[name])), rebuild)
+    return made
+
+
+def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, Callable]]:
+    """A body's parameters: by its principal moments, ``moments[k]`` and ``rotor[k]``; by its
+    inertia tensor, ``inertia[i,j]`` (i ≤ j; the symmetric pair moves together, and the principal
+    axes turn with it) and ``rotor[k]`` (the user's axes)."""
+    made = {}
+    tensor, rotor = np.array(body.inertia, dtype=float), np.array(body.rotor, dtype=float)
+    if body.principal:
+        moments = np.array(body.moments, dtype=float)
+        for vector, values in (("moments", moments), ("rotor", rotor)):
+            for k in range(3):
+                def rebuild(new, vector=vector, k=k):
+                    kept = {"moments": moments.copy(), "rotor": rotor.copy()}
+                    kept[vector][k] = new
+                    return rebuilt(body=_core.Body(moments=kept["moments"], rotor=kept["rotor"]))
+                made[f"{vector}[{k}]"] = (float(values[k]), float(np.max(np.abs(values))), rebuild)
+        return made
+    for i in range(3):
+        for j in range(i, 3):
+            def rebuild(new, i=i, j=j):
+                changed = tensor.copy()
+                changed[i, j] = changed[j, i] = new
+                return rebuilt(body=_core.Body(inertia=changed, rotor=rotor))
+            made[f"inertia[{i},{j}]"] = (float(tensor[i, j]), float(np.max(np.abs(tensor))), rebuild)
+    for k in range(3):
+        def rebuild(new, k=k):
+            changed = rotor.copy()
+            changed[k] = new
+            return rebuilt(body=_core.Body(inertia=tensor, rotor=changed))
+        made[f"rotor[{k}]"] = (float(rotor[k]), float(np.max(np.abs(rotor))), rebuild)
+    return made
+
+
 def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
     """Every parameter a model offers (or those of the one named ``only``, made alone): name →
     (value, its scale, rebuild(new value) → the model with that parameter changed). Empty for a
@@ -93,23 +145,15 @@ def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, 
 
     selector, _, wanted_parameter = (only or "").partition(".")
     body = given.get("body")
-    if body is not None and body.principal and (only is None or only.startswith(("moments[", "rotor["))):
-        for vector in ("moments", "rotor"):
-            values = np.array(getattr(body, vector), dtype=float)
-            for k in range(3):
-                def rebuild(new, vector=vector, k=k, values=values):
-                    changed = values.copy()
-                    changed[k] = new
-                    kept = {"moments": body.moments, "rotor": body.rotor}
-                    kept[vector] = changed
-                    return rebuilt(body=_core.Body(moments=kept["moments"], rotor=kept["rotor"]))
-                made[f"{vector}[{k}]"] = (float(values[k]), float(np.max(np.abs(values))), rebuild)
+    if body is not None and (only is None or only.startswith(("moments[", "rotor[", "inertia["))):
+        made.update(_body_parameters(body, rebuilt))
     torques = tuple(given.get("torques", ()))
     kinds = [type(t).__name__ for t in torques]
     for n, torque in enumerate(torques):
-        if kinds[n] == "CustomTorque" or (only is not None and selector not in (f"torques[{n}]", kinds[n])):
+        if only is not None and selector not in (f"torques[{n}]", kinds[n]):
             continue
-        for suffix, (value, scale, rebuild_torque) in _torque_parameters(torque, wanted_parameter or None).items():
+        own = _custom_parameters if kinds[n] == "CustomTorque" else _torque_parameters
+        for suffix, (value, scale, rebuild_torque) in own(torque, wanted_parameter or None).items():
             def rebuild(new, n=n, rebuild_torque=rebuild_torque):
                 changed = list(torques)
                 changed[n] = rebuild_torque(new)
@@ -202,6 +246,25 @@ def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndar
     if errors is not None:
         solution._sensitivity_errors, basis = errors
         solution.notes.append(f"sensitivities' error estimate: {basis}")
+    for name in _of_custom_torques(solution.model, names):
+        solution.notes.append(f"sensitivity to {name}: dM/d{name.partition('.')[2]} of the user's torque is the central "
+                              f"difference quotient of the torques its factory made with the parameter moved by "
+                              f"±{STEP:.1e} of its size (truncation ~1e-11 relative where M is smooth in it)")
+
+
+def _of_custom_torques(model, names) -> list[str]:
+    """The names among ``names`` that are a ``CustomTorque``'s parameters."""
+    arguments = getattr(model, "_arguments", None)
+    torques = list(arguments().get("torques", ())) if arguments is not None else []
+    kinds = [type(t).__name__ for t in torques]
+    found = []
+    for name in names:
+        selector = name.partition(".")[0]
+        n = int(selector[8:-1]) if selector.startswith("torques[") and selector[8:-1].isdigit() else None
+        if (selector == "CustomTorque" and "CustomTorque" in kinds) or (n is not None and n < len(kinds)
+                                                                        and kinds[n] == "CustomTorque"):
+            found.append(name)
+    return found
 
 
 def along(core, columns_made: list, y0, t0: float, plain, opts, events, report) -> tuple:

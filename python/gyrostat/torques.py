@@ -72,16 +72,24 @@ def _stand_in(name: str):
     return refuse
 
 
-def _call_factory(name: str, factory, parameters: dict):
-    """What the factory ``name`` returns for the scene's ``parameters``, or ValueError naming it."""
-    if not callable(factory):
-        raise ValueError(f"{name.field} = {str(name)!r} with `parameters` must name a factory (a callable), "
-                         f"got {type(factory).__name__}")
-    try:
-        return factory(**parameters)
-    except TypeError as error:
-        raise ValueError(f"{name.field} = {str(name)!r}: the factory refused the scene's `parameters` "
-                         f"({', '.join(parameters) or 'none'}): {error}") from None
+def _made(entry: dict, function, jacobian, parameters: dict):
+    """``CustomTorque(function, jacobian, parameters=...)``: the factories called with the scene's
+    ``parameters``, or ValueError naming one that is no factory or whose signature refuses them."""
+    for field, factory in (("function", function), ("jacobian", jacobian)):
+        if factory is None:
+            continue
+        if not callable(factory) or type(factory).__name__ == "LowLevelCallable":
+            raise ValueError(f"{entry[field].field} = {str(entry[field])!r} with `parameters` must name a factory "
+                             f"(a callable), got {type(factory).__name__}")
+        try:
+            inspect.signature(factory).bind(**parameters)
+        except ValueError:  # a signature Python cannot read: the call decides
+            pass
+        except TypeError as error:
+            raise ValueError(f"{entry[field].field} = {str(entry[field])!r}: the factory refused the scene's "
+                             f"`parameters` ({', '.join(parameters) or 'none'}): {error}") from None
+    return _core.CustomTorque(function, jacobian, attitude=entry["attitude"], name=str(entry["function"]),
+                              parameters=parameters)
 
 
 def _check_signature(name, function, attitude: bool) -> None:
@@ -111,9 +119,10 @@ def _custom(entry: dict):
     parameters = entry.get("parameters")
     function = entry["function"].load()
     jacobian = entry["jacobian"].load() if "jacobian" in entry else None
-    if parameters is not None:
-        function = _call_factory(entry["function"], function, parameters)
-        jacobian = _call_factory(entry["jacobian"], jacobian, parameters) if jacobian is not None else None
+    if parameters is not None:  # factories: the torque keeps them, and sensitivities move its parameters
+        torque = _made(entry, function, jacobian, parameters)
+        _check_signature(entry["function"], torque.function, entry["attitude"])
+        return torque
     _check_signature(entry["function"], function, entry["attitude"])
     return _core.CustomTorque(function, jacobian, attitude=entry["attitude"], name=str(entry["function"]))
 

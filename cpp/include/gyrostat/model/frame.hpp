@@ -110,4 +110,14 @@ typename S::State initial_state(const S& model, const Eigen::VectorXd& given) {
     return y;
 }
 
+/// A state (or a rate: the map is linear and constant) of model `from`'s principal axes written
+/// in the principal axes of `to`, a model of the same type on another body (a parameter of the
+/// body moved: its axes turn with it), through the user's frame: y_to = U_to⁻¹ U_from y.
+template <class S>
+void reframe(const S& from, const S& to, double* y) {
+    if (!rotated(from) && !rotated(to)) return;
+    convert(from, y, To::User);
+    convert(to, y, To::Principal);
+}
+
 }  // namespace gyrostat::model::frame

@@ -12,7 +12,10 @@
 // * ∂f/∂p_j: (f(t, y; p_j + h_j) − f(t, y; p_j − h_j)) / 2h_j on the two models the caller built
 //   with the parameter moved (truncation O(h²): ~1e-11 relative at h_j = ε^{1/3} |p_j|; exact up to
 //   rounding where f is affine in p_j, as in every torque's gain). A column for an initial
-//   component has no such term.
+//   component has no such term. A body's parameter moved (an inertia tensor's entry) turns the
+//   principal axes the moved model runs in: its f is taken through the user's frame,
+//   U⁻¹ U_± f_±(U_±⁻¹ U y) (model/frame.hpp: reframe), so that the difference is the user frame's
+//   ∂F/∂p written in this model's axes, whatever the eigenvectors of the two tensors.
 // The models name their parameters in Python (gyrostat/sensitivity.py) and build the moved ones;
 // nothing here knows what a parameter is.
 #pragma once
@@ -22,6 +25,7 @@
 #include <limits>
 #include <vector>
 
+#include "gyrostat/model/frame.hpp"
 #include "gyrostat/model/system.hpp"
 
 namespace gyrostat::model {
@@ -63,12 +67,7 @@ public:
                 rate = directional(t, y, s);
             }
             const Varied<M>& column = columns_[j];
-            if (column.plus) {
-                State f_plus, f_minus;
-                column.plus->rhs(t, y, f_plus);
-                column.minus->rhs(t, y, f_minus);
-                rate += (f_plus - f_minus) / (2.0 * column.step);
-            }
+            if (column.plus) rate += (moved_rate(*column.plus, t, y) - moved_rate(*column.minus, t, y)) / (2.0 * column.step);
             dY.template segment<dim>(at) = rate;
         }
     }
@@ -86,6 +85,21 @@ public:
     }
 
 private:
+    /// The rate of the model with a parameter moved, at y, both in this model's principal axes
+    /// (frame::reframe: a body's parameter moved turns its principal axes).
+    State moved_rate(const M& moved, double t, const State& y) const {
+        State rate;
+        if (!frame::rotated(model_) && !frame::rotated(moved)) {
+            moved.rhs(t, y, rate);
+            return rate;
+        }
+        State there = y;
+        frame::reframe(model_, moved, there.data());
+        moved.rhs(t, there, rate);
+        frame::reframe(moved, model_, rate.data());
+        return rate;
+    }
+
     /// ∂f/∂y · s by the central difference along s.
     State directional(double t, const State& y, const State& s) const {
         const double size = s.norm();

@@ -136,6 +136,9 @@ struct Custom {
     std::shared_ptr<const TorqueFunction> function;
     std::string label;      ///< the function's name, for messages and the repr
     bool attitude = false;  ///< f takes the quaternion
+    /// What the front end made `function` from, opaque here (the bindings keep the user's objects:
+    /// the factory and the keyword arguments it was called with, which sensitivities move).
+    std::shared_ptr<const void> origin;
 
     Custom(std::shared_ptr<const TorqueFunction> f, std::string name, bool with_attitude)
         : function(std::move(f)), label(std::move(name)), attitude(with_attitude) {
