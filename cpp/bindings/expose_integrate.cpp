@@ -102,17 +102,19 @@ std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
 
 namespace {
 /// The engine's sensitivity columns from Python's tuples: (component, None, None, 0, atol) or
-/// (-1, model with the parameter + step, model with it − step, step, atol).
+/// (-1, model with the parameter + step, model with it − step, step, atol[, affine]).
 std::vector<SensitivityColumn> sensitivity_columns(const std::vector<py::tuple>& given) {
     std::vector<SensitivityColumn> columns;
     for (const py::tuple& c : given) {
-        if (c.size() != 5) throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol)");
+        if (c.size() != 5 && c.size() != 6)
+            throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol[, affine])");
         SensitivityColumn column;
         column.component = c[0].cast<int>();
         if (!c[1].is_none()) column.plus = &c[1].cast<const BoundModel&>().model;
         if (!c[2].is_none()) column.minus = &c[2].cast<const BoundModel&>().model;
         column.step = c[3].cast<double>();
         column.atol = c[4].cast<double>();
+        column.affine = c.size() == 6 && c[5].cast<bool>();
         columns.push_back(column);
     }
     return columns;

@@ -63,7 +63,7 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             if (!(std::isfinite(c.step) && c.step > 0.0))
                 throw std::invalid_argument(which + "the parameter's step must be finite and > 0, got " +
                                             integrate::format_number(c.step, 17));
-            varied[j] = {plus, minus, c.step};
+            varied[j] = {plus, minus, c.step, c.affine};
             // The state the run starts from may depend on the parameter (an averaged model's slow
             // variables from the ω given): S_j(t0) = ∂y(t0)/∂p_j, by the same central difference.
             // (Each in this model's axes: a body's parameter turns the moved models' principal axes.)

@@ -296,6 +296,8 @@ class ConstantTorque:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -310,6 +312,7 @@ class ConstantTorque:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('constant', ['N m'])
     """
+    affine_in: typing.ClassVar[tuple] = ('moment')
     description: typing.ClassVar[str] = 'a constant torque in body axes'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'constant'
@@ -428,6 +431,8 @@ class LinearDamping:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -442,6 +447,7 @@ class LinearDamping:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('linear_damping', ['N m s', 'N m s'])
     """
+    affine_in: typing.ClassVar[tuple] = ('matrix')
     description: typing.ClassVar[str] = 'M = -D omega'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'linear_damping'
@@ -560,6 +566,8 @@ class ResistiveMedium:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -574,6 +582,7 @@ class ResistiveMedium:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('resistive_medium', ['N m s^(k+1)'])
     """
+    affine_in: typing.ClassVar[tuple] = ('coefficients')
     description: typing.ClassVar[str] = 'a resistive medium whose resistance varies with time'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'resistive_medium'
@@ -722,6 +731,8 @@ class ViscousCavity:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -736,6 +747,7 @@ class ViscousCavity:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('viscous_cavity', ['kg/m^3', 'm^2/s', 'm^5', 'm'])
     """
+    affine_in: typing.ClassVar[tuple] = ('density', 'p0')
     description: typing.ClassVar[str] = 'a cavity filled with a highly viscous fluid'
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'viscous_cavity'
@@ -924,6 +936,8 @@ class MovingMassDamper:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -938,6 +952,7 @@ class MovingMassDamper:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('moving_mass_damper', ['kg', 'm', 'rad/s', '1/s'])
     """
+    affine_in: typing.ClassVar[tuple] = tuple()
     description: typing.ClassVar[str] = "Chernousko's quasi-static moving-mass damper"
     has_averaged: typing.ClassVar[bool] = True
     kind: typing.ClassVar[str] = 'moving_mass_damper'
@@ -1111,6 +1126,8 @@ class GravityGradient:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1125,6 +1142,7 @@ class GravityGradient:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('gravity_gradient', ['rad/s', '1', 'rad'])
     """
+    affine_in: typing.ClassVar[tuple] = tuple()
     description: typing.ClassVar[str] = 'the gravity-gradient torque on a circular orbit (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'gravity_gradient'
@@ -1269,6 +1287,8 @@ class MagneticTorque:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1283,6 +1303,7 @@ class MagneticTorque:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('magnetic', ['A m^2', 'T'])
     """
+    affine_in: typing.ClassVar[tuple] = ('dipole', 'field')
     description: typing.ClassVar[str] = 'a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'magnetic'
@@ -1392,6 +1413,8 @@ class DipoleFieldTorque:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1406,6 +1429,7 @@ class DipoleFieldTorque:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('dipole_field', ['A m^2', 'T', 'rad/s', '1', '1', 'rad'])
     """
+    affine_in: typing.ClassVar[tuple] = ('dipole', 'field_strength')
     description: typing.ClassVar[str] = "a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude)"
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'dipole_field'
@@ -1573,6 +1597,8 @@ class InertialTorque:
         What it is, in one line.
     parameters : tuple of dict
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
+    affine_in : tuple of str
+        The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1587,6 +1613,7 @@ class InertialTorque:
     >>> torque.kind, [p["unit"] for p in torque.parameters]
     ('inertial', ['N m'])
     """
+    affine_in: typing.ClassVar[tuple] = ('moment')
     description: typing.ClassVar[str] = 'a constant torque fixed in inertial space (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'inertial'
@@ -1725,6 +1752,7 @@ class CustomTorque:
     >>> g.CustomTorque(drag_with, parameters={"c": 0.2}, name="drag")(0.0, [1.0, 0.0, 0.0], [1.0, 2.0, 3.0])
     array([-0.2, -0. , -0. ])
     """
+    affine_in: typing.ClassVar[tuple] = tuple()
     description: typing.ClassVar[str] = 'a torque the user writes: M = f(t, omega) or f(t, omega, quaternion) in body axes, a Python callable or a compiled function'
     has_averaged: typing.ClassVar[bool] = False
     kind: typing.ClassVar[str] = 'custom'

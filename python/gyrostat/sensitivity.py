@@ -60,9 +60,9 @@ def _moved(value, index: tuple, new: float):
 _STORED: dict[type, list[str]] = {}  # a torque type's stored parameters, read once from its declaration
 
 
-def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
+def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable, bool]]:
     """A torque's stored parameters (or the entry named ``only``, e.g. ``matrix[2,2]``): suffix →
-    (value, scale, rebuild(new value) → torque)."""
+    (value, scale, rebuild(new value) → torque, whether M is affine in it: the torque's ``affine_in``)."""
     stored = _STORED.get(type(torque))
     if stored is None:
         stored = _STORED[type(torque)] = [p["name"] for p in torque.parameters if p["stored"]]
@@ -78,11 +78,12 @@ def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float
                 arguments = {p: getattr(torque, p) for p in stored}
                 arguments[name] = _moved(value, index, new)
                 return type(torque)(**arguments)
-            made[f"{name}{suffix}"] = (float(np.asarray(value, dtype=float)[index]), scale, rebuild)
+            made[f"{name}{suffix}"] = (float(np.asarray(value, dtype=float)[index]), scale, rebuild,
+                                       name in type(torque).affine_in)
     return made
 
 
-def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
+def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable, bool]]:
     """A ``CustomTorque``'s parameters (the keyword arguments its factory was called with that are
     numbers), as :func:`_torque_parameters` gives a declared torque's: moved by calling the factory
     again."""
@@ -94,11 +95,11 @@ def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float
         def rebuild(new, name=name):
             return type(torque)(torque.factory, torque.jacobian_factory, attitude=torque.attitude, name=torque.name,
                                 parameters={**arguments, name: new})
-        made[name] = (float(arguments[name]), abs(float(arguments[name])), rebuild)
+        made[name] = (float(arguments[name]), abs(float(arguments[name])), rebuild, False)
     return made
 
 
-def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, Callable]]:
+def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, Callable, bool]]:
     """A body's parameters: by its principal moments, ``moments[k]`` and ``rotor[k]``; by its
     inertia tensor, ``inertia[i,j]`` (i ≤ j; the symmetric pair moves together, and the principal
     axes turn with it) and ``rotor[k]`` (the user's axes)."""
@@ -112,7 +113,7 @@ def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, C
                     kept = {"moments": moments.copy(), "rotor": rotor.copy()}
                     kept[vector][k] = new
                     return rebuilt(body=_core.Body(moments=kept["moments"], rotor=kept["rotor"]))
-                made[f"{vector}[{k}]"] = (float(values[k]), float(np.max(np.abs(values))), rebuild)
+                made[f"{vector}[{k}]"] = (float(values[k]), float(np.max(np.abs(values))), rebuild, False)
         return made
     for i in range(3):
         for j in range(i, 3):
@@ -120,25 +121,26 @@ def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, C
                 changed = tensor.copy()
                 changed[i, j] = changed[j, i] = new
                 return rebuilt(body=_core.Body(inertia=changed, rotor=rotor))
-            made[f"inertia[{i},{j}]"] = (float(tensor[i, j]), float(np.max(np.abs(tensor))), rebuild)
+            made[f"inertia[{i},{j}]"] = (float(tensor[i, j]), float(np.max(np.abs(tensor))), rebuild, False)
     for k in range(3):
         def rebuild(new, k=k):
             changed = rotor.copy()
             changed[k] = new
             return rebuilt(body=_core.Body(inertia=tensor, rotor=changed))
-        made[f"rotor[{k}]"] = (float(rotor[k]), float(np.max(np.abs(rotor))), rebuild)
+        made[f"rotor[{k}]"] = (float(rotor[k]), float(np.max(np.abs(rotor))), rebuild, False)
     return made
 
 
-def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, Callable]]:
+def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, Callable, bool]]:
     """Every parameter a model offers (or those of the one named ``only``, made alone): name →
-    (value, its scale, rebuild(new value) → the model with that parameter changed). Empty for a
-    model that cannot be rebuilt (a closed form)."""
+    (value, its scale, rebuild(new value) → the model with that parameter changed, whether the
+    right-hand side is affine in it: its torque declares so). Empty for a model that cannot be
+    rebuilt (a closed form)."""
     arguments = getattr(model, "_arguments", None)
     if arguments is None:
         return {}
     given = arguments()
-    made: dict[str, tuple[float, float, Callable]] = {}
+    made: dict[str, tuple[float, float, Callable, bool]] = {}
 
     def rebuilt(**changes):
         return type(model)(**{**given, **changes})
@@ -153,17 +155,17 @@ def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, 
         if only is not None and selector not in (f"torques[{n}]", kinds[n]):
             continue
         own = _custom_parameters if kinds[n] == "CustomTorque" else _torque_parameters
-        for suffix, (value, scale, rebuild_torque) in own(torque, wanted_parameter or None).items():
+        for suffix, (value, scale, rebuild_torque, affine) in own(torque, wanted_parameter or None).items():
             def rebuild(new, n=n, rebuild_torque=rebuild_torque):
                 changed = list(torques)
                 changed[n] = rebuild_torque(new)
                 return rebuilt(torques=changed)
-            made[f"torques[{n}].{suffix}"] = (value, scale, rebuild)
+            made[f"torques[{n}].{suffix}"] = (value, scale, rebuild, affine)
             if kinds.count(kinds[n]) == 1:
-                made[f"{kinds[n]}.{suffix}"] = (value, scale, rebuild)
+                made[f"{kinds[n]}.{suffix}"] = (value, scale, rebuild, affine)
     for name in getattr(model, "_numbers", ()) if only is None else [n for n in getattr(model, "_numbers", ()) if n == only]:
         value = float(given[name])
-        made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}))
+        made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}), False)
     return made
 
 
@@ -220,14 +222,14 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
             raise ValueError(f"sensitivities: no parameter or state component {name!r} in this "
                              f"{type(model).__name__}; state: {', '.join(states)}; parameters: "
                              + (", ".join(offered) if offered else "none"))
-        value, scale, rebuild = offered[name]
+        value, scale, rebuild, affine = offered[name]
         size = max(abs(value), scale) or 1.0
         step = STEP * size
         try:
             plus, minus = rebuild(value + step), rebuild(value - step)
         except (ValueError, TypeError) as error:
             raise ValueError(f"sensitivities: {name} = {value!r} cannot be moved by ±{step:.3g}: {error}") from None
-        made.append((-1, plus._core, minus._core, step, atol / size))
+        made.append((-1, plus._core, minus._core, step, atol / size, affine))
     if len(set(names)) != len(names):
         raise ValueError(f"sensitivities: a name is asked twice in {list(names)}")
     return tuple(name.replace(" ", "") for name in names), made

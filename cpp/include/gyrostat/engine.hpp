@@ -126,6 +126,10 @@ struct SensitivityColumn {
     /// The absolute tolerance of this column's error control (the run's atol over the parameter's
     /// size: CVODES's p̄ scaling; the run's atol for an initial component).
     double atol = 0.0;
+    /// The right-hand side is affine in the parameter (its torque declares so: affine_in, in
+    /// torque/set.hpp): ∂f/∂p = (f(p + step) − f(p))/step, exact up to rounding, one moved
+    /// right-hand side per stage instead of two.
+    bool affine = false;
 };
 /// A run with its sensitivities: `result` as `solve` gives it at the output times (states in the
 /// user's frame, the outputs, statistics, status and message), `state` the sensitivities of the

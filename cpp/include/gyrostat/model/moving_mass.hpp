@@ -97,6 +97,28 @@ public:
             for (int k = 0; k < dim; ++k) jac(i, k) = f[i].d[k];
     }
 
+    /// ∂f/∂y · s alone: the equations on one directional dual number y + ε s (a ninth of the
+    /// Jacobian's derivative work, for the variational equations' few columns).
+    void jacobian_product(double t, const State& y, const State& s, State& product) const {
+        using D = Dual<1>;
+        std::array<D, dim> x, f;
+        for (int i = 0; i < dim; ++i) {
+            x[i] = D(y[i]);
+            x[i].d[0] = s[i];
+        }
+        std::array<D, 3> M{D(0.0), D(0.0), D(0.0)};
+        if (!torques_.empty()) {
+            const Vec3 m = torques_.total(t, y.head<3>(), body_.moments());
+            const Vec3 dm = torques_.jacobian(t, y.head<3>(), body_.moments()) * s.head<3>();
+            for (int i = 0; i < 3; ++i) {
+                M[i] = D(m[i]);
+                M[i].d[0] = dm[i];
+            }
+        }
+        evaluate(x, M, f);
+        for (int i = 0; i < dim; ++i) product[i] = f[i].d[0];
+    }
+
     /// The equations above for any scalar T (double, or Dual for the Jacobian); M the external torque.
     template <class T>
     void evaluate(const std::array<T, dim>& y, const std::array<T, 3>& M, std::array<T, dim>& dy) const {

@@ -139,6 +139,16 @@ struct has_jacobian<S, std::void_t<decltype(std::declval<const S&>().jacobian(
                            0.0, std::declval<const typename S::State&>(), std::declval<Jacobian<S>&>()))>>
     : std::true_type {};
 
+/// A model that gives ∂f/∂y · s without forming the whole Jacobian (`void jacobian_product(double
+/// t, const State& y, const State& s, State& product) const`: one directional dual number where
+/// the Jacobian is made of dual numbers), for the variational equations' few columns.
+template <class S, class = void>
+struct has_jacobian_product : std::false_type {};
+template <class S>
+struct has_jacobian_product<S, std::void_t<decltype(std::declval<const S&>().jacobian_product(
+                                   0.0, std::declval<const typename S::State&>(), std::declval<const typename S::State&>(),
+                                   std::declval<typename S::State&>()))>> : std::true_type {};
+
 template <class S, class = void>
 struct has_projection : std::false_type {};
 template <class S>

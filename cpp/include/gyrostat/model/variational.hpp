@@ -6,12 +6,16 @@
 //   S_j' = ∂f/∂y (t, y; p) · S_j + ∂f/∂p_j (t, y; p),      S_j(t0) = ∂y(t0)/∂p_j,
 //
 // (Hairer, Nørsett & Wanner, Solving ODEs I, §I.14). The terms:
-// * ∂f/∂y · S_j: the model's analytic Jacobian where it gives one (every full model), else the
+// * ∂f/∂y · S_j: the model's analytic Jacobian where it gives one (every full model; its product
+//   with each column alone where the model gives that and the columns are few: the moving mass's
+//   directional dual numbers), else the
 //   directional central difference (f(y + δ S_j) − f(y − δ S_j)) / 2δ with δ‖S_j‖ = ε^{1/3} ‖y‖
 //   (truncation and rounding both ~ε^{2/3} ≈ 4e-11 relative: the averaged models);
 // * ∂f/∂p_j: (f(t, y; p_j + h_j) − f(t, y; p_j − h_j)) / 2h_j on the two models the caller built
 //   with the parameter moved (truncation O(h²): ~1e-11 relative at h_j = ε^{1/3} |p_j|; exact up to
-//   rounding where f is affine in p_j, as in every torque's gain). A column for an initial
+//   rounding where f is affine in p_j, as in every torque's gain; there, where the torque declares
+//   it (affine_in), the one-sided (f(t, y; p_j + h_j) − f(t, y; p_j)) / h_j, as exact, costs one
+//   moved right-hand side instead of two). A column for an initial
 //   component has no such term. A body's parameter moved (an inertia tensor's entry) turns the
 //   principal axes the moved model runs in: its f is taken through the user's frame,
 //   U⁻¹ U_± f_±(U_±⁻¹ U y) (model/frame.hpp: reframe), so that the difference is the user frame's
@@ -31,12 +35,14 @@
 namespace gyrostat::model {
 
 /// One sensitivity column of a model of type M: a parameter (the model built with it moved by
-/// ±step) or, with `plus` null, a component of the initial state.
+/// ±step; `affine`: f is affine in it, and the one-sided difference with `plus` is exact) or, with
+/// `plus` null, a component of the initial state.
 template <class M>
 struct Varied {
     const M* plus = nullptr;
     const M* minus = nullptr;
     double step = 0.0;
+    bool affine = false;
 };
 
 /// The augmented system (y, S_1, …, S_m) of `model`, m = columns.size(), state of size
@@ -55,19 +61,29 @@ public:
         State f;
         model_.rhs(t, y, f);
         dY.template head<dim>() = f;
+        // The whole Jacobian once, or its product with each column where that is cheaper (a few
+        // columns of a model that gives the product alone).
         [[maybe_unused]] system::Jacobian<M> jacobian;
-        if constexpr (system::has_jacobian<M>::value) model_.jacobian(t, y, jacobian);
+        [[maybe_unused]] bool by_products = false;
+        if constexpr (system::has_jacobian_product<M>::value) by_products = 2 * columns_.size() < static_cast<std::size_t>(dim);
+        if constexpr (system::has_jacobian<M>::value)
+            if (!by_products) model_.jacobian(t, y, jacobian);
         for (std::size_t j = 0; j < columns_.size(); ++j) {
             const Eigen::Index at = dim * static_cast<Eigen::Index>(1 + j);
             const State s = Y.template segment<dim>(at);
             State rate;
-            if constexpr (system::has_jacobian<M>::value) {
+            if (by_products) {
+                if constexpr (system::has_jacobian_product<M>::value) model_.jacobian_product(t, y, s, rate);
+            } else if constexpr (system::has_jacobian<M>::value) {
                 rate.noalias() = jacobian * s;
             } else {
                 rate = directional(t, y, s);
             }
             const Varied<M>& column = columns_[j];
-            if (column.plus) rate += (moved_rate(*column.plus, t, y) - moved_rate(*column.minus, t, y)) / (2.0 * column.step);
+            if (column.plus && column.affine)
+                rate += (moved_rate(*column.plus, t, y) - f) / column.step;
+            else if (column.plus)
+                rate += (moved_rate(*column.plus, t, y) - moved_rate(*column.minus, t, y)) / (2.0 * column.step);
             dY.template segment<dim>(at) = rate;
         }
     }

@@ -23,6 +23,8 @@ struct Constant {
     static constexpr std::array<Parameter, 1> parameters{{
         {"moment", "moment", Shape::Vector3, "N m", "M in body axes"},
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 1> affine_in{{"moment"}};
 
     Vec3 moment = Vec3::Zero();
 

@@ -40,6 +40,8 @@ struct DipoleFieldTorque {
         orbit_normal_parameter,
         orbit_phase_parameter,
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 2> affine_in{{"dipole", "field_strength"}};
     static constexpr bool needs_attitude = true;
     /// Reads the orbit: its own, or the model's (TorqueSet::on_orbit).
     static constexpr bool on_orbit = true;

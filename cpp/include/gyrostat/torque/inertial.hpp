@@ -25,6 +25,8 @@ struct InertialTorque {
     static constexpr std::array<Parameter, 1> parameters{{
         {"moment", "moment", Shape::Vector3, "N m", "M_I in inertial axes", Constraint::Finite, 0, true, nullptr, Axes::Inertial},
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 1> affine_in{{"moment"}};
     static constexpr bool needs_attitude = true;
 
     Vec3 moment = Vec3::Zero();

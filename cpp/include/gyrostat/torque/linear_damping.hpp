@@ -26,6 +26,8 @@ struct LinearDamping {
         {"matrix", "matrix D (column-major)", Shape::Matrix3, "N m s", "D (M = -D omega)", Constraint::Finite, 1},
         {"diagonal", "diagonal of D", Shape::Vector3, "N m s", "the diagonal of D", Constraint::Finite, 1, false},
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 1> affine_in{{"matrix"}};
 
     Mat3 matrix = Mat3::Zero();
 

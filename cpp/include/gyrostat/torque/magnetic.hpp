@@ -26,6 +26,8 @@ struct MagneticTorque {
         {"field", "field B", Shape::Vector3, "T", "the magnetic field B in inertial axes", Constraint::Finite, 0, true, nullptr,
          Axes::Inertial},
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 2> affine_in{{"dipole", "field"}};
     static constexpr bool needs_attitude = true;
 
     Vec3 dipole = Vec3::Zero();

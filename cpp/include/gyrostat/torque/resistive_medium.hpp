@@ -30,6 +30,8 @@ struct ResistiveMedium {
         {"coefficients", "coefficient", Shape::Matrices, "N m s^(k+1)",
          "D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)"},
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 1> affine_in{{"coefficients"}};
 
     std::vector<Mat3> coefficients;  ///< D_0, D_1, … (t^0, t^1, …)
 

@@ -66,7 +66,9 @@ namespace gyrostat {
 ///                                                  moved by their parameters' declared axes);
 ///   T prepared(const Vec3& moments)                what it computes once for the body's moments;
 ///   std::vector<Assumption> assumptions(const Motion&)   its validity numbers;
-///   static constexpr bool keeps_momentum_norm = true     Jω·M ≡ 0.
+///   static constexpr bool keeps_momentum_norm = true     Jω·M ≡ 0;
+///   static constexpr std::array<const char*, n> affine_in   the stored parameters M is affine in
+///                                                  (the sensitivities' one-sided difference).
 using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
                                torque::ViscousCavity, torque::MovingMassDamper, torque::GravityGradient,
                                torque::MagneticTorque, torque::DipoleFieldTorque, torque::InertialTorque,
@@ -76,6 +78,19 @@ template <class T, class = void>
 struct keeps_momentum_norm : std::false_type {};
 template <class T>
 struct keeps_momentum_norm<T, std::enable_if_t<T::keeps_momentum_norm>> : std::true_type {};
+
+/// The stored parameters a torque declares M affine in (`affine_in`; none without it).
+template <class T, class = void>
+struct declares_affine_in : std::false_type {};
+template <class T>
+struct declares_affine_in<T, std::void_t<decltype(T::affine_in)>> : std::true_type {};
+template <class T>
+std::vector<std::string> affine_in() {
+    if constexpr (declares_affine_in<T>::value)
+        return std::vector<std::string>(T::affine_in.begin(), T::affine_in.end());
+    else
+        return {};
+}
 
 template <class T, class = void>
 struct needs_attitude : std::false_type {};

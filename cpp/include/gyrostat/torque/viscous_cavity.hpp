@@ -36,6 +36,8 @@ struct ViscousCavity {
         {"p0", "cavity coefficient P0", Shape::Scalar, "m^5", "P0 of the cavity tensor P = P0 I", Constraint::Positive, 1},
         {"radius", "cavity radius b", Shape::Scalar, "m", "radius of a spherical cavity", Constraint::Positive, 1, false},
     }};
+    /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
+    static constexpr std::array<const char*, 2> affine_in{{"density", "p0"}};
 
     double density = 0.0;    ///< ρ
     double viscosity = 0.0;  ///< ν (kinematic)
