@@ -35,6 +35,13 @@ void expose_models(py::module_& m) {
         .def_property_readonly("family", [](const BoundModel& b) { return std::string(family(b.model)); })
         .def_property_readonly("dim", [](const BoundModel& b) { return dim(b.model); })
         .def_property_readonly("state_names", [](const BoundModel& b) { return state_names(b.model); })
+        .def_property_readonly(
+            "affine_in",
+            [](const BoundModel& b) {
+                return std::visit([](const auto& x) { return affine_in<std::decay_t<decltype(x)>>(); }, b.model);
+            },
+            "The model's own numbers its right-hand side is affine in (sensitivities take their derivative by a "
+            "one-sided difference, exact to rounding).")
         .def_property_readonly("output_names", [](const BoundModel& b) { return output_names(b.model); })
         .def_property_readonly(
             "quantities",

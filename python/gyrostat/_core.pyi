@@ -1985,6 +1985,11 @@ class Model:
         An engine event for a run of a model above this one on the ladder, evaluated in C++ at every step (or, with ``sample_interval`` > 0, at step ends that far apart in t, the crossing placed at the step end where it is seen): g(t, y) = the largest (o_i - back_i) / (limit_i - back_i) of this model's outputs o = outputs_at(t, y) (y mapped down as initial_state maps it) at the indices ``outputs`` (1 where one is not finite). It falls through 0 where every watched output is back below its ``back``.
         """
     @property
+    def affine_in(self) -> list[str]:
+        """
+        The model's own numbers its right-hand side is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+        """
+    @property
     def dim(self) -> int:
         ...
     @property

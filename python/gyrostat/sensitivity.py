@@ -165,7 +165,7 @@ def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, 
                 made[f"{kinds[n]}.{suffix}"] = (value, scale, rebuild, affine)
     for name in getattr(model, "_numbers", ()) if only is None else [n for n in getattr(model, "_numbers", ()) if n == only]:
         value = float(given[name])
-        made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}), False)
+        made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}), name in model._core.affine_in)
     return made
 
 

@@ -97,6 +97,8 @@ public:
     static constexpr const char* family = "lagrange_top";
     static constexpr auto states = rate_states<true>();
     static constexpr bool carries_attitude = true;
+    /// Its own numbers (as gyrostat.sensitivity names them) the right-hand side is affine in.
+    static constexpr std::array<const char*, 1> affine_in{{"mu"}};
 
     LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(torques.in_principal_axes(body)), mu_(mu) {
         const Vec3& J = body_.moments();

@@ -46,6 +46,8 @@ public:
     /// ω, u and v are vectors in body axes (model/frame.hpp); on a body given by its inertia
     /// tensor the mass moves about its attachment on the third principal axis.
     static constexpr std::array<int, 3> body_vectors{{0, 3, 6}};
+    /// Its own numbers (as gyrostat.sensitivity names them) the right-hand side is affine in: λ.
+    static constexpr std::array<const char*, 1> affine_in{{"damping"}};
 
     MovingMass(Body system_body, double mass, double arm, double frequency, double damping, TorqueSet external)
         : body_(std::move(system_body)), torques_(external.in_principal_axes(system_body)), mu_(mass), rho_(arm),
