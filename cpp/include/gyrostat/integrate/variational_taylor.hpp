@@ -145,8 +145,7 @@ public:
         }
         if (changed) {  // only when a block's mode switches
             order_ = taylor_detail::order_for(least, max_taylor_order);
-            for (int b = 0; b < blocks_; ++b)
-                safety_[static_cast<std::size_t>(b)] = taylor_detail::safety_for(block_eps_[static_cast<std::size_t>(b)], order_);
+            for (std::size_t b = 0; b < safety_.size(); ++b) safety_[b] = taylor_detail::safety_for(block_eps_[b], order_);
             compensated_ = least < taylor_detail::compensate_below;
             if (!compensated_) low_.setZero();  // (no stale low part if compensation resumes)
         }
@@ -171,8 +170,10 @@ public:
             double* column = buffer_.data() + static_cast<std::ptrdiff_t>(dim * (1 + j) * stride);
             auto s = [column](int n, int i) -> double& { return column[i * stride + n]; };
             for (int i = 0; i < dim; ++i) s(0, i) = y[dim * (1 + j) + i];
-            const model::AffineEulerRate* parameter = columns_[static_cast<std::size_t>(j)].plus ? &parameters_[static_cast<std::size_t>(j)] : nullptr;
-            for (int n = 0; n < Order; ++n) model::affine_euler_tangent_order<dim == 7>(rate_, parameter, products[n], n, ys, s);
+            const std::size_t k = static_cast<std::size_t>(j);
+            const model::AffineEulerRate* parameter = columns_[k].plus ? &parameters_[k] : nullptr;
+            for (int n = 0; n < Order; ++n)
+                model::affine_euler_tangent_order<dim == 7>(rate_, parameter, products[n], n, ys, s);
         }
         stride_ = stride;
     }
