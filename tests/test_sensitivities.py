@@ -304,7 +304,7 @@ def test_unknown_name_lists_the_valid_ones(asked):
         assert valid in message, f"the message must list the valid names ({valid!r} missing): {message}"
 
 
-@pytest.mark.parametrize("method", ["taylor", "splitting", "auto", "cvode_adams"])
+@pytest.mark.parametrize("method", ["splitting", "auto", "cvode_adams"])
 def test_other_methods_are_refused(method):
     with pytest.raises(ValueError, match=method):
         run(damped(), W0, T_VAR, method=method, sensitivities=["p"])

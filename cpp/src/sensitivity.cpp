@@ -1,6 +1,8 @@
 // The engine's forward sensitivities: a model's variational equations (model/variational.hpp)
-// integrated by DOP853 on the augmented state (integrate/variational.hpp), for every model that
-// integrates (a closed form has no right-hand side to vary).
+// integrated on the augmented state by DOP853 (integrate/variational.hpp) or CVODE's BDF
+// (integrate/variational_bdf.hpp), for every model that integrates (a closed form has no
+// right-hand side to vary), or by the Taylor method (integrate/variational_taylor.hpp) for the
+// gyrostat under constant and linear torques, whose variational equations are polynomial.
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -12,6 +14,7 @@
 #include "gyrostat/integrate/recorder.hpp"
 #include "gyrostat/integrate/variational.hpp"
 #include "gyrostat/integrate/variational_bdf.hpp"
+#include "gyrostat/integrate/variational_taylor.hpp"
 #include "gyrostat/model/frame.hpp"
 #include "gyrostat/model/variational.hpp"
 
@@ -102,6 +105,17 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
         };
         run = integrate::variational_bdf(rate, model::system::has_jacobian<M>::value ? &block_jacobian : nullptr, n, t0,
                                          start, t1, times, atol, options, control, dense.get());
+    } else if (options.method == integrate::Method::Taylor) {
+        if constexpr (model::system::has_affine_euler<M>::value) {
+            run = integrate::variational_taylor(m, system.columns(), t0, start, t1, times, atol, options, control,
+                                                dense.get());
+        } else {
+            throw std::invalid_argument(std::string("sensitivities by method 'taylor' cover the gyrostat model "
+                                                    "(gyrostat.Model, on an orbit too) under constant and linear "
+                                                    "torques; the '") +
+                                        M::family + "' model has no polynomial variational equations here: use "
+                                        "dop853 or cvode_bdf");
+        }
     } else {
         run = integrate::variational_dop853(rate, [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start,
                                             t1, times, atol, options, control, dense.get());
@@ -186,9 +200,10 @@ SensitivityRun solve_sensitivities(const AnyModel& model, const std::vector<Sens
                                    const Eigen::VectorXd& y0, double t1, const integrate::Options& options,
                                    const integrate::Control* control) {
     integrate::validate(options, t0, t1);
-    if (options.method != integrate::Method::Dop853 && options.method != integrate::Method::CvodeBdf)
-        throw std::invalid_argument(std::string("sensitivities are integrated by dop853 or cvode_bdf (the variational "
-                                                "equations on the whole augmented state), not by method '") +
+    if (options.method != integrate::Method::Dop853 && options.method != integrate::Method::CvodeBdf &&
+        options.method != integrate::Method::Taylor)
+        throw std::invalid_argument(std::string("sensitivities are integrated by dop853, cvode_bdf or taylor (the "
+                                                "variational equations on the whole augmented state), not by method '") +
                                     integrate::method_name(options.method) + "'");
     if (!options.events.empty() || options.every_step)
         throw std::invalid_argument("sensitivities are recorded at the output times (t_eval or n_out) and in the dense "

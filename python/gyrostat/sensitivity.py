@@ -1,7 +1,10 @@
 """Forward sensitivities of a run: the derivatives ∂y(t)/∂p of the solution with respect to the
 initial state's components and to the model's parameters, integrated with the solution by the
-engine's variational equations (``cpp/include/gyrostat/model/variational.hpp``; DOP853 on the
-augmented state, ``integrate/variational.hpp``).
+engine's variational equations (``cpp/include/gyrostat/model/variational.hpp``) on the augmented
+state: by DOP853 (the default, ``integrate/variational.hpp``), CVODE's BDF (``method="cvode_bdf"``,
+``integrate/variational_bdf.hpp``) or, for the gyrostat under constant and linear torques, whose
+variational equations are polynomial, the Taylor method (``method="taylor"``,
+``integrate/variational_taylor.hpp``; the engine refuses it for the other models and torques).
 
 A parameter is named as a user writes it (:func:`parameter_names` lists a model's):
 
@@ -337,9 +340,10 @@ def check(asked, opts) -> None:
     if asked is not None:
         raise ValueError("sensitivities are integrated at the rtol and atol given (the variational equations by "
                          "dop853): the accuracy contract does not choose them yet; give rtol instead of accuracy")
-    if opts.method not in ("dop853", "cvode_bdf"):
-        raise ValueError(f"sensitivities are integrated by dop853 or cvode_bdf (the variational equations), not by "
-                         f"method {opts.method!r}: leave method out (dop853), or give 'cvode_bdf' for a stiff model")
+    if opts.method not in ("dop853", "cvode_bdf", "taylor"):
+        raise ValueError(f"sensitivities are integrated by dop853, cvode_bdf or taylor (the variational equations), "
+                         f"not by method {opts.method!r}: leave method out (dop853), or give 'cvode_bdf' for a stiff "
+                         f"model, 'taylor' for a gyrostat under constant and linear torques")
 
 
 class MemberResults(list):

@@ -176,10 +176,11 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         respect to initial state components (by their names) and parameters (``"moments[0]"``,
         ``"LinearDamping.matrix[0,0]"``, ``"ViscousCavity.viscosity"``, …:
         :func:`gyrostat.sensitivity.parameter_names`), read with ``solution.sensitivity(name)``.
-        Integrated by dop853 (or ``method="cvode_bdf"`` for a stiff model) on the variational
-        equations at the rtol and atol given (each sensitivity's error controlled with the
-        state's); with ``events``, ``solution.sensitivity(name, event=k)`` gives the event times'
-        derivatives. Not with ``accuracy`` or another method (a ValueError says so).
+        Integrated by dop853 (or ``method="cvode_bdf"`` for a stiff model, ``method="taylor"``
+        for a gyrostat under constant and linear torques) on the variational equations at the
+        rtol and atol given (each sensitivity's error controlled with the state's); with
+        ``events``, ``solution.sensitivity(name, event=k)`` gives the event times' derivatives.
+        Not with ``accuracy`` or another method (a ValueError says so).
     check_validity : bool, optional
         For an averaged model, check its assumptions along the solution; broken ones are warned
         about (:class:`gyrostat.ValidityWarning`) and listed in ``solution.notes``.

@@ -140,9 +140,11 @@ struct SensitivityRun {
     std::vector<double> outputs;
 };
 /// Solves `model` from (t0, y0) to t1 together with its variational equations for each column
-/// (model/variational.hpp) by DOP853 or CVODE's BDF on the whole augmented state
-/// (integrate/variational.hpp, variational_bdf.hpp; options.method dop853 or cvode_bdf; events,
-/// dense output and every_step are not offered: the Python layer runs them on the plain run). The
+/// (model/variational.hpp) on the whole augmented state by DOP853, CVODE's BDF or, for the
+/// gyrostat under constant and linear torques (polynomial variational equations), the Taylor
+/// method (integrate/variational.hpp, variational_bdf.hpp, variational_taylor.hpp; options.method
+/// dop853, cvode_bdf or taylor: taylor refuses the other models and torques by name; events and
+/// every_step are not offered: the Python layer runs them on the plain run). The
 /// outputs' sensitivities: central differences of the model's outputs along each column at each
 /// output time. Bad input throws std::invalid_argument naming it (a closed-form model, a column's
 /// model of another type, a component outside the state, a step that is not finite and > 0).

@@ -45,6 +45,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <utility>
 
 #include "gyrostat/integrate/control.hpp"
@@ -161,6 +162,29 @@ void advance_compensated(State& y, State& y_low, const State* c, double dt) {
     y = sum;
 }
 
+/// The step's Taylor polynomial at dt as the new state is computed from it: compensated (the state
+/// carried with its rounding error `low`, advance_compensated), c_0 + (Σ_{n≥1} c_n dtⁿ + low); else
+/// Estrin's scheme over the whole polynomial (one chain, shortest). For the outputs inside a step.
+template <int Order, class State>
+State evaluate_step(const State* c, double dt, bool compensated, const State& low) {
+    if (compensated) return c[0] + (increment<Order>(c, dt) + low);
+    return evaluate_polynomial<Order>(c, dt);
+}
+
+/// Whether a step h from t (not ending the run at t1) is below the resolution of t: 10 to 20 units
+/// in the last place of t (no nextafter call on every step).
+inline bool below_resolution(double t, double h, double t1) {
+    const double min_step =
+        10.0 * (std::numeric_limits<double>::epsilon() * std::abs(t) + std::numeric_limits<double>::denorm_min());
+    return std::abs(h) < min_step && t + h != t1;
+}
+
+/// What a run says when its step falls below the resolution of t.
+inline std::string underflow_message(double t, double step) {
+    return "step size underflow at t = " + format_number(t, 17) + ": the step needed (" + format_number(step) +
+           ") is below the resolution of t.";
+}
+
 /// The tolerances (ε = rtol, or atol in absolute mode) below which the state is carried with its
 /// rounding error (advance_compensated). From 1e-12 up the truncation error per step (ε/10 ≥ 1e-13,
 /// ~450 ulp of a state ~1) outweighs the state's rounding (the error at rtol 1e-12 on free_2000 is
@@ -256,10 +280,7 @@ struct Step {
             const double remaining = std::abs(t1 - tl);
             const double step = std::min({lane(h, l), options.max_step, remaining});
             if (run.too_small(tl, step, remaining, direction)) {
-                run.fail(l, Status::StepSizeUnderflow,
-                         "step size underflow at t = " + format_number(tl, 17) + ": the step needed (" +
-                             format_number(step) + ") is below the resolution of t.",
-                         tl, run.state(y, l), 0.0);
+                run.fail(l, Status::StepSizeUnderflow, underflow_message(tl, step), tl, run.state(y, l), 0.0);
                 continue;
             }
             lane(dt, l) = direction * step;
@@ -376,8 +397,7 @@ public:
         // in y_low; else Estrin's scheme over the whole polynomial (one chain, shortest).
         const State low_start = y_low_;
         auto evaluate = [&](double s) -> State {
-            if (compensated_) return c[0] + (taylor_detail::increment<Order>(c, s) + low_start);
-            return taylor_detail::evaluate_polynomial<Order>(c, s);
+            return taylor_detail::evaluate_step<Order>(c, s, compensated_, low_start);
         };
         if (compensated_) {
             if constexpr (model::system::has_taylor_rate_error<System>::value)
@@ -413,15 +433,9 @@ public:
             this->active_ = false;
             return;
         }
-        // 10 to 20 units in the last place of t (no nextafter call on every step)
-        const double min_step =
-            10.0 * (std::numeric_limits<double>::epsilon() * std::abs(t) + std::numeric_limits<double>::denorm_min());
-        if (std::abs(h) < min_step && t + h != t1) {
+        if (taylor_detail::below_resolution(t, h, t1)) {
             y = y_before;
-            this->fail(0, Status::StepSizeUnderflow,
-                 "step size underflow at t = " + format_number(t, 17) + ": the step needed (" + format_number(std::abs(h)) +
-                     ") is below the resolution of t.",
-                 t, y, 0.0);
+            this->fail(0, Status::StepSizeUnderflow, taylor_detail::underflow_message(t, std::abs(h)), t, y, 0.0);
             return;
         }
         taylor_detail::project_compensated(this->system_, y, y_low_);

@@ -32,6 +32,11 @@ struct VariationalRun {
     std::string message;
 };
 
+/// The message of a variational run interrupted at t (Control: Ctrl-C or a progress callback).
+inline std::string interrupted_message(double t) {
+    return "interrupted at t = " + format_number(t) + " (the outputs up to there are kept)";
+}
+
 /// Integrates Y' = rhs(t, Y) from (t0, Y0) to t1, Y = (y, S_1, …, S_m) with blocks of `block`
 /// components, recording Y at `times` (in the run's direction, inside the span). `atol[b]` is
 /// block b's absolute tolerance (rtol is shared). `project(Y)` runs after each accepted step
@@ -131,7 +136,7 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
     int non_finite_trials = 0;
     while (true) {
         if (!ticker.keep_going(t))
-            return fail(Status::Interrupted, "interrupted at t = " + format_number(t) + " (the outputs up to there are kept)");
+            return fail(Status::Interrupted, interrupted_message(t));
         if (run.stats.steps >= options.max_steps)
             return fail(Status::MaxStepsReached, "max_steps = " + std::to_string(options.max_steps) + " reached at t = " +
                                                      format_number(t) + " before t1 = " + format_number(t1));

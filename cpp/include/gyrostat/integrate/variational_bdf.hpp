@@ -132,7 +132,7 @@ VariationalRun variational_bdf(const Rhs& rhs, const BlockJacobian* jacobian, Ei
         if (!ticker.keep_going(t)) {
             statistics();
             run.status = Status::Interrupted;
-            run.message = "interrupted at t = " + format_number(t) + " (the outputs up to there are kept)";
+            run.message = interrupted_message(t);
             return run;
         }
         long steps = 0;

@@ -145,24 +145,29 @@ inline void affine_euler_rate_error(const AffineEuler<double>& e, const double* 
     }
 }
 
+/// s += Σ_{m≤n} q[m] ⊗ (0, w[n−m]), the n-th coefficient of the product q ⊗ (0, w) of two series
+/// (q(m, ·): the quaternion's coefficient m, w(m, ·): the vector's).
+template <class T, class Quaternion, class Vector>
+__attribute__((always_inline)) inline void add_quaternion_product(int n, Quaternion&& q, Vector&& w, T (&s)[4]) {
+    for (int m = 0; m <= n; ++m) {
+        const T &qw = q(m, 0), &qx = q(m, 1), &qy = q(m, 2), &qz = q(m, 3);
+        const T &p = w(n - m, 0), &v = w(n - m, 1), &r = w(n - m, 2);
+        s[0] -= qx * p + qy * v + qz * r;
+        s[1] += qw * p + qy * r - qz * v;
+        s[2] += qw * v + qz * p - qx * r;
+        s[3] += qw * r + qx * v - qy * p;
+    }
+}
+
 /// Order n + 1 of the attitude in the Euler recursion below:
 ///   q[n+1] = ½ Σ_{m≤n} q[m] ⊗ (0, ω[n−m]) / (n + 1).
 template <class T, class Coefficient>
 void attitude_order(int n, Coefficient& c) {
-    T s0 = lanes::splat<T>(0.0), s1 = s0, s2 = s0, s3 = s0;
-    for (int m = 0; m <= n; ++m) {
-        const T &qw = c(m, 3), &qx = c(m, 4), &qy = c(m, 5), &qz = c(m, 6);
-        const T &p = c(n - m, 0), &q = c(n - m, 1), &r = c(n - m, 2);
-        s0 -= qx * p + qy * q + qz * r;
-        s1 += qw * p + qy * r - qz * q;
-        s2 += qw * q + qz * p - qx * r;
-        s3 += qw * r + qx * q - qy * p;
-    }
+    T s[4] = {lanes::splat<T>(0.0), lanes::splat<T>(0.0), lanes::splat<T>(0.0), lanes::splat<T>(0.0)};
+    add_quaternion_product<T>(n, [&](int m, int i) -> const T& { return c(m, 3 + i); },
+                              [&](int m, int i) -> const T& { return c(m, i); }, s);
     const double half = 0.5 / (n + 1);
-    c(n + 1, 3) = half * s0;
-    c(n + 1, 4) = half * s1;
-    c(n + 1, 5) = half * s2;
-    c(n + 1, 6) = half * s3;
+    for (int i = 0; i < 4; ++i) c(n + 1, 3 + i) = half * s[i];
 }
 
 /// Taylor coefficients c(n, ·), n = 1..order, of the affine Euler equations (and the attitude)
@@ -215,6 +220,94 @@ void euler_taylor_recursion(const AffineEuler<T>& e, Coefficient&& c) {
         c(n + 1, 1) = w2[n + 1];
         c(n + 1, 2) = w3[n + 1];
         if constexpr (WithAttitude) attitude_order<T>(n, c);
+    }
+}
+
+/// The affine Euler rate component by component, f_i(ω) = Q_i ω_j ω_k + Σ_l L_il ω_l + C_i
+/// ((i, j, k) cyclic), with Q_i = J_i⁻¹ (A_j − A_k), L = J⁻¹ A (A: affine_euler_linear_part) and
+/// C_i = J_i⁻¹ M0_i: the form the variational equations' Taylor recursion (affine_euler_tangent_order)
+/// reads. f is linear in these coefficients, so its derivative with respect to a parameter of the
+/// model is the same form with the coefficients' derivatives (`derivative`).
+struct AffineEulerRate {
+    double quadratic[3] = {0.0, 0.0, 0.0};
+    double linear[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    double constant[3] = {0.0, 0.0, 0.0};
+
+    static AffineEulerRate of(const AffineEuler<double>& e) {
+        AffineEulerRate f;
+        affine_euler_linear_part(e, f.linear);
+        for (int i = 0; i < 3; ++i) {
+            f.quadratic[i] = e.inverse_moments[i] * e.differences[i];
+            f.constant[i] = e.inverse_moments[i] * e.constant[i];
+            for (int l = 0; l < 3; ++l) f.linear[i][l] *= e.inverse_moments[i];
+        }
+        return f;
+    }
+    /// ∂f/∂p as the central difference (f_plus − f_minus)/(2 step) of the rates of the models built
+    /// with p moved by ±step: the difference of their coefficients (the same number as the
+    /// difference of the two rates wherever they are evaluated, up to rounding).
+    static AffineEulerRate derivative(const AffineEuler<double>& plus, const AffineEuler<double>& minus, double step) {
+        const AffineEulerRate a = of(plus), b = of(minus);
+        AffineEulerRate d;
+        const double scale = 1.0 / (2.0 * step);
+        for (int i = 0; i < 3; ++i) {
+            d.quadratic[i] = (a.quadratic[i] - b.quadratic[i]) * scale;
+            d.constant[i] = (a.constant[i] - b.constant[i]) * scale;
+            for (int l = 0; l < 3; ++l) d.linear[i][l] = (a.linear[i][l] - b.linear[i][l]) * scale;
+        }
+        return d;
+    }
+};
+
+/// P_i[n] = Σ_{m≤n} ω_j[m] ω_k[n−m] ((i, j, k) cyclic): the n-th coefficient of ω_j ω_k along the
+/// solution (y(m, ·): its coefficient m), what the parameter terms of affine_euler_tangent_order read.
+template <class Solution>
+void affine_euler_products(int n, Solution&& y, double (&products)[3]) {
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        double sum = 0.0;
+        for (int m = 0; m <= n; ++m) sum += y(m, j) * y(n - m, k);
+        products[i] = sum;
+    }
+}
+
+/// Order n + 1 of a sensitivity S = ∂y/∂p along the solution y of the affine Euler equations (and
+/// the attitude), from the orders ≤ n of both: S' = ∂f/∂y(y) S + ∂f/∂p(y) is bilinear in (y, S)
+/// plus quadratic in y, so its coefficient n is a sum of Cauchy products of their coefficients:
+///   S_ω,i[n+1] = (Q_i Σ_{m≤n} (ω_j[m] S_k[n−m] + S_j[m] ω_k[n−m]) + Σ_l L_il S_l[n]
+///                 + Q'_i P_i[n] + Σ_l L'_il ω_l[n] + C'_i δ_{n0}) / (n + 1),
+///   S_q[n+1]   = ½ Σ_{m≤n} (q[m] ⊗ (0, S_ω[n−m]) + S_q[m] ⊗ (0, ω[n−m])) / (n + 1),
+/// with f's coefficients Q, L (AffineEulerRate `rate`), their derivatives Q', L', C' (`parameter`;
+/// nullptr for a column of the initial state, which has no ∂f/∂p) and P_i[n] (affine_euler_products,
+/// read only with a `parameter`). y(m, i), s(m, i): coefficient m of component i.
+template <bool WithAttitude, class Solution, class Sensitivity>
+void affine_euler_tangent_order(const AffineEulerRate& rate, const AffineEulerRate* parameter, const double (&products)[3],
+                                int n, Solution&& y, Sensitivity&& s) {
+    const double inv = 1.0 / (n + 1);
+    double next[3];
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        double bilinear = 0.0;
+        for (int m = 0; m <= n; ++m) bilinear += y(m, j) * s(n - m, k) + s(m, j) * y(n - m, k);
+        double r = rate.quadratic[i] * bilinear + (rate.linear[i][0] * s(n, 0) + rate.linear[i][1] * s(n, 1) +
+                                                   rate.linear[i][2] * s(n, 2));
+        if (parameter) {
+            r += parameter->quadratic[i] * products[i] + (parameter->linear[i][0] * y(n, 0) +
+                                                          parameter->linear[i][1] * y(n, 1) +
+                                                          parameter->linear[i][2] * y(n, 2));
+            if (n == 0) r += parameter->constant[i];
+        }
+        next[i] = r * inv;
+    }
+    for (int i = 0; i < 3; ++i) s(n + 1, i) = next[i];
+    if constexpr (WithAttitude) {
+        double q[4] = {0.0, 0.0, 0.0, 0.0};
+        auto solution_q = [&](int m, int i) -> double { return y(m, 3 + i); };
+        auto sensitivity_q = [&](int m, int i) -> double { return s(m, 3 + i); };
+        add_quaternion_product<double>(n, solution_q, [&](int m, int i) -> double { return s(m, i); }, q);
+        add_quaternion_product<double>(n, sensitivity_q, [&](int m, int i) -> double { return y(m, i); }, q);
+        const double half = 0.5 * inv;
+        for (int i = 0; i < 4; ++i) s(n + 1, 3 + i) = half * q[i];
     }
 }
 

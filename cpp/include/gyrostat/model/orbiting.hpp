@@ -62,6 +62,8 @@ public:
     State taylor_rate_error(const State& y, const State& y_low, const State& c1) const {
         return inner_.taylor_rate_error(y, y_low, c1);
     }
+    /// The gyrostat's affine Euler coefficients (the variational Taylor run's: integrate/variational_taylor.hpp).
+    const AffineEuler<double>& affine_euler() const { return inner_.affine_euler(); }
     void require_splitting() const { inner_.require_splitting(); }
     void free_flow(double h, State& y) const { inner_.free_flow(h, y); }
     bool keeps_momentum_norm() const { return inner_.keeps_momentum_norm(); }

@@ -160,6 +160,13 @@ struct has_taylor : std::false_type {};
 template <class S>
 struct has_taylor<S, std::void_t<decltype(S::max_taylor_order)>> : std::true_type {};
 
+/// The gyrostat's affine Euler coefficients (model/affine_euler.hpp): the variational equations'
+/// Taylor recursion (integrate/variational_taylor.hpp).
+template <class S, class = void>
+struct has_affine_euler : std::false_type {};
+template <class S>
+struct has_affine_euler<S, std::void_t<decltype(std::declval<const S&>().affine_euler())>> : std::true_type {};
+
 template <class S, class = void>
 struct has_taylor_rate_error : std::false_type {};
 template <class S>

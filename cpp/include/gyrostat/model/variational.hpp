@@ -55,6 +55,8 @@ public:
 
     Variational(const M& model, std::vector<Varied<M>> columns) : model_(model), columns_(std::move(columns)) {}
 
+    const std::vector<Varied<M>>& columns() const { return columns_; }
+
     void rhs(double t, const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const {
         dY.resize(Y.size());
         const State y = Y.template head<dim>();
