@@ -98,7 +98,8 @@ def test_scene_files_and_sweeps_carry_them(tmp_path):
     path.write_text(scene)
     from gyrostat.runner import run_scene
     run_scene(path, tmp_path / "out", progress=False)
-    saved = np.load(tmp_path / "out" / "forced" / "result.npz")
+    with np.load(tmp_path / "out" / "forced" / "result.npz") as file:  # (closed: no ResourceWarning)
+        saved = dict(file)
     from gyrostat.scene import Scene
     loaded = Scene.from_file(path)
     run = loaded.runs[0]
@@ -269,6 +270,7 @@ def test_every_kind_of_scene_writes_them(tmp_path, scene, name):
             direct = gyrostat.solve(run.model, run.y0, run.t_span, **run.options)
             folder = tmp_path / "out" / scene
             file = folder / f"result_{run.name}.npz"  # (the first run's is result.npz)
-            saved = np.load(file if file.is_file() else folder / "result.npz")
             quantity = run.model.state_names[0]
-            assert np.array_equal(saved[f"d_{quantity}__d_{name}"], direct.sensitivity(name, of=quantity)), run.name
+            with np.load(file if file.is_file() else folder / "result.npz") as saved:  # (closed: no ResourceWarning)
+                column = saved[f"d_{quantity}__d_{name}"]
+            assert np.array_equal(column, direct.sensitivity(name, of=quantity)), run.name

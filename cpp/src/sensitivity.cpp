@@ -107,6 +107,13 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
                                          start, t1, times, atol, options, control, dense.get());
     } else if (options.method == integrate::Method::Taylor) {
         if constexpr (model::system::has_affine_euler<M>::value) {
+            // The moved models' coefficients are differenced in their own principal axes: a
+            // parameter that turns them (an inertia tensor's entry) needs the rates' route.
+            for (const model::Varied<M>& column : system.columns())
+                if (column.plus && (column.plus->body().principal_axes() != m.body().principal_axes() ||
+                                    column.minus->body().principal_axes() != m.body().principal_axes()))
+                    throw std::invalid_argument("sensitivities by method 'taylor' to a parameter that turns the body's "
+                                                "principal axes (an inertia tensor's entry): use dop853 or cvode_bdf");
             run = integrate::variational_taylor(m, system.columns(), t0, start, t1, times, atol, options, control,
                                                 dense.get());
         } else {
