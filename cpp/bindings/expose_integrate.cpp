@@ -102,19 +102,23 @@ std::vector<Eigen::VectorXd> initial_states(const py::object& y0s) {
 
 namespace {
 /// The engine's sensitivity columns from Python's tuples: (component, None, None, 0, atol) or
-/// (-1, model with the parameter + step, model with it − step, step, atol[, affine]).
+/// (-1, model with the parameter + step, model with it − step, step, atol[, model with it + far_step
+/// (an affine parameter) or None, far_step]).
 std::vector<SensitivityColumn> sensitivity_columns(const std::vector<py::tuple>& given) {
     std::vector<SensitivityColumn> columns;
     for (const py::tuple& c : given) {
-        if (c.size() != 5 && c.size() != 6)
-            throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol[, affine])");
+        if (c.size() != 5 && c.size() != 7)
+            throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol[, far, far_step])");
         SensitivityColumn column;
         column.component = c[0].cast<int>();
         if (!c[1].is_none()) column.plus = &c[1].cast<const BoundModel&>().model;
         if (!c[2].is_none()) column.minus = &c[2].cast<const BoundModel&>().model;
         column.step = c[3].cast<double>();
         column.atol = c[4].cast<double>();
-        column.affine = c.size() == 6 && c[5].cast<bool>();
+        if (c.size() == 7 && !c[5].is_none()) {
+            column.far = &c[5].cast<const BoundModel&>().model;
+            column.far_step = c[6].cast<double>();
+        }
         columns.push_back(column);
     }
     return columns;

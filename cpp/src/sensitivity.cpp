@@ -4,6 +4,8 @@
 // right-hand side to vary), or by the Taylor method (integrate/variational_taylor.hpp) for the
 // gyrostat under constant and linear torques, whose variational equations are polynomial.
 #include <cmath>
+#include <cstdlib>
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <string>
@@ -34,7 +36,12 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     constexpr int n = M::dim;
     const Eigen::Index width = static_cast<Eigen::Index>(columns.size());
     std::vector<model::Varied<M>> varied(columns.size());
-    std::vector<double> atol{options.atol};
+    std::vector<double> atol{options.atol}, rtol{options.rtol};
+    // A column whose rate is a difference quotient (a parameter's ∂f/∂p not declared affine, or
+    // ∂f/∂y·S of a model without a Jacobian) has its relative error controlled to at least the
+    // quotient's own accuracy: below it the steps would chase the quotient's rounding noise.
+    const double floor = model::kDifferenceAccuracy;
+    constexpr bool differenced_jacobian = !model::system::has_jacobian<M>::value && !model::system::has_jacobian_product<M>::value;
     Eigen::VectorXd start = Eigen::VectorXd::Zero(n * (1 + width));
     start.head<n>() = model::frame::initial_state(m, given);
     for (std::size_t j = 0; j < columns.size(); ++j) {
@@ -66,7 +73,11 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             if (!(std::isfinite(c.step) && c.step > 0.0))
                 throw std::invalid_argument(which + "the parameter's step must be finite and > 0, got " +
                                             integrate::format_number(c.step, 17));
-            varied[j] = {plus, minus, c.step, c.affine};
+            const M* far = c.far ? std::get_if<M>(c.far) : nullptr;
+            if (c.far && !(far && std::isfinite(c.far_step) && c.far_step > 0.0))
+                throw std::invalid_argument(which + "the model moved far must be a '" + std::string(M::family) +
+                                            "' model with a finite step > 0");
+            varied[j] = {plus, minus, c.step, far, c.far_step};
             // The state the run starts from may depend on the parameter (an averaged model's slow
             // variables from the ω given): S_j(t0) = ∂y(t0)/∂p_j, by the same central difference.
             // (Each in this model's axes: a body's parameter turns the moved models' principal axes.)
@@ -79,6 +90,8 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             throw std::invalid_argument(which + "its absolute tolerance must be finite and > 0, got " +
                                         integrate::format_number(c.atol, 17));
         atol.push_back(c.atol);
+        const bool differenced = differenced_jacobian || (c.component < 0 && !c.far);
+        rtol.push_back(differenced ? std::max(options.rtol, floor) : options.rtol);
     }
     const model::Variational<M> system(m, std::move(varied));
     const std::vector<double> times = integrate::output_times(options, t0, t1);
@@ -125,7 +138,7 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
         }
     } else {
         run = integrate::variational_dop853(rate, [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start,
-                                            t1, times, atol, options, control, dense.get());
+                                            t1, times, atol, rtol, options, control, dense.get());
     }
 
     SensitivityRun out;

@@ -232,7 +232,13 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
             plus, minus = rebuild(value + step), rebuild(value - step)
         except (ValueError, TypeError) as error:
             raise ValueError(f"sensitivities: {name} = {value!r} cannot be moved by ±{step:.3g}: {error}") from None
-        made.append((-1, plus._core, minus._core, step, atol / size, affine))
+        far = None
+        if affine:  # the rate's exact one-sided difference, moved by the parameter's own size
+            try:
+                far = rebuild(value + size)._core
+            except (ValueError, TypeError):
+                far = None  # (a move that large breaks a rule of the model's: the central difference)
+        made.append((-1, plus._core, minus._core, step, atol / size, far, size))
     if len(set(names)) != len(names):
         raise ValueError(f"sensitivities: a name is asked twice in {list(names)}")
     return tuple(name.replace(" ", "") for name in names), made

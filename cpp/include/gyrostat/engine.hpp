@@ -126,10 +126,12 @@ struct SensitivityColumn {
     /// The absolute tolerance of this column's error control (the run's atol over the parameter's
     /// size: CVODES's p̄ scaling; the run's atol for an initial component).
     double atol = 0.0;
-    /// The right-hand side is affine in the parameter (its torque declares so: affine_in, in
-    /// torque/set.hpp): ∂f/∂p = (f(p + step) − f(p))/step, exact up to rounding, one moved
-    /// right-hand side per stage instead of two.
-    bool affine = false;
+    /// Where the right-hand side is affine in the parameter (its torque or model declares so:
+    /// affine_in, torque/set.hpp), the model with it moved by far_step, the parameter's own size:
+    /// ∂f/∂p = (f(p + far_step) − f(p))/far_step, exact up to rounding (that large a move keeps
+    /// the difference far above f's rounding), one moved right-hand side per stage instead of two.
+    const AnyModel* far = nullptr;
+    double far_step = 0.0;
 };
 /// A run with its sensitivities: `result` as `solve` gives it at the output times (states in the
 /// user's frame, the outputs, statistics, status and message), `state` the sensitivities of the

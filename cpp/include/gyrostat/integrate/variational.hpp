@@ -38,8 +38,8 @@ inline std::string interrupted_message(double t) {
 }
 
 /// Integrates Y' = rhs(t, Y) from (t0, Y0) to t1, Y = (y, S_1, …, S_m) with blocks of `block`
-/// components, recording Y at `times` (in the run's direction, inside the span). `atol[b]` is
-/// block b's absolute tolerance (rtol is shared). `project(Y)` runs after each accepted step
+/// components, recording Y at `times` (in the run's direction, inside the span). `atol[b]` and
+/// `rtol[b]` are block b's tolerances. `project(Y)` runs after each accepted step
 /// (the model's manifold, on y) and says whether the model has one. With a `dense` output, every
 /// step's continuous extension goes into it (the whole augmented state). Fails as dop853 does
 /// (max_steps, a step below the resolution of t, a non-finite state) with the partial record and
@@ -47,12 +47,12 @@ inline std::string interrupted_message(double t) {
 template <class Rhs, class Project>
 VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen::Index block, double t0,
                                   Eigen::VectorXd y, double t1, const std::vector<double>& times,
-                                  const std::vector<double>& atol, const Options& options, const Control* control,
-                                  DenseOutput* dense = nullptr) {
+                                  const std::vector<double>& atol, const std::vector<double>& rtol,
+                                  const Options& options, const Control* control, DenseOutput* dense = nullptr) {
     namespace tab = dop853_tableau;
     using namespace dop853_detail;
     const Eigen::Index size = y.size(), blocks = size / block;
-    const double direction = t1 >= t0 ? 1.0 : -1.0, span = std::abs(t1 - t0), rtol = options.rtol;
+    const double direction = t1 >= t0 ? 1.0 : -1.0, span = std::abs(t1 - t0);
     VariationalRun run;
     std::size_t next = 0;  // the next output time
     auto record = [&](double time, const Eigen::VectorXd& value) {
@@ -81,10 +81,13 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
         return worst;
     };
     // The working vectors, allocated once here (none in the loop).
-    Eigen::VectorXd scale(size), absolute(size);
-    for (Eigen::Index i = 0; i < size; ++i) absolute[i] = atol[static_cast<std::size_t>(i / block)];
+    Eigen::VectorXd scale(size), absolute(size), relative(size);
+    for (Eigen::Index i = 0; i < size; ++i) {
+        absolute[i] = atol[static_cast<std::size_t>(i / block)];
+        relative[i] = rtol[static_cast<std::size_t>(i / block)];
+    }
     auto scale_of = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) -> const Eigen::VectorXd& {
-        scale = absolute + rtol * a.cwiseAbs().cwiseMax(b.cwiseAbs());
+        scale = absolute + relative.cwiseProduct(a.cwiseAbs().cwiseMax(b.cwiseAbs()));
         return scale;
     };
 

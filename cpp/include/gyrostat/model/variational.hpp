@@ -13,9 +13,11 @@
 //   (truncation and rounding both ~ε^{2/3} ≈ 4e-11 relative: the averaged models);
 // * ∂f/∂p_j: (f(t, y; p_j + h_j) − f(t, y; p_j − h_j)) / 2h_j on the two models the caller built
 //   with the parameter moved (truncation O(h²): ~1e-11 relative at h_j = ε^{1/3} |p_j|; exact up to
-//   rounding where f is affine in p_j, as in every torque's gain; there, where the torque declares
-//   it (affine_in), the one-sided (f(t, y; p_j + h_j) − f(t, y; p_j)) / h_j, as exact, costs one
-//   moved right-hand side instead of two). A column for an initial
+//   rounding where f is affine in p_j, as in every torque's gain; there, where the torque or the
+//   model declares it (affine_in), the one-sided (f(t, y; p_j + H_j) − f(t, y; p_j)) / H_j with
+//   H_j = |p_j| (the parameter's size: the difference far above f's rounding, whose noise would
+//   otherwise hold the steps at tight tolerances) costs one moved right-hand side instead of two).
+//   A column for an initial
 //   component has no such term. A body's parameter moved (an inertia tensor's entry) turns the
 //   principal axes the moved model runs in: its f is taken through the user's frame,
 //   U⁻¹ U_± f_±(U_±⁻¹ U y) (model/frame.hpp: reframe), so that the difference is the user frame's
@@ -34,15 +36,21 @@
 
 namespace gyrostat::model {
 
+/// The relative accuracy of a difference quotient here (ε^{2/3} ≈ 4e-11 rounding per evaluation,
+/// ~1e-11 truncation): a column whose rate is one is integrated to at least this relative error
+/// (integrate/variational.hpp's per-block rtol), and reports at least it (gyrostat.sensitivity).
+inline constexpr double kDifferenceAccuracy = 1e-10;
+
 /// One sensitivity column of a model of type M: a parameter (the model built with it moved by
-/// ±step; `affine`: f is affine in it, and the one-sided difference with `plus` is exact) or, with
-/// `plus` null, a component of the initial state.
+/// ±step; `far`: where f is affine in it, the model with it moved by far_step, whose one-sided
+/// difference is exact) or, with `plus` null, a component of the initial state.
 template <class M>
 struct Varied {
     const M* plus = nullptr;
     const M* minus = nullptr;
     double step = 0.0;
-    bool affine = false;
+    const M* far = nullptr;
+    double far_step = 0.0;
 };
 
 /// The augmented system (y, S_1, …, S_m) of `model`, m = columns.size(), state of size
@@ -82,8 +90,8 @@ public:
                 rate = directional(t, y, s);
             }
             const Varied<M>& column = columns_[j];
-            if (column.plus && column.affine)
-                rate += (moved_rate(*column.plus, t, y) - f) / column.step;
+            if (column.far)
+                rate += (moved_rate(*column.far, t, y) - f) / column.far_step;
             else if (column.plus)
                 rate += (moved_rate(*column.plus, t, y) - moved_rate(*column.minus, t, y)) / (2.0 * column.step);
             dY.template segment<dim>(at) = rate;
