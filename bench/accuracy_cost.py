@@ -125,20 +125,29 @@ class Counter:
 
     def __init__(self):
         self.rhs = self.steps = self.runs = 0
-        self._engine = _core.solve
+        self._engine, self._window = _core.solve, _core.window_estimate
+
+    def _count(self, result) -> None:
+        self.rhs += result.stats.rhs_evals
+        self.steps += result.stats.steps
+        self.runs += 1
 
     def __enter__(self):
         def counted(*args, **kwargs):
             result = self._engine(*args, **kwargs)
-            self.rhs += result.stats.rhs_evals
-            self.steps += result.stats.steps
-            self.runs += 1
+            self._count(result)
             return result
-        _core.solve = counted
+
+        def counted_window(*args, **kwargs):  # (one run's estimate in one engine call: its companion counted)
+            made = self._window(*args, **kwargs)
+            if made is not None:
+                self._count(made[6])
+            return made
+        _core.solve, _core.window_estimate = counted, counted_window
         return self
 
     def __exit__(self, *exc):
-        _core.solve = self._engine
+        _core.solve, _core.window_estimate = self._engine, self._window
 
 
 def work(job) -> tuple[object, int, int, str]:

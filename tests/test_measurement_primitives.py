@@ -127,3 +127,152 @@ def test_the_windows_even_times_are_numpys_linspace(t0, t1, count):
     assert np.max(np.abs(made - numpy)) <= 2 * np.spacing(abs(t1 - t0)) + np.spacing(max(abs(t0), abs(t1)))
     assert made[0] == t0 and made[-1] == t1
     assert np.all(np.sign(np.diff(made)) == np.sign(t1 - t0))
+
+
+# ------------------------------------------------------------------------------------ the window estimate
+def python_grow(last, half, end, middle, far, least=1.0):
+    """The window's growth rule (gyrostat.accuracy's module doc), written here: t^k from the window's
+    second half, k within [least, 2]."""
+    if far <= end or last == 0.0:
+        return last, 1.0
+    k = 1.0 if half <= 0 else min(2.0, max(least, math.log(last / half) / math.log(end / middle)))
+    return last * (far / end) ** k, k
+
+
+WINDOW_CASES = {
+    "averaged": (g.AveragedModel(g.Body([8.0, 8.0, 4.0]), [g.ViscousCavity(1260, 1000, 0.48),
+                                                          g.ConstantTorque([0.0, 0.0, -0.01])]), [1.0, 1.0], 60.0),
+    "attitude": (g.Model(g.Body([1.0, 1.4, 2.1]), [g.LinearDamping(diagonal=[1e-3, 2e-3, 5e-4])], attitude=True),
+                 [0.15, 0.3, 1.0, 1.0, 0.0, 0.0, 0.0], 400.0),
+    "moving mass": (g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), mass=1.0, arm=1.0, frequency=10.0, damping=98.0),
+                    [1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 40.0),
+}
+
+
+@pytest.mark.parametrize("case", sorted(WINDOW_CASES))
+@pytest.mark.parametrize("rtol", [1e-6, 1e-9])
+def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
+    """``_core.window_estimate`` (one engine call: the companion over the first 20 % of the span at
+    rtol/4, the differences, the growth) against the same rule computed here from a companion run
+    through ``_core.solve`` and NumPy's running maxima: equal to 1e-14 relative (the same runs,
+    the same operations on both sides, libm's log and pow)."""
+    model, y0, t1 = WINDOW_CASES[case]
+    y0 = np.asarray(y0, float)
+    core, answer = model._core, run(model, y0, t1, rtol, n_out=201)
+    companion = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4)
+    gain = 4.0 / 3.0
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=gain)
+    values, k, grown, end, count, failure, _ = _core.window_estimate(core, answer, 0.0, y0, t1, companion, rule)
+    times = np.asarray(answer.t)
+    inside = int(np.sum(times <= 0.2 * t1))
+    window_options = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4, t_eval=times[:inside])
+    other = _core.solve(core, y0, 0.0, float(times[inside - 1]), window_options, None)
+    apart = numpy_differences(core, other, answer, slice(None), slice(0, inside))
+    middle = inside // 2
+    expected, ks = [], []
+    for row in apart:
+        value, k_row = python_grow(row.max() * gain, row[:middle + 1].max() * gain, times[inside - 1],
+                                   times[middle], t1)
+        expected.append(max(3.0 * value, 1e-16))
+        ks.append(k_row)
+    assert failure == "" and grown and count == inside and end == times[inside - 1], (failure, grown, count, end)
+    assert np.allclose(values, expected, rtol=1e-14, atol=0.0), f"{case}: engine {values}, rule {expected}"
+    assert k == pytest.approx(max(ks), rel=1e-14), (k, ks)
+    assert max(expected) > 1e-13, "the runs must differ for the comparison to mean anything"
+
+
+def test_the_engines_window_leaves_what_it_cannot_measure_to_python():
+    """None (the Python window then samples or measures the whole span) where the run holds fewer
+    than 16 output times in the window, or crosses a separatrix after the window's first half;
+    a companion that stops is named."""
+    core = CAVITY._core
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    tighter = make_options(rtol=2.5e-9, atol=2.5e-12)
+    few = run(CAVITY, W0, 50.0, 1e-8, n_out=11)
+    assert _core.window_estimate(core, few, 0.0, W0, 50.0, tighter, rule) is None
+    crossing = run(CAVITY, W0, T1, 1e-8, n_out=401)
+    assert core.first_crossing(crossing, 0.1 * T1) > 0.1 * T1, "the case must cross after the window's first half"
+    assert _core.window_estimate(core, crossing, 0.0, W0, T1, tighter, rule) is None
+    short = run(CAVITY, W0, 50.0, 1e-8, n_out=201)
+    starved = make_options(rtol=2.5e-9, atol=2.5e-12, max_steps=3)
+    values, *_, failure, companion = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
+    assert failure.startswith("max_steps_reached") and values == [] and companion.status == "max_steps_reached", failure
+    estimate = g.accuracy._window_estimate((values, 1.0, False, 10.0, 0, failure), ["omega"], 0.0, 50.0, 0.2, "x",
+                                            4 / 3)
+    assert math.isnan(estimate.value) and "max_steps_reached" in estimate.basis, estimate.basis
+
+
+@pytest.mark.parametrize("args, expected", [
+    ((1e-6, 5e-7, 2.0, 1.0, 10.0), (5e-6, 1.0)),           # k = 1: linear drift
+    ((1e-6, 2.5e-7, 2.0, 1.0, 10.0), (2.5e-5, 2.0)),       # k = 2: quadratic
+    ((1e-6, 1e-9, 2.0, 1.0, 10.0), (2.5e-5, 2.0)),         # k capped at 2
+    ((1e-6, 1e-6, 2.0, 1.0, 10.0), (5e-6, 1.0)),           # flat: k raised to least
+    ((1e-6, 0.0, 2.0, 1.0, 10.0), (5e-6, 1.0)),            # no error at the middle: k = 1
+    ((1e-6, 5e-7, 2.0, 1.0, 1.5), (1e-6, 1.0)),            # horizon inside the window
+    ((0.0, 0.0, 2.0, 1.0, 10.0), (0.0, 1.0)),              # no error
+])
+def test_grow_at_its_limits(args, expected):
+    """The growth rule at its limits, against the values derived by hand (exact but for pow's last
+    ulp: 1e-15 relative)."""
+    value, k = _core.grow(*args)
+    assert (value, k) == pytest.approx(expected, rel=1e-15, abs=0.0), (args, value, k)
+    assert (value, k) == pytest.approx(python_grow(*args), rel=1e-15, abs=0.0)
+
+
+def test_grow_keeps_nan():
+    value, k = _core.grow(math.nan, 1e-7, 2.0, 1.0, 10.0)
+    assert math.isnan(value) and k == 1.0, (value, k)
+
+
+@pytest.mark.parametrize("case", sorted(WINDOW_CASES))
+@pytest.mark.parametrize("full", [False, True])
+def test_one_runs_estimate_in_the_engine_equals_the_general_path(case, full):
+    """A single run's estimate made in one engine call (``accuracy.SingleRun``: the window, or with
+    ``full`` the whole span) equals the general path's (any runner: ensembles, the model ladder)
+    exactly: the same runs, differences and rule; its basis reads the same and the whole span's
+    companion is kept alike."""
+    model, y0, t1 = WINDOW_CASES[case]
+    y0, core = np.asarray(y0, float), model._core
+    opts = make_options(rtol=1e-7, atol=1e-10, n_out=201)
+    answer = _core.solve(core, y0, 0.0, t1, opts, None)
+    kept_here, kept_there = {}, {}
+    here = g.accuracy.estimate_runs(g.accuracy.SingleRun(core, y0, 0.0), [core], opts, 0.0, t1, [answer], full=full,
+                                    companions=kept_here)[0]
+    there = g.accuracy.estimate_runs(lambda o, t, members: [_core.solve(core, y0, 0.0, t, o, None)], [core], opts, 0.0,
+                                     t1, [answer], full=full, companions=kept_there)[0]
+    assert (here.value, here.per_quantity, here.basis) == (there.value, there.per_quantity, there.basis)
+    assert here.value > 1e-12, "the estimate must measure something"
+    if full:
+        assert np.array_equal(kept_here[0].y, kept_there[0].y), "the whole span's companion must be kept"
+
+
+@pytest.mark.parametrize("full", [False, True])
+def test_an_ensembles_estimates_in_the_engine_equal_the_general_path(full):
+    """An ensemble's estimates made in the engine (``accuracy.EnsembleRun``: the companions as one
+    ensemble, ``_core.window_estimates``) equal the general path's exactly, member by member: the
+    cavity's members here cross the separatrix or not by their start (those crossing are left to
+    the general path's whole span), and a member that failed is estimated by neither."""
+    core = CAVITY._core
+    y0s = np.array([W0, [1.0, 0.2, -1.0], [0.2, 0.3, 1.0], W0 * 1.01])
+    opts = make_options(rtol=1e-7, atol=1e-10, n_out=201)
+    answers = list(_core.solve_ensemble([core], y0s, 0.0, T1, opts, 1, None, batch=True))
+    starved = make_options(rtol=1e-7, atol=1e-10, n_out=201, max_steps=5)
+    answers[1] = _core.solve(core, y0s[1], 0.0, T1, starved, None)
+    assert not answers[1].success
+    crossing = [core.first_crossing(a, 0.1 * T1) > 0.1 * T1 for a in answers]
+    assert crossing[0] and not crossing[2], "the case must have members on both sides"
+    here, there, kept_here, kept_there = [], [], {}, {}
+    here = g.accuracy.estimate_runs(g.accuracy.EnsembleRun([core], y0s, 0.0, 4, 1), [core] * 4, opts, 0.0, T1,
+                                    answers, full=full, companions=kept_here)
+
+    def general(o, t_end, members):
+        return _core.solve_ensemble([core], y0s[members], 0.0, t_end, o, 1, None, batch=True)
+    there = g.accuracy.estimate_runs(general, [core] * 4, opts, 0.0, T1, answers, full=full, companions=kept_there)
+    assert here[1] is None and there[1] is None, "a failed run estimates nothing"
+    for i in (0, 2, 3):
+        assert (here[i].value, here[i].per_quantity, here[i].basis) == \
+            (there[i].value, there[i].per_quantity, there[i].basis), f"member {i}"
+        assert here[i].value > 1e-12
+    assert sorted(kept_here) == sorted(kept_there)
+    for i in kept_here:
+        assert np.array_equal(kept_here[i].y, kept_there[i].y), f"member {i}'s companion"

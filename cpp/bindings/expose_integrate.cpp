@@ -11,6 +11,7 @@
 #include "convert.hpp"
 #include "expose.hpp"
 #include "gyrostat/engine.hpp"
+#include "gyrostat/measure.hpp"
 #include "gyrostat/integrate/dense.hpp"
 #include "gyrostat/numeric/lanes.hpp"
 #include "gyrostat/model/affine_euler_avx2.hpp"
@@ -375,6 +376,90 @@ Examples
         },
         py::arg("model"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("progress") = py::none(),
         py::arg("interval") = 0.1);
+
+    py::class_<WindowRule>(m, "WindowRule", "The numbers a window estimate is made with (gyrostat/measure.hpp).")
+        .def(py::init([](double fraction, std::size_t least_times, double safety, double floor, double gain) {
+                 return WindowRule{fraction, least_times, safety, floor, gain};
+             }),
+             py::arg("fraction"), py::arg("least_times"), py::arg("safety"), py::arg("floor"), py::arg("gain"))
+        .def_readonly("fraction", &WindowRule::fraction)
+        .def_readonly("gain", &WindowRule::gain);
+    // (values per quantity, largest k, grown, window's end, times compared, failure[, the companion])
+    auto window_tuple = [](WindowEstimate& w, bool with_companion) -> py::tuple {
+        if (with_companion)
+            return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, std::move(w.companion));
+        return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure);
+    };
+    m.def(
+        "window_estimate",
+        [window_tuple](const BoundModel& model, const Result& answer, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0,
+                       double t1, const Options& companion, const WindowRule& rule, py::object progress,
+                       bool whole_span) -> py::object {
+            PythonControl control(std::move(progress), 0.1);
+            reset_python_torques(model.model);
+            WindowEstimate made;
+            {
+                py::gil_scoped_release release;
+                made = window_estimate(model.model, answer, t0, y0, t1, companion, rule, control.get(), whole_span);
+            }
+            control.rethrow();
+            rethrow_python_torques(model.model);
+            if (!made.made) return py::none();
+            return window_tuple(made, true);
+        },
+        py::arg("model"), py::arg("answer"), py::arg("t0"), py::arg("y0"), py::arg("t1"), py::arg("companion"),
+        py::arg("rule"), py::arg("progress") = py::none(), py::arg("whole_span") = false,
+        "The window estimate of a run (gyrostat/measure.hpp), or with ``whole_span`` its measurement over every "
+        "output time: (each measured quantity's estimate, the largest growth exponent, whether grown to the "
+        "horizon, the window's end, the times compared, why there is none or '', the companion's Result); None "
+        "where the window cannot be measured here (too few output times in it, a separatrix crossed).");
+    m.def(
+        "window_estimates",
+        [window_tuple](const std::vector<const BoundModel*>& bound, const std::vector<const Result*>& answers, double t0,
+                       const py::object& y0s, double t1, const Options& companion, const WindowRule& rule, int threads,
+                       py::object progress, bool batch, bool whole_span) {
+            const auto starts = initial_states(y0s);
+            std::vector<const AnyModel*> models;
+            for (const BoundModel* b : bound) models.push_back(&b->model), reset_python_torques(b->model);
+            PythonControl control(std::move(progress), 0.1);
+            std::vector<WindowEstimate> made;
+            {
+                py::gil_scoped_release release;
+                made = window_estimates(models, answers, t0, starts, t1, companion, rule, threads, control.get(), batch,
+                                        whole_span);
+            }
+            control.rethrow();
+            for (const BoundModel* b : bound) rethrow_python_torques(b->model);
+            py::list out;
+            for (WindowEstimate& w : made) out.append(w.made ? py::object(window_tuple(w, true)) : py::object(py::none()));
+            return out;
+        },
+        py::arg("models"), py::arg("answers"), py::arg("t0"), py::arg("y0s"), py::arg("t1"), py::arg("companion"),
+        py::arg("rule"), py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("batch") = true,
+        py::arg("whole_span") = false,
+        "Each member's window_estimate (or whole-span measurement), the companions run as one ensemble "
+        "(gyrostat/measure.hpp): a list of window_estimate's tuples, None for a member left to the caller.");
+    m.def(
+        "window_from_differences",
+        [window_tuple](const Eigen::Ref<const Eigen::MatrixXd>& apart, const std::vector<double>& times, double t0,
+                       double horizon, const WindowRule& rule, bool to_horizon) {
+            WindowEstimate made = window_from_differences(apart, times, t0, horizon, rule, to_horizon);
+            return window_tuple(made, false);
+        },
+        py::arg("apart"), py::arg("times"), py::arg("t0"), py::arg("horizon"), py::arg("rule"), py::arg("to_horizon") = true,
+        "A window estimate from the quantities' differences (quantities x times) at the window's times, as "
+        "window_estimate's tuple.");
+    m.def(
+        "grow",
+        [](double last, double half, double end, double middle, double far, double least) {
+            const Grown g = grow(last, half, end, middle, far, least);
+            return py::make_tuple(g.value, g.k);
+        },
+        py::arg("last"), py::arg("half"), py::arg("end"), py::arg("middle"), py::arg("far"), py::arg("least") = 1.0,
+        "A difference's running maximum over a window (``last`` at its end, ``half`` at its middle output time) "
+        "grown to the horizon as t^k, k fitted over the window's second half and kept within [least, 2]; "
+        "(value, k). ``end``, ``middle``, ``far``: the distances from t0 of the window's end, its middle output "
+        "time and the horizon.");
 
     m.def(
         "solve_sensitivities",

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'WindowRule', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'grow', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector', 'window_estimate', 'window_estimates', 'window_from_differences']
 class Body:
     """
     A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -2430,6 +2430,18 @@ class Result:
         """
         The state at t_last.
         """
+class WindowRule:
+    """
+    The numbers a window estimate is made with (gyrostat/measure.hpp).
+    """
+    def __init__(self, fraction: typing.SupportsFloat | typing.SupportsIndex, least_times: typing.SupportsInt | typing.SupportsIndex, safety: typing.SupportsFloat | typing.SupportsIndex, floor: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def fraction(self) -> float:
+        ...
+    @property
+    def gain(self) -> float:
+        ...
 class TorqueFreeSolution:
     """
     The closed-form angular velocity of a torque-free rigid body (Jacobi elliptic functions).
@@ -2581,6 +2593,10 @@ def euler_angles(q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], con
     convention 'zxz' (R = Rz(psi) Rx(theta) Rz(phi)) or 'zyx' (R = Rz(psi) Ry(theta) Rx(phi)).
     At a singular theta the free rotation is in psi and phi = 0. Returns shape (3,) or (n, 3).
     """
+def grow(last: typing.SupportsFloat | typing.SupportsIndex, half: typing.SupportsFloat | typing.SupportsIndex, end: typing.SupportsFloat | typing.SupportsIndex, middle: typing.SupportsFloat | typing.SupportsIndex, far: typing.SupportsFloat | typing.SupportsIndex, least: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> tuple[float, float]:
+    """
+    A difference's running maximum over a window (``last`` at its end, ``half`` at its middle output time) grown to the horizon as t^k, k fitted over the window's second half and kept within [least, 2]; (value, k). ``end``, ``middle``, ``far``: the distances from t0 of the window's end, its middle output time and the horizon.
+    """
 def gyrostat_model(body: Body, torques: collections.abc.Iterable, attitude: bool, orbit: typing.Any = None) -> Model:
     ...
 def jacobi_sn_cn_dn(u: typing.SupportsFloat | typing.SupportsIndex, m: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[list[float], "FixedSize(3)"]:
@@ -2652,6 +2668,18 @@ def unit_vector(v: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], name
     """
     The unit vector along v, shape (n,), whatever its length: v / max|v_i| normalised (no overflow or
     underflow). ValueError naming `name` and v when v is zero or not finite.
+    """
+def window_estimate(model: Model, answer: Result, t0: typing.SupportsFloat | typing.SupportsIndex, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], t1: typing.SupportsFloat | typing.SupportsIndex, companion: Options, rule: WindowRule, progress: typing.Any = None, whole_span: bool = False) -> typing.Any:
+    """
+    The window estimate of a run (gyrostat/measure.hpp), or with ``whole_span`` its measurement over every output time: (each measured quantity's estimate, the largest growth exponent, whether grown to the horizon, the window's end, the times compared, why there is none or '', the companion's Result); None where the window cannot be measured here (too few output times in it, a separatrix crossed).
+    """
+def window_estimates(models: collections.abc.Sequence[Model], answers: collections.abc.Sequence[Result], t0: typing.SupportsFloat | typing.SupportsIndex, y0s: typing.Any, t1: typing.SupportsFloat | typing.SupportsIndex, companion: Options, rule: WindowRule, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, batch: bool = True, whole_span: bool = False) -> list:
+    """
+    Each member's window_estimate (or whole-span measurement), the companions run as one ensemble (gyrostat/measure.hpp): a list of window_estimate's tuples, None for a member left to the caller.
+    """
+def window_from_differences(apart: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.f_contiguous"], times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], t0: typing.SupportsFloat | typing.SupportsIndex, horizon: typing.SupportsFloat | typing.SupportsIndex, rule: WindowRule, to_horizon: bool = True) -> tuple:
+    """
+    A window estimate from the quantities' differences (quantities x times) at the window's times, as window_estimate's tuple.
     """
 __version__: str = '0.1.0'
 large: float = 10.0

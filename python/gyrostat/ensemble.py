@@ -10,6 +10,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from gyrostat import _core
+from gyrostat import accuracy as _accuracy
 from gyrostat import progress as _bars
 from gyrostat import sensitivity as _sensitivity
 from gyrostat.answer import accuracy_asked, attach, checked, estimate_mode, measured
@@ -139,6 +140,13 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
     return [checked(s, s.model, check_validity) if s.success or s.accuracy_warnings else s for s in solutions]
 
 
+def _largest(y0s) -> float:
+    """The largest |component| of the initial states (the accuracy contract's atol scale; 1 for none)."""
+    if isinstance(y0s, np.ndarray) and y0s.ndim == 2 and y0s.size:
+        return float(np.abs(y0s).max())
+    return max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
+
+
 def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
                       n_out=None, every_step=None, max_steps=None, first_step=None, max_step=None, step=None,
                       splitting_order=None, options=None, events=None, dense_output=False, progress=None,
@@ -210,12 +218,7 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
     asked = accuracy_asked(accuracy)
     report = _bars.resolve(progress, total=count, unit="member")
 
-    def run(o, t_end, members):  # the members' runs (all of them: the answer's, with the progress)
-        if len(members) == count:
-            return _core.solve_ensemble(cores, y0s, t0, t_end, o, int(threads), report, batch=batch)
-        starts = y0s[members] if isinstance(y0s, np.ndarray) else [y0s[m] for m in members]
-        chosen = cores if len(cores) == 1 else [cores[m] for m in members]
-        return _core.solve_ensemble(chosen, starts, t0, t_end, o, int(threads), None, batch=batch)
+    run = _accuracy.EnsembleRun(cores, y0s, t0, count, int(threads), report, batch)  # (all members: with the progress)
 
     try:
         if sensitivities is not None:
@@ -232,7 +235,7 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
                 names, states = (found[0][0] if found else ()), [f[1] for f in found]
                 if len(opts.events):  # plain answers: their states as every plain run's
                     errors = _sensitivity.measure(cores, column_sets, y0s, t0, t1, opts, states, names, int(threads))
-                    size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
+                    size = _largest(y0s)
                     estimates = measured(list(results), cores * count if len(cores) == 1 else cores, run, opts, t0, t1,
                                          mode, None, True, size)[1]
                 else:  # the variational runs are the answers: one tighter variational run measures both
@@ -243,7 +246,7 @@ step, splitting_order, options, events, dense_output, progress, batch, accuracy,
         if not mode and asked is None:
             return models, run(opts, t1, list(range(count))), [None] * count
         explicit = rtol is not None or atol is not None or step is not None or options is not None
-        size = max((float(np.max(np.abs(y))) for y in y0s if len(y)), default=1.0)
+        size = _largest(y0s)
         results, estimates = measured(None, cores * count if len(cores) == 1 else cores, run, opts, t0, t1, mode,
                                        asked, explicit, size, choose_method=method is None and options is None)
     finally:

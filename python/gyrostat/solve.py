@@ -61,7 +61,7 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
             result = variational
         estimate = errors = None
         if mode and t1 != t0 and result.success and event_times is not None:
-            estimate = measured([result], [core], lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+            estimate = measured([result], [core], _accuracy.SingleRun(core, y0, t0, report),
                                 opts, t0, t1, mode, None, True, 0.0)[1][0]
             errors = _sensitivity.measure([core], [columns], [y0], t0, t1, opts, [state], names)[0]
         elif mode and t1 != t0 and result.success:
@@ -245,13 +245,13 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
             estimate = None
             if mode and t1 != t0 and result.success:
                 estimate = measured([result], [_accuracy.Compared(core, compare, model) if compare else core],
-                                    lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+                                    _accuracy.SingleRun(core, y0, t0, report),
                                     opts, t0, t1, mode, None, True, 0.0)[1][0]
         else:
             explicit = rtol is not None or atol is not None or step is not None or options is not None
             size = float(np.max(np.abs(y0))) if y0.size else 1.0
             measured_on = [_accuracy.Compared(core, compare, model) if compare else core]
-            results, estimates = measured(None, measured_on, lambda o, t, ms: [_core.solve(core, y0, t0, t, o, report)],
+            results, estimates = measured(None, measured_on, _accuracy.SingleRun(core, y0, t0, report),
                                           opts, t0, t1, mode, asked, explicit, size,
                                           choose_method=method is None and options is None)
             result, estimate = results[0], estimates[0]

@@ -1,0 +1,90 @@
+// The accuracy contract's window estimate (python/gyrostat/accuracy.py, module doc), in the
+// engine: a run at given tolerances is repeated over the first part of its span (the window) at
+// tolerances ρ times smaller, the two compared at the run's own output times there, and each
+// quantity's largest difference over the window is grown to the run's end as t^k. Here so that a
+// run's estimate costs one engine call and no Python per output time; the Python layer keeps the
+// rules' numbers (the window's fraction, ρ, the safety factor) and says the basis in words.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "gyrostat/engine.hpp"
+
+namespace gyrostat {
+
+/// A difference's running maximum over a window, `last` at its end and `half` at its middle
+/// output time, grown to the horizon as t^k: k = ln(last/half)/ln(end/middle) fitted over the
+/// window's second half, kept within [least, 2] (1 where `half` is 0; linear drift of the
+/// invariants to quadratic growth of a phase error whose frequency error itself drifts). `end`,
+/// `middle`, `far`: the distances from t0 of the window's end, of its middle output time and of
+/// the horizon (a backward run grows the same way). Returns (value, k); `last` itself, k = 1, when
+/// the horizon is inside the window or `last` is 0.
+struct Grown {
+    double value = 0.0;
+    double k = 1.0;
+};
+Grown grow(double last, double half, double end, double middle, double far, double least = 1.0);
+
+/// The numbers a window estimate is made with (python/gyrostat/accuracy.py's WINDOW, WINDOW_TIMES,
+/// WINDOW_SAFETY, FLOOR and the companion's gain ρ/(ρ − 1)).
+struct WindowRule {
+    double fraction = 0.2;          ///< the part of the span the window covers
+    std::size_t least_times = 16;   ///< the run's output times the window needs (else: not made here)
+    double safety = 3.0;            ///< a grown estimate is multiplied by this
+    double floor = 1e-16;           ///< no quantity's estimate is below this
+    double gain = 4.0 / 3.0;        ///< the difference times this is the run's own error
+};
+
+/// A window estimate of one run: each measured quantity's (engine.hpp: measured_quantities, in
+/// that order), the largest growth exponent, the window's end and how many output times it
+/// compared. `made` is false when the run holds fewer than least_times output times in the window
+/// (the caller samples the window itself) or crosses a separatrix of its model after the window's
+/// first half (engine.hpp: first_crossing; the caller measures the whole span); `failure` says why there is no estimate when the
+/// companion's run stopped ("status: message").
+struct WindowEstimate {
+    bool made = false;
+    std::vector<double> per_quantity;
+    double k = 1.0;
+    bool grown = false;
+    double window_end = 0.0;
+    std::size_t times = 0;
+    std::string failure;
+    integrate::Result companion;  ///< the companion's run (window_estimate)
+};
+
+/// The window estimate of `answer`, a run of `model` from (t0, y0) toward t1 (ending at t_last,
+/// the horizon): the companion runs with `companion` (the answer's options with tolerances ρ
+/// times smaller; its output times are set here to the answer's in the window), the quantities'
+/// differences over the window, each running maximum grown to the horizon and multiplied by the
+/// safety factor (python/gyrostat/accuracy.py: window_estimates). With `whole_span`, the
+/// companion runs to t_last at every output time of the answer and each quantity's estimate is its
+/// largest difference there times the gain (accuracy.py: span_estimates; no separatrix check, no
+/// least number of times).
+WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& answer, double t0,
+                               const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
+                               const integrate::Options& companion, const WindowRule& rule,
+                               const integrate::Control* control = nullptr, bool whole_span = false);
+
+/// Each member's window_estimate (or whole-span measurement), the companions run as one ensemble
+/// (engine.hpp: solve_ensemble, with `threads` and `batch` as the answers' own): member i is a
+/// run of models[i] (or models[0] for all) from (t0, y0s[i]). A member is measured here when it is
+/// measurable as window_estimate says and its compared output times are those of the first such
+/// member (one companion ensemble at those times); the others are left unmade (`made` false).
+std::vector<WindowEstimate> window_estimates(const std::vector<const AnyModel*>& models,
+                                             const std::vector<const integrate::Result*>& answers, double t0,
+                                             const std::vector<Eigen::VectorXd>& y0s, double t1,
+                                             const integrate::Options& companion, const WindowRule& rule, int threads,
+                                             const integrate::Control* control = nullptr, bool batch = true,
+                                             bool whole_span = false);
+
+/// Each quantity's estimate from its differences over a window (`apart`: quantities × times, at
+/// the output times `times`, which start the span at t0), grown to `horizon` when it lies past the
+/// window (the safety factor applied), else the window's own largest difference; both times the
+/// gain, floored. The Python window for a run with too few output times, or a model ladder's
+/// comparison, takes its numbers here too.
+WindowEstimate window_from_differences(const Eigen::Ref<const Eigen::MatrixXd>& apart, const std::vector<double>& times,
+                                       double t0, double horizon, const WindowRule& rule, bool to_horizon = true);
+
+}  // namespace gyrostat
