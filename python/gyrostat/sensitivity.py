@@ -264,7 +264,17 @@ def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndar
 
 
 def _of_custom_torques(model, names) -> list[str]:
-    """The names among ``names`` that are a ``CustomTorque``'s parameters."""
+    """The names among ``names`` that are a ``CustomTorque``'s parameters (found once per model
+    and names, as :func:`columns` builds its moved models once)."""
+    cache = model.__dict__.setdefault("_sensitivity_custom", {}) if hasattr(model, "__dict__") else {}
+    key = tuple(names)
+    found = cache.get(key)
+    if found is None:
+        found = cache[key] = _custom_torque_names(model, key)
+    return found
+
+
+def _custom_torque_names(model, names: tuple) -> list[str]:
     arguments = getattr(model, "_arguments", None)
     torques = list(arguments().get("torques", ())) if arguments is not None else []
     kinds = [type(t).__name__ for t in torques]
