@@ -117,6 +117,7 @@ option_values = operator.itemgetter(*OPTION_NAMES)
 _T_EVAL, _N_OUT = OPTION_NAMES.index("t_eval"), OPTION_NAMES.index("n_out")
 
 _CACHE: dict[tuple, Options] = {}
+_BOOLS = frozenset((True, False))
 
 
 def options_of(options, values: tuple) -> Options:
@@ -127,11 +128,11 @@ def options_of(options, values: tuple) -> Options:
     t_eval, n_out = values[_T_EVAL], values[_N_OUT]
     if options is None and (t_eval is None or (n_out is None and type(t_eval) in (list, tuple) and len(t_eval) <= 64)):
         key = values if t_eval is None else values[:_T_EVAL] + values[_T_EVAL + 1:]
-        if True in key or False in key:  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
+        if not _BOOLS.isdisjoint(key):  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
             key += tuple(map(type, key))
-        if t_eval is not None:  # a short list of output times: its values (and their types, unless all floats)
+        if t_eval is not None:  # a short list of output times: its values and their types
             times = tuple(t_eval)
-            key += (times,) if all(type(t) is float for t in times) else (times, tuple(map(type, times)))
+            key += (times, tuple(map(type, times)))
         try:
             return _CACHE[key]
         except KeyError:

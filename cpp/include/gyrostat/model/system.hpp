@@ -90,10 +90,10 @@ struct OutputInfo {
 ///   static constexpr std::array<int, n> quadratures;             components whose rate depends on the
 ///                                                                others and that feed back into none
 ///                                                                (a fast phase carried along): the
-///                                                                first step's heuristic leaves them
-///                                                                out, as CVODES's quadrature variables
-///                                                                (their error is still controlled;
-///                                                                default: none)
+///                                                                first step's heuristic and DOP853's
+///                                                                error test leave them out, as CVODES
+///                                                                leaves its quadrature variables out
+///                                                                by default (default: none)
 ///   static constexpr std::array<int, n> body_vectors;            the state's vectors in body axes
 ///                                                                (model/frame.hpp: a body given by
 ///                                                                its inertia tensor; default: only
