@@ -27,14 +27,15 @@ struct Grown {
 };
 Grown grow(double last, double half, double end, double middle, double far, double least = 1.0);
 
-/// The numbers a window estimate is made with (python/gyrostat/accuracy.py's WINDOW, WINDOW_TIMES,
-/// WINDOW_SAFETY, FLOOR and the companion's gain ρ/(ρ − 1)).
+/// The numbers a window estimate is made with. They are the accuracy contract's and live in
+/// python/gyrostat/accuracy.py (WINDOW, WINDOW_TIMES, WINDOW_SAFETY, FLOOR, and the companion's
+/// gain ρ/(ρ − 1)), which passes them in: no default here restates them.
 struct WindowRule {
-    double fraction = 0.2;          ///< the part of the span the window covers
-    std::size_t least_times = 16;   ///< the run's output times the window needs (else: not made here)
-    double safety = 3.0;            ///< a grown estimate is multiplied by this
-    double floor = 1e-16;           ///< no quantity's estimate is below this
-    double gain = 4.0 / 3.0;        ///< the difference times this is the run's own error
+    double fraction;           ///< the part of the span the window covers
+    std::size_t least_times;   ///< the run's output times the window needs (else: not made here)
+    double safety;             ///< a grown estimate is multiplied by this
+    double floor;              ///< no quantity's estimate is below this
+    double gain;               ///< the difference times this is the run's own error
 };
 
 /// A window estimate of one run: each measured quantity's (engine.hpp: measured_quantities, in
