@@ -389,7 +389,7 @@ def test_unreachable_and_oversized_requests_are_refused():
 
 def test_the_options_cache_keeps_what_each_keyword_means():
     """solve keeps the Options of recent keyword combinations (its key: the values, typed only where
-    True == 1 == 1.0 could mix them, and the output times). A value that is refused stays refused
+    True == 1 == 1.0 could mix them, and the output times, typed where one is a boolean). A value that is refused stays refused
     after an equal one was accepted and kept: max_steps=True after max_steps=1, every_step=1 after
     every_step=True; integer output times give the run of the same times as floats."""
     model = g.Model(g.Body([1.0, 2.0, 3.0]))
@@ -402,3 +402,9 @@ def test_the_options_cache_keeps_what_each_keyword_means():
         g.solve(model, y0, (0.0, 1.0), every_step=1)
     ints, floats = (g.solve(model, y0, (0.0, 1.0), t_eval=t) for t in ([0, 1], [0.0, 1.0]))
     assert np.array_equal(ints.t, [0.0, 1.0]) and np.array_equal(ints.y, floats.y)
+    # output times equal to booleans (1.0 == True, 0 == False), kept, leave the booleans refused
+    assert g.solve(model, y0, (0.0, 1.0), t_eval=[1.0]).t.tolist() == [1.0]
+    assert g.solve(model, y0, (0.0, 1.0), t_eval=[0]).t.tolist() == [0.0]
+    for booleans in ([True], [False]):
+        with pytest.raises(ValueError, match="t_eval must be output times"):
+            g.solve(model, y0, (0.0, 1.0), t_eval=booleans)

@@ -143,7 +143,7 @@ py::array_t<double> dense_at(const integrate::Result& r, const Times& t, int wid
 /// (Result, d state [time, component, column], d outputs [time, output, column]).
 py::tuple sensitivity_tuple(SensitivityRun run, std::size_t width) {
     const auto rows = static_cast<py::ssize_t>(run.result.t.size()), m = static_cast<py::ssize_t>(width);
-    const auto n = static_cast<py::ssize_t>(run.result.dim), n_out = static_cast<py::ssize_t>(run.result.output_names.size());
+    const auto n = static_cast<py::ssize_t>(run.result.dim), n_out = static_cast<py::ssize_t>(run.result.output_names().size());
     const bool whole = run.state.size() == static_cast<std::size_t>(rows * n * m);  // (a failed member has none)
     py::array_t<double> state({whole ? rows : 0, n, m}), outputs({whole ? rows : 0, n_out, m});
     if (whole) {
@@ -282,13 +282,13 @@ Examples
     py::class_<Result>(m, "Result", "A trajectory as the engine returns it; the arrays are views of its memory.")
         .def_readonly("method", &Result::method)
         .def_readonly("dim", &Result::dim)
-        .def_readonly("state_names", &Result::state_names)
-        .def_readonly("state_units", &Result::state_units)
-        .def_readonly("state_descriptions", &Result::state_descriptions)
-        .def_readonly("output_names", &Result::output_names)
-        .def_readonly("output_units", &Result::output_units)
-        .def_readonly("output_descriptions", &Result::output_descriptions)
-        .def_readonly("output_conserved", &Result::output_conserved)
+        .def_property_readonly("state_names", &Result::state_names)
+        .def_property_readonly("state_units", &Result::state_units)
+        .def_property_readonly("state_descriptions", &Result::state_descriptions)
+        .def_property_readonly("output_names", &Result::output_names)
+        .def_property_readonly("output_units", &Result::output_units)
+        .def_property_readonly("output_descriptions", &Result::output_descriptions)
+        .def_property_readonly("output_conserved", &Result::output_conserved)
         .def_readonly("output_kept", &Result::output_kept)
         .def_readonly("options", &Result::options, "The options the run was made with (without t_eval and events).")
         .def_property_readonly("t",
@@ -305,7 +305,7 @@ Examples
                                [](py::object self) {
                                    const auto& r = self.cast<const Result&>();
                                    return view(r.outputs, static_cast<py::ssize_t>(r.t.size()),
-                                               static_cast<py::ssize_t>(r.output_names.size()), self);
+                                               static_cast<py::ssize_t>(r.output_names().size()), self);
                                })
         .def_readonly("event_names", &Result::event_names)
         .def_property_readonly("t_events",
@@ -563,7 +563,7 @@ Examples
                 const std::size_t count = r.t.size();
                 rows.mutable_at(i) = static_cast<long>(count), terminal.mutable_at(i) = r.terminal_event;
                 t_final.mutable_at(i) = count ? r.t.back() : nan;
-                const bool same = r.state_names == state_names && r.output_names == output_names;
+                const bool same = r.state_names() == state_names && r.output_names() == output_names;
                 named.mutable_at(i) = same;
                 double* out = final_row.mutable_data(i, 0);
                 double* lo = extrema ? low.mutable_data(i, 0) : nullptr;

@@ -55,10 +55,10 @@ void expose_models(py::module_& m) {
                     q["conserved"] = conserved;
                     all.append(q);
                 };
-                for (std::size_t i = 0; i < r.state_names.size(); ++i)
-                    add(r.state_names[i], r.state_units[i], r.state_descriptions[i], "state", false);
-                for (std::size_t i = 0; i < r.output_names.size(); ++i)
-                    add(r.output_names[i], r.output_units[i], r.output_descriptions[i], "output", r.output_conserved[i]);
+                for (std::size_t i = 0; i < r.state_names().size(); ++i)
+                    add(r.state_names()[i], r.state_units()[i], r.state_descriptions()[i], "state", false);
+                for (std::size_t i = 0; i < r.output_names().size(); ++i)
+                    add(r.output_names()[i], r.output_units()[i], r.output_descriptions()[i], "output", r.output_conserved()[i]);
                 return all;
             },
             "What the model declares about its state and outputs: name, unit, description, role ('state' or "

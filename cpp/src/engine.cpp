@@ -124,7 +124,7 @@ integrate::Result described(const AnyModel& model) {
     });
 }
 
-std::vector<std::string> output_names(const AnyModel& model) { return described(model).output_names; }
+std::vector<std::string> output_names(const AnyModel& model) { return described(model).output_names(); }
 
 std::vector<MeasuredQuantity> measured_quantities(const AnyModel& model) {
     return visit(model, [](const auto& m) {
@@ -164,7 +164,7 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
         return given.empty() ? r.t.size() : given.size();
     };
     const std::size_t n = rows(reference, reference_rows), n_other = rows(other, other_rows);
-    if (n != n_other || reference.dim != other.dim || reference.output_names != other.output_names)
+    if (n != n_other || reference.dim != other.dim || reference.output_names() != other.output_names())
         throw std::invalid_argument("measured_differences: the runs compare " + std::to_string(n) + " and " +
                                     std::to_string(n_other) + " rows of states of " + std::to_string(reference.dim) +
                                     " and " + std::to_string(other.dim) + " components: they must be alike");
@@ -172,7 +172,7 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
     auto a_row = [&](std::size_t k) { return reference_rows.empty() ? k : reference_rows[k]; };
     auto b_row = [&](std::size_t k) { return other_rows.empty() ? k : other_rows[k]; };
     const std::vector<MeasuredQuantity> quantities = measured_quantities(model);
-    const std::size_t dim = static_cast<std::size_t>(reference.dim), width = reference.output_names.size();
+    const std::size_t dim = static_cast<std::size_t>(reference.dim), width = reference.output_names().size();
     // NaN anywhere makes a largest size NaN (as NumPy's maximum), which then counts as no size at all: 1
     auto unit_of = [](double top, bool nan) { return nan || !(top > 0.0 && std::isfinite(top)) ? 1.0 : top; };
     Eigen::MatrixXd made(static_cast<Eigen::Index>(quantities.size()), static_cast<Eigen::Index>(n));
@@ -412,7 +412,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<const AnyModel*>
     for (std::size_t i = 0; i < n; ++i) {  // members that never ran still say what they would hold
         auto& r = results[i];
         r.options = integrate::recorded(options);
-        if (!r.state_names.empty()) continue;
+        if (r.declared) continue;
         visit(model_of(i),
               [&](const auto& m) { integrate::describe<std::decay_t<decltype(m)>>(r, &m); });
         r.method = integrate::method_name(options.method);

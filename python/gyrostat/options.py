@@ -130,9 +130,9 @@ def options_of(options, values: tuple) -> Options:
         key = values if t_eval is None else values[:_T_EVAL] + values[_T_EVAL + 1:]
         if not _BOOLS.isdisjoint(key):  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
             key += tuple(map(type, key))
-        if t_eval is not None:  # a short list of output times: its values and their types
+        if t_eval is not None:  # a short list of output times: its values (and their types where one is a bool)
             times = tuple(t_eval)
-            key += (times, tuple(map(type, times)))
+            key += (times,) if bool not in map(type, times) else (times, tuple(map(type, times)))
         try:
             return _CACHE[key]
         except KeyError:

@@ -33,9 +33,9 @@ using integrate::Method;
 
 /// The named output `name` of a Result at output row `row`.
 static double output(const integrate::Result& r, const char* name, std::size_t row) {
-    const auto it = std::find(r.output_names.begin(), r.output_names.end(), name);
-    if (it == r.output_names.end()) throw std::out_of_range(std::string("no output ") + name);
-    return r.outputs[row * r.output_names.size() + static_cast<std::size_t>(it - r.output_names.begin())];
+    const auto it = std::find(r.output_names().begin(), r.output_names().end(), name);
+    if (it == r.output_names().end()) throw std::out_of_range(std::string("no output ") + name);
+    return r.outputs[row * r.output_names().size() + static_cast<std::size_t>(it - r.output_names().begin())];
 }
 
 template <class F>
@@ -414,6 +414,27 @@ int main() {
         CHECK(r.y[4 * last + 3] > 0.0 && r.y[4 * last + 3] < 60.0, "tau advances slower than t");
     }
 
+    // A model type's declarations are made once and shared by its runs (integrate/recorder.hpp:
+    // declarations<System>); what a run's torques keep (output_kept) stays the run's own: the free
+    // body keeps |G| and T, a constant torque neither.
+    {
+        const Body body(Vec3(2.0, 3.0, 4.0));
+        const model::Gyrostat<false> free(body, TorqueSet{}), forced(body, TorqueSet({torque::Constant(Vec3(0.0, 0.1, 0.0))}));
+        const Vec3 w(0.1, 0.2, 0.3);
+        integrate::Options o;
+        o.n_out = 3;
+        const auto a = integrate::solve(free, 0.0, w, 1.0, o), b = integrate::solve(forced, 0.0, w, 1.0, o);
+        CHECK(a.declared && a.declared == b.declared, "one Declarations per model type, shared by its runs");
+        bool named = a.state_names().size() == 3;
+        for (std::size_t i = 0; named && i < 3; ++i) named = a.state_names()[i] == model::Gyrostat<false>::states[i].name;
+        CHECK(named && a.output_names()[0] == "angular_momentum_norm" && a.output_conserved()[0] && a.output_conserved()[1],
+              "the shared declarations are the model's (names, conserved outputs)");
+        CHECK(a.output_kept[0] && a.output_kept[1] && !b.output_kept[0] && !b.output_kept[1],
+              "output_kept is each run's: the free body keeps |G| and T, the forced one neither");
+        CHECK(integrate::Result().state_names().empty() && integrate::Result().output_conserved().empty(),
+              "a Result no model described names nothing");
+    }
+
     // The engine: every family through one variant, one solve, one ensemble (mixed families).
     {
         const auto [models, starts] = every_family();
@@ -427,11 +448,11 @@ int main() {
         for (std::size_t i = 0; i < models.size() && same; ++i) {
             const auto single = solve(models[i], 0.0, starts[i], 2.0, o);
             same = single.success() && single.y == ensemble[i].y && single.outputs == ensemble[i].outputs &&
-                   static_cast<int>(single.state_names.size()) == dim(models[i]) && single.t.size() == 11;
+                   static_cast<int>(single.state_names().size()) == dim(models[i]) && single.t.size() == 11;
         }
         CHECK(same, "every family through the engine; ensemble of mixed families equals single runs");
-        CHECK(ensemble[1].y[3] == 1.0 && ensemble[1].state_names[3] == "q_w", "omega alone starts at the identity");
-        CHECK(ensemble[6].y[3] == 0.0 && ensemble[6].state_names[3] == "tau", "tau starts at 0");
+        CHECK(ensemble[1].y[3] == 1.0 && ensemble[1].state_names()[3] == "q_w", "omega alone starts at the identity");
+        CHECK(ensemble[6].y[3] == 0.0 && ensemble[6].state_names()[3] == "tau", "tau starts at 0");
         CHECK(ensemble.back().method == "closed_form", "the torque-free model needs no integration");
         CHECK(std::abs(ensemble[5].y[0] - output(ensemble[4], "G_z", 0)) < 1e-15,
               "the averaged top starts from the full top's G_z");

@@ -150,7 +150,7 @@ std::vector<integrate::Result> solve_ensemble(const std::vector<System>& systems
         },
         threads, control);
     for (auto& r : results) {
-        if (r.state_names.empty()) integrate::describe<System>(r), r.method = integrate::method_name(options.method);
+        if (!r.declared) integrate::describe<System>(r), r.method = integrate::method_name(options.method);
         r.options = integrate::recorded(options);
     }
     return results;

@@ -117,16 +117,30 @@ struct MethodSwitch {
     std::string reason;
 };
 
+/// A model type's declarations (model/system.hpp: Quantity, OutputInfo): names, SI units and one
+/// line each for the state's components and the named outputs. Made once per model type
+/// (recorder.hpp: declarations<System>) and shared by every Result of that type: a run copies a
+/// pointer, not ~30 strings (most of a trivial run's allocations before).
+struct Declarations {
+    std::vector<std::string> state_names, state_units, state_descriptions;
+    std::vector<std::string> output_names, output_units, output_descriptions;
+    std::vector<bool> output_conserved;  ///< per output: a first integral of the unperturbed model
+};
+
 /// A trajectory: n output times, n×dim states and n×n_outputs named outputs (row-major).
 /// A failed run keeps everything up to the failure and says why in `message`.
 struct Result {
     std::string method;
     int dim = 0;
-    /// The model's declarations (model/system.hpp: Quantity, OutputInfo): names, SI units and
-    /// one line each for the state's components and the named outputs.
-    std::vector<std::string> state_names, state_units, state_descriptions;
-    std::vector<std::string> output_names, output_units, output_descriptions;
-    std::vector<bool> output_conserved;   ///< per output: a first integral of the unperturbed model
+    /// The model's declarations (null until a model has described the Result: recorder.hpp).
+    std::shared_ptr<const Declarations> declared;
+    const std::vector<std::string>& state_names() const { return declarations().state_names; }
+    const std::vector<std::string>& state_units() const { return declarations().state_units; }
+    const std::vector<std::string>& state_descriptions() const { return declarations().state_descriptions; }
+    const std::vector<std::string>& output_names() const { return declarations().output_names; }
+    const std::vector<std::string>& output_units() const { return declarations().output_units; }
+    const std::vector<std::string>& output_descriptions() const { return declarations().output_descriptions; }
+    const std::vector<bool>& output_conserved() const { return declarations().output_conserved; }
     /// per output: conserved and kept by this model with its torques (a forced energy is not kept)
     std::vector<bool> output_kept;
     /// The options the run was made with (recorded(): every scalar option; t_eval and events are
@@ -167,6 +181,12 @@ struct Result {
 
     bool success() const { return status == Status::Success; }
     std::size_t size() const { return t.size(); }
+
+private:
+    const Declarations& declarations() const {
+        static const Declarations none;
+        return declared ? *declared : none;
+    }
 };
 
 /// Checks rtol, atol, t0, t1, t_eval, max_steps, first_step, max_step; throws

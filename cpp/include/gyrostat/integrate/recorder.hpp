@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -16,6 +17,31 @@
 
 namespace gyrostat::integrate {
 
+/// The declarations of `System` (options.hpp: Declarations), made on first use and kept.
+template <class System>
+const std::shared_ptr<const Declarations>& declarations() {
+    static const std::shared_ptr<const Declarations> made = [] {
+        auto d = std::make_shared<Declarations>();
+        d->state_names.reserve(System::dim), d->state_units.reserve(System::dim);
+        d->state_descriptions.reserve(System::dim);
+        for (const auto& q : System::states) {
+            d->state_names.emplace_back(q.name);
+            d->state_units.emplace_back(q.unit);
+            d->state_descriptions.emplace_back(q.description);
+        }
+        if constexpr (model::system::has_outputs<System>::value) {
+            for (const auto& info : System::outputs_info) {
+                d->output_names.emplace_back(info.name);
+                d->output_units.emplace_back(info.unit);
+                d->output_descriptions.emplace_back(info.description);
+                d->output_conserved.push_back(info.conserved);
+            }
+        }
+        return std::shared_ptr<const Declarations>(std::move(d));
+    }();
+    return made;
+}
+
 /// Names the state and the outputs of `System` in a Result (also for a run that fails before
 /// its first output, so that an empty Result still says what it would hold). With the `system`,
 /// output_kept says which conserved outputs its torques keep (model/system.hpp: keeps);
@@ -24,29 +50,15 @@ template <class System>
 void describe(Result& result, const System* system = nullptr) {
     namespace sys = model::system;
     result.dim = System::dim;
-    result.state_names.clear(), result.state_units.clear(), result.state_descriptions.clear();
-    result.state_names.reserve(System::dim), result.state_units.reserve(System::dim);
-    result.state_descriptions.reserve(System::dim);
-    for (const auto& q : System::states) {
-        result.state_names.emplace_back(q.name);
-        result.state_units.emplace_back(q.unit);
-        result.state_descriptions.emplace_back(q.description);
-    }
-    result.output_names.clear(), result.output_units.clear(), result.output_descriptions.clear();
-    result.output_conserved.clear(), result.output_kept.clear();
+    result.declared = declarations<System>();
+    result.output_kept.clear();
     if constexpr (sys::has_outputs<System>::value) {
-        constexpr std::size_t n = System::outputs_info.size();
-        result.output_names.reserve(n), result.output_units.reserve(n), result.output_descriptions.reserve(n);
-        result.output_conserved.reserve(n), result.output_kept.reserve(n);
+        result.output_kept.reserve(System::outputs_info.size());
         for (const auto& info : System::outputs_info) {
             bool kept = info.conserved;
             if constexpr (sys::has_keeps<System>::value)
                 kept = kept && (system == nullptr || system->keeps(result.output_kept.size()));
             result.output_kept.push_back(kept);
-            result.output_names.emplace_back(info.name);
-            result.output_units.emplace_back(info.unit);
-            result.output_descriptions.emplace_back(info.description);
-            result.output_conserved.push_back(info.conserved);
         }
     }
 }
