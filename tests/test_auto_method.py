@@ -94,8 +94,11 @@ def test_mildly_stiff_at_a_loose_tolerance_goes_back_to_dop853_where_bdf_does_no
     at rtol 3.8e-6: DOP853 is held at its stability boundary, but BDF at this tolerance takes steps
     only ~2x DOP853's, each costing ~5 of DOP853's (alone: 2.6x DOP853's time, and 100x its error).
     So the run goes back to DOP853 at BDF's second check, saying why, and does not switch again (the
-    held step does not shrink): against SciPy's DOP853 at rtol 1e-12 on the right-hand side
-    written in tests/references.py, its error is a fraction of BDF's alone."""
+    held step does not shrink): against SciPy's LSODA at rtol 1e-11 on the right-hand side
+    written in tests/references.py, its error is a fraction of BDF's alone. (LSODA, ODEPACK's
+    Adams/BDF switching: 3.0e-9 from SciPy's DOP853 at rtol 1e-12, four orders below the errors
+    compared, in 0.6 s where that DOP853 run, held at the damper's stability boundary with this
+    Python right-hand side, took 29 s: 186 293 evaluations.)"""
     from references import moving_mass_rhs as explicit_rhs
 
     model = g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), mass=1.0, arm=1.0, frequency=10.0, damping=98.0)
@@ -104,8 +107,8 @@ def test_mildly_stiff_at_a_loose_tolerance_goes_back_to_dop853_where_bdf_does_no
     rtol, atol = 3.8e-6, 3.8e-9 * np.max(np.abs(y0))
     sol = g.solve(model, y0, (0.0, 40.0), method="auto", t_eval=t_eval, rtol=rtol, atol=atol, error_estimate=False)
     dop = g.solve(model, y0, (0.0, 40.0), method="dop853", t_eval=t_eval, rtol=rtol, atol=atol, error_estimate=False)
-    reference = solve_ivp(explicit_rhs([4.0, 4.0, 2.0], 1.0, 1.0, 100.0, 98.0), (0.0, 40.0), y0, method="DOP853",
-                          t_eval=t_eval, rtol=1e-12, atol=1e-15)
+    reference = solve_ivp(explicit_rhs([4.0, 4.0, 2.0], 1.0, 1.0, 100.0, 98.0), (0.0, 40.0), y0, method="LSODA",
+                          t_eval=t_eval, rtol=1e-11, atol=1e-14)
     assert sol.success and [to for _, to, _ in sol.method_switches] == ["cvode_bdf", "dop853"], sol.method_switches
     assert "BDF does not pay" in sol.method_switches[1][2], sol.method_switches[1][2]
     bdf = g.solve(model, y0, (0.0, 40.0), method="cvode_bdf", t_eval=t_eval, rtol=rtol, atol=atol,
