@@ -3,7 +3,7 @@
 //   problem,method,rtol,error,steps,rhs_evals,seconds
 // error is the max-norm error of the final state against the problem's reference; seconds is the
 // best of several repetitions of one whole trajectory (the machine is shared and noisy).
-// Usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile] [--help]  (--help describes them)
+// Usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile | --averaged-rhs] [--help]  (--help describes them)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +16,7 @@
 #include "gyrostat/solve_system.hpp"
 #include "gyrostat/integrate/taylor.hpp"
 #include "gyrostat/model/averaged.hpp"
+#include "gyrostat/model/averaged_triaxial.hpp"
 #include "gyrostat/model/gyrostat.hpp"
 #include "gyrostat/model/moving_mass.hpp"
 #include "gyrostat/model/torque_free.hpp"
@@ -133,6 +134,50 @@ void taylor_profile_row(const model::Gyrostat<false>& system, double safety, dou
                 step_ns - with_step_size);
 }
 
+/// ns per call of `rhs`: `chained` feeds each call's rate back into the next state (a Runge–Kutta
+/// stage waits on its predecessor: the latency), otherwise the calls are independent (the throughput).
+template <class System>
+double rhs_ns(const System& system, typename System::State y, bool chained) {
+    typename System::State dy = System::State::Zero();
+    const double g0 = y[0];
+    volatile double sink = 0.0;
+    const int calls = 1'000'000;
+    const double s = seconds_of([&] {
+        for (int i = 0; i < calls; ++i) {
+            y[0] = g0 * (1.0 + 1e-9 * (i & 7)) + (chained ? 1e-300 * dy[0] : 0.0);
+            system.rhs(0.0, y, dy);
+        }
+        sink = sink + dy[0];
+    });
+    return 1e9 * s / calls;
+}
+
+/// The averaged models' right-hand sides under the damping M = −ε diag(1, 2, 3) ω, ε = 1e-4:
+/// the triaxial A = (3, 2, 1) at k² = 0.3 (model/averaged_triaxial.hpp: the free motion's K and
+/// ⟨sn²⟩ at every call) and the symmetric (3, 3, 1) at the same |ω| (model/averaged.hpp), and one
+/// triaxial run over t = 1/ε at rtol 1e-10 (bench/triaxial_averaging.py's cost row, without Python).
+void averaged_rhs() {
+    const double eps = 1e-4;
+    const TorqueSet damping({torque::LinearDamping(Mat3(eps * Vec3(1.0, 2.0, 3.0).asDiagonal()))});
+    const model::AveragedTriaxial triaxial(Body(Vec3(3.0, 2.0, 1.0)), damping);
+    Eigen::VectorXd omega(3);
+    omega << 0.7161148740394329, 0.0, 0.6793662204867575;  // k² = 0.3 about the major axis (triaxial_averaging.py's start)
+    const model::AveragedTriaxial::State y = triaxial.initial_state(omega);
+    const model::AveragedSymmetric symmetric(Body(Vec3(3.0, 3.0, 1.0)), damping);
+    const model::AveragedSymmetric::State ys = symmetric.initial_state(omega);
+    std::printf("# averaged_rhs model,latency_ns,throughput_ns (k^2 = %.3f)\n", triaxial.motion(y).m());
+    std::printf("averaged_rhs,triaxial,%.1f,%.1f\n", rhs_ns(triaxial, y, true), rhs_ns(triaxial, y, false));
+    std::printf("averaged_rhs,symmetric,%.1f,%.1f\n", rhs_ns(symmetric, ys, true), rhs_ns(symmetric, ys, false));
+    integrate::Options o;
+    o.n_out = 0;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    integrate::Result result;
+    const double s = seconds_of([&] { result = solve_system(triaxial, 0.0, omega, 1.0 / eps, o, nullptr); });
+    std::printf("# averaged_solve model,microseconds,steps,rhs_evals\naveraged_solve,triaxial,%.2f,%ld,%ld\n", 1e6 * s,
+                static_cast<long>(result.stats.steps), static_cast<long>(result.stats.rhs_evals));
+}
+
 template <int... Orders>
 void taylor_profile(std::integer_sequence<int, Orders...>) {
     const model::Gyrostat<false> system(free_body, TorqueSet{});
@@ -157,7 +202,7 @@ void taylor_profile(std::integer_sequence<int, Orders...>) {
 }  // namespace
 
 constexpr const char* usage =
-    "usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile] [--help]\n"
+    "usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile | --averaged-rhs] [--help]\n"
     "\n"
     "Times every integrator on the standard problems (torque_free, forced, stiff, moving_mass)\n"
     "across tolerances and prints one CSV row per run to stdout:\n"
@@ -173,6 +218,9 @@ constexpr const char* usage =
     "            at the comma-separated RTOLS (default 1e-6,...,1e-14); atol = rtol * 1e-3\n"
     "  --taylor-profile  the parts of one Taylor step on free_2000 (recursion, step size, Horner,\n"
     "            the rest: loop, checks, outputs) in ns, as '# taylor_profile' lines\n"
+    "  --averaged-rhs  ns per right-hand side of the averaged triaxial and symmetric models (latency:\n"
+    "            each call waiting on the last; throughput: independent calls) and one triaxial run\n"
+    "            over t = 1/eps (eps = 1e-4, rtol 1e-10) in microseconds\n"
     "  --help    print this help and exit\n";
 
 int main(int argc, char** argv) {
@@ -194,6 +242,9 @@ int main(int argc, char** argv) {
             return 0;
         } else if (std::strcmp(argv[i], "--taylor-profile") == 0) {
             taylor_profile(std::make_integer_sequence<int, model::Gyrostat<false>::max_taylor_order + 1>{});
+            return 0;
+        } else if (std::strcmp(argv[i], "--averaged-rhs") == 0) {
+            averaged_rhs();
             return 0;
         } else {
             std::fprintf(stderr, "gyrostat_bench: unknown option '%s'\n%s", argv[i], usage);

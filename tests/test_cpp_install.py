@@ -50,8 +50,8 @@ def test_benchmark_documents_its_options():
     run("cmake", "-S", ROOT, "-B", BUILD, "-DGYROSTAT_BENCH=ON")
     run("cmake", "--build", BUILD, "--target", "gyrostat_bench")
     usage = run(BUILD / "gyrostat_bench", "--help")
-    for text in ("usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile] [--help]", "--quick",
-                 "--taylor-profile", "problem,method,rtol,error,steps,rhs_evals,seconds"):
+    for text in ("usage: gyrostat_bench [--quick | --taylor [RTOLS] | --taylor-profile | --averaged-rhs] [--help]",
+                 "--quick", "--taylor-profile", "--averaged-rhs", "problem,method,rtol,error,steps,rhs_evals,seconds"):
         assert text in usage, usage
     wrong = subprocess.run([str(BUILD / "gyrostat_bench"), "--fast"], capture_output=True, text=True)
     assert wrong.returncode == 2 and "usage: gyrostat_bench" in wrong.stderr + wrong.stdout

@@ -48,6 +48,15 @@ void expose_lagrange(py::module_& m) {
     m.def("elliptic_K", &model::elliptic_K, py::arg("m"), "K(m), parameter m = k^2 (GSL)");
     m.def("elliptic_E", &model::elliptic_E, py::arg("m"), "E(m), parameter m = k^2 (GSL)");
     m.def("jacobi_sn_cn_dn", &model::jacobi_sn_cn_dn, py::arg("u"), py::arg("m"), "(sn, cn, dn)(u | m) (GSL)");
+    m.def(
+        "complete_elliptic",
+        [](double k2, double k2_complement) {
+            const model::CompleteIntegrals c = model::complete_integrals_checked(k2, k2_complement);
+            return std::make_pair(c.K, c.mean_sn_squared);
+        },
+        py::arg("m"), py::arg("m1"),
+        "(K(m), <sn^2> = (K - E)/(m K)) by polynomial pieces (the triaxial averaged model's), m read up to 1/2 "
+        "and its complement m1 = 1 - m beyond");
     m.def("mean_sn_squared", &model::mean_sn_squared, py::arg("m"), "W(m) = (K - E)/(m K) = <sn^2>");
 
     py::class_<model::LagrangeUnperturbed>(m, "LagrangeUnperturbed")

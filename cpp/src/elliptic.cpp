@@ -122,6 +122,14 @@ double jacobi_argument(double sn, double cn, double dn, double m1) {
     return std::copysign(2.0 * K, sn) - F;
 }
 
+CompleteIntegrals complete_integrals_checked(double m, double m1) {
+    if (!(m >= 0.0 && m <= 1.0 && m1 >= 0.0 && m1 <= 1.0) ||
+        std::abs(m + m1 - 1.0) > 4.0 * std::numeric_limits<double>::epsilon())
+        throw std::invalid_argument("complete_integrals: needs m = k^2 and m1 = 1 - m in [0, 1] with m + m1 = 1; got m = " +
+                                    format_value(m) + ", m1 = " + format_value(m1));
+    return complete_integrals(m, m1);
+}
+
 double mean_sn_squared(double m) {
     require_parameter(m, "mean_sn_squared");
     if (m == 1.0) return 1.0;

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'WindowRule', 'averaged_model', 'averaged_triaxial_model', 'elliptic_E', 'elliptic_K', 'euler_angles', 'grow', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector', 'window_estimate', 'window_estimates', 'window_from_differences']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'WindowRule', 'averaged_model', 'averaged_triaxial_model', 'complete_elliptic', 'elliptic_E', 'elliptic_K', 'euler_angles', 'grow', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector', 'window_estimate', 'window_estimates', 'window_from_differences']
 class Body:
     """
     A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -2579,6 +2579,10 @@ def averaged_model(body: Body, torques: collections.abc.Iterable) -> Model:
     ...
 def averaged_triaxial_model(body: Body, torques: collections.abc.Iterable) -> Model:
     ...
+def complete_elliptic(m: typing.SupportsFloat | typing.SupportsIndex, m1: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float]:
+    """
+    (K(m), <sn^2> = (K - E)/(m K)) by polynomial pieces (the triaxial averaged model's), m read up to 1/2 and its complement m1 = 1 - m beyond
+    """
 def elliptic_E(m: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     E(m), parameter m = k^2 (GSL)

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "gyrostat/body.hpp"
+#include "gyrostat/numeric/complete_elliptic.hpp"
 #include "gyrostat/numeric/elliptic.hpp"
 
 namespace gyrostat {
@@ -76,17 +77,20 @@ public:
         if (Aa == Ab)
             throw std::invalid_argument("EulerPoinsot: p_b = " + format_value(pb) + " asks for a rotation about the axis of a moment equal to the middle one (" +
                                         format_value(Aa) + "): a permanent rotation, no circulation to average over");
-        const double pa = (G2 * (Ab - Ac) + pb * Ac) / Ab;  // both terms of the sign of A_a − A_c
-        double pc = (G2 * (Aa - Ab) - pb * Aa) / Ab;
+        // A_b p_a and A_b p_c: k² and k'² below take one division from (|G|², p_b), not two (the
+        // right-hand side waits on them)
+        const double pa_scaled = G2 * (Ab - Ac) + pb * Ac;  // both terms of the sign of A_a − A_c
+        double pc_scaled = G2 * (Aa - Ab) - pb * Aa;
         // p_c / (A_a − A_c) ≥ 0 is T ≤ G²/(2A_min) (or ≥ G²/(2A_max)); a rounding below 0 at the
         // permanent rotation about a (p_c = 0) is that rotation
-        if (pc * (Aa - Ac) < 0.0) {
-            if (!on_the_way && std::abs(pc) > 1e-12 * G2 * std::abs(Aa - Ac) / Ab)
+        if (pc_scaled * (Aa - Ac) < 0.0) {
+            if (!on_the_way && std::abs(pc_scaled) > 1e-12 * G2 * std::abs(Aa - Ac))
                 throw std::invalid_argument("EulerPoinsot: |G|^2 = " + format_value(G2) + " and p_b = " + format_value(pb) +
                                             " give a kinetic energy T = " + format_value(0.5 * (G2 - pb) / Ab) +
                                             " outside [G^2/(2 A_max), G^2/(2 A_min)]: no motion of this body has them");
-            pc = 0.0;
+            pc_scaled = 0.0;
         }
+        const double pa = pa_scaled / Ab, pc = pc_scaled / Ab;
         if (!(pa * (Aa - Ac) > 0.0))
             throw std::invalid_argument("EulerPoinsot: |G|^2 = " + format_value(G2) + " and p_b = " + format_value(pb) +
                                         " are not a level set of this body (p_a = " + format_value(pa) + ")");
@@ -94,8 +98,8 @@ public:
         alpha_b_ = std::sqrt(pc / (Ab * (Aa - Ab)));
         alpha_c_ = std::sqrt(pc / (Ac * (Aa - Ac)));
         lambda_ = std::sqrt((Aa - Ab) * pa / (Aa * Ab * Ac));
-        m_ = std::clamp((Ab - Ac) * pc / ((Aa - Ab) * pa), 0.0, 1.0);
-        m1_ = std::clamp((Aa - Ac) * pb / ((Aa - Ab) * pa), 0.0, 1.0);
+        m_ = std::clamp((Ab - Ac) * pc_scaled / ((Aa - Ab) * pa_scaled), 0.0, 1.0);
+        m1_ = std::clamp((Aa - Ac) * Ab * pb / ((Aa - Ab) * pa_scaled), 0.0, 1.0);
         if (m1_ == 0.0)
             throw std::invalid_argument("EulerPoinsot: p_b = " + format_value(pb) + " is within rounding of the separatrix "
                                         "(k'^2 underflows): its period is infinite");
@@ -232,28 +236,14 @@ private:
         return w;
     }
 
-    /// K and S1 = ⟨sn²⟩ = (K − E)/(k²K) by the arithmetic-geometric mean (DLMF 19.8.1, 19.8.6): with
-    /// a_0 = 1, b_0 = k', a_{n+1} = (a_n + b_n)/2, b_{n+1} = √(a_n b_n), c_0 = k, c_{n+1} = c_n²/(2(a_n + b_n))
-    /// (= (a_n − b_n)/2 without its cancellation), K = π/(2 a_∞) and E = K (1 − Σ_{n≥0} 2^{n−1} c_n²), so
-    ///   S1 = Σ_{n≥0} 2^{n−1} c_n² / k² = 1/2 + Σ_{n≥1} 2^{n−1} c_n² / k²,
-    /// a sum of positive terms: every digit at k² → 0 and next to the separatrix (k' from k'², c_1 =
-    /// k²/(2(1 + k')) from k²). About log2 ln(4/k') + 4 square roots, the rate's whole elliptic cost.
+    /// K and S1 = ⟨sn²⟩ = (K − E)/(k²K) from the polynomial pieces of numeric/complete_elliptic.hpp:
+    /// k² itself up to ½, k'² (from p_b) beyond, so that both keep every digit at k² → 0 and next to
+    /// the separatrix. No serial square roots (the AGM took ~log2 ln(4/k') + 4 of them, the rate's
+    /// whole elliptic cost: bench/README.md).
     void complete_integrals() {
-        double a = 1.0, b = std::sqrt(m1_);
-        double c = m_ / (2.0 * (1.0 + b));  // c_1
-        double sum = 0.5, weight = 1.0;     // weight = 2^{n−1}
-        for (int n = 1; n < 64; ++n) {
-            const double next = 0.5 * (a + b);
-            b = std::sqrt(a * b);
-            a = next;
-            const double term = m_ > 0.0 ? weight * c * c / m_ : 0.0;
-            sum += term;
-            if (term <= 1e-17 * sum && std::abs(a - b) <= 1e-15 * a) break;
-            c = c * c / (2.0 * (a + b));
-            weight *= 2.0;
-        }
-        K_ = 0.5 * M_PI / a;
-        S1_ = sum;
+        const model::CompleteIntegrals integrals = model::complete_integrals(m_, m1_);
+        K_ = integrals.K;
+        S1_ = integrals.mean_sn_squared;
     }
 
     double branch_ = 1.0;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "gyrostat/numeric/complete_elliptic.hpp"
 #include "gyrostat/numeric/double_double.hpp"
 
 namespace gyrostat::model {
@@ -48,6 +49,10 @@ double jacobi_argument(double sn, double cn, double dn, double m1);
 /// W(m) = ⟨sn²⟩ over a period = (K − E)/(m K) = R_D(0, 1−m, 1) / (3 R_F(0, 1−m, 1)):
 /// W(0) = ½, W(1) = 1, no 0/0 at m → 0.
 double mean_sn_squared(double m);
+/// complete_integrals (complete_elliptic.hpp: K and ⟨sn²⟩ by polynomial pieces) with its arguments
+/// checked: m and m1 in [0, 1] with m + m1 = 1 to within 4 units of rounding, else
+/// std::invalid_argument naming them.
+CompleteIntegrals complete_integrals_checked(double m, double m1);
 /// F(φ | m) = ∫_0^φ dϑ / √(1 − m sin²ϑ) for any real φ (F(φ + nπ) = F(φ) + 2nK), 0 ≤ m < 1.
 double elliptic_F(double phi, double m);
 /// Π(n | m) = ∫_0^{π/2} dϑ / ((1 − n sin²ϑ) √(1 − m sin²ϑ)) = R_F(0, 1−m, 1) + (n/3) R_J(0, 1−m, 1, 1−n),
