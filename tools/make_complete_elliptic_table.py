@@ -65,7 +65,8 @@ def horner(coefficients, t):
     return value
 
 
-def main() -> None:
+def table_text(verbose: bool = False) -> str:
+    """The header's text (each function's largest errors printed with ``verbose``)."""
     tables, worst = {}, {}
     for name, f in FUNCTIONS.items():
         tables[name], worst[name] = [], (0.0, 0.0)
@@ -82,7 +83,8 @@ def main() -> None:
                 truncation = abs(horner(exact_coefficients, t) - exact) / scale
                 after = abs(horner([mp.mpf(c) for c in rounded], t) - exact) / scale
                 worst[name] = (max(worst[name][0], float(truncation)), max(worst[name][1], float(after)))
-        print(f"{name}: largest error {worst[name][0]:.2e} (interpolation), {worst[name][1]:.2e} (coefficients rounded)")
+        if verbose:
+            print(f"{name}: largest error {worst[name][0]:.2e} (interpolation), {worst[name][1]:.2e} (coefficients rounded)")
         assert worst[name][0] < 1e-17, name
     lines = [
         "// Written by tools/make_complete_elliptic_table.py (mpmath at 60 digits); do not edit by hand.",
@@ -104,7 +106,11 @@ def main() -> None:
             lines.append("    {" + ", ".join(repr(c) for c in row) + "},")
         lines.append("};")
     lines += ["", "}  // namespace gyrostat::model::complete_elliptic_table", ""]
-    OUT.write_text("\n".join(lines))
+    return "\n".join(lines)
+
+
+def main() -> None:
+    OUT.write_text(table_text(verbose=True))
     print(f"wrote {OUT}")
 
 
