@@ -214,3 +214,26 @@ def test_an_ensemble_of_every_family_carries_each_members_estimate():
         members = g.solve_ensemble(run.model, [run.y0, run.y0], span, n_out=51, accuracy=1e-6, check_validity=False)
         for member in members:
             assert member.estimate.met and 0 < member.error_estimate <= 1e-6, (name, member.error_basis)
+
+
+def test_the_companion_is_made_once_for_shared_options_and_afresh_for_a_callers_own():
+    # the companion's options (tolerances / rho) are kept for the options cache's own Options, which are
+    # never modified; a caller's Options may change between calls, and its companion must follow it
+    from gyrostat import accuracy, options
+
+    w0 = np.array([0.15, 0.3, 1.0])
+    first = g.solve(DAMPED, w0, (0.0, 50.0), rtol=1e-7, n_out=11)
+    again = g.solve(DAMPED, w0, (0.0, 50.0), rtol=1e-7, n_out=11)
+    shared = options.options_of(None, tuple(1e-7 if name == "rtol" else None for name in options.OPTION_NAMES))
+    assert accuracy.companion_of(shared) is accuracy.companion_of(shared)
+    assert accuracy.companion_of(shared)[0].rtol == pytest.approx(1e-7 / 4.0, rel=1e-15)  # dop853's rho = 4
+    assert first.error_estimate == again.error_estimate  # the same companion, the same measurement
+
+    own = g.Options()
+    own.rtol = 1e-7
+    before = accuracy.companion_of(own)
+    own.rtol = 1e-9
+    after = accuracy.companion_of(own)
+    assert before is not after and after[0].rtol == pytest.approx(1e-9 / 4.0, rel=1e-15)
+    mutated = g.solve(DAMPED, w0, (0.0, 50.0), options=own, n_out=11)
+    assert mutated.error_estimate < first.error_estimate / 10  # rtol 100x tighter: its estimate follows

@@ -54,12 +54,14 @@ from __future__ import annotations
 import copy
 import math
 import time
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from gyrostat import _core
+from gyrostat.options import derived
 
 TIGHTER = 4.0
 """ρ: the companion run's tolerances are this many times smaller than the run's (:data:`TIGHTER_BY_METHOD`)."""
@@ -143,6 +145,8 @@ class Compared:
 
 
 _QUANTITIES: dict[tuple, list] = {}
+_OF_CORE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+"""Each engine model's quantities, by the model object (its names never change; ~1 µs a run saved)."""
 
 
 def quantities(core) -> list[Quantity]:
@@ -151,11 +155,15 @@ def quantities(core) -> list[Quantity]:
     left out, the measured outputs), or ``compared`` for a :class:`Compared` model."""
     if isinstance(core, Compared):
         return [Quantity("compared", "compare", np.zeros(0, int))]
+    known = _OF_CORE.get(core)
+    if known is not None:
+        return known
     key = (tuple(core.state_names), tuple(core.output_names))
     known = _QUANTITIES.get(key)
     if known is None:
         known = _QUANTITIES[key] = [Quantity(name, role, np.asarray(columns, int))
                                     for name, role, columns in core.measured_quantities]
+    _OF_CORE[core] = known
     return known
 
 
@@ -218,6 +226,12 @@ def tighter(opts, fresh: bool = False) -> tuple[object, float, str]:
     rho = min(ratio(opts.method), opts.rtol / ENGINE_RTOL)
     made.rtol, made.atol = max(opts.rtol / rho, ENGINE_RTOL), opts.atol / rho  # (no rounding below the least)
     return made, gain, f"rtol and atol / {rho:g}"
+
+
+def companion_of(opts) -> tuple[object, float, str]:
+    """:func:`tighter` of a copy of ``opts``, made once for each of the options cache's shared Options
+    (:func:`gyrostat.options.derived`; ~4 µs a run saved): not to be modified."""
+    return derived(opts, "companion", lambda given: tighter(copy_options(given), fresh=True))
 
 
 def companion_gain(opts) -> float:
@@ -385,7 +399,7 @@ def _single_run_estimate(run: SingleRun, core, opts, t0: float, t1: float, answe
     if isinstance(core, Compared) or t1 == t0 or not answer.success or answer.t_last == t0 \
             or answer.method in ("closed_form", "splitting"):
         return None
-    companion, gain, what = tighter(copy_options(opts), fresh=True)
+    companion, gain, what = companion_of(opts)
     if not math.isfinite(gain):
         return None
     made = _core.window_estimate(run.core, answer, t0, run.y0, t1, companion, _rule(gain), run.report, full)
@@ -401,7 +415,7 @@ def _ensemble_estimates(run: EnsembleRun, cores: list, opts, t0: float, t1: floa
     """The members' estimates the engine makes, the companions as one ensemble
     (``_core.window_estimates``), by member; the others (a separatrix crossed, too few output
     times in the window, other output times) are left to :func:`estimate_runs`' general path."""
-    companion, gain, what = tighter(copy_options(opts), fresh=True)
+    companion, gain, what = companion_of(opts)
     if not math.isfinite(gain):
         return {}
     models, y0s = run.starts(members)
@@ -434,9 +448,18 @@ def _engine_estimate(made: tuple, names: list[str], t0: float, horizon: float, w
                                             f"with {what} (difference x {gain:.3g})")
 
 
+_NAMES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def _names(core) -> list[str]:
-    """The names of the quantities a run of ``core`` is measured on (:func:`quantities`)."""
-    return [q.name for q in quantities(core)]
+    """The names of the quantities a run of ``core`` is measured on (:func:`quantities`; kept by
+    engine model)."""
+    known = _NAMES.get(core)
+    if known is None:
+        known = [q.name for q in quantities(core)]
+        if not isinstance(core, Compared):
+            _NAMES[core] = known
+    return known
 
 
 def _window_estimate(made: tuple, names: list[str], t0: float, horizon: float, fraction: float, what: str,

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import operator
 import warnings
+from collections.abc import Callable
 
 import numpy as np
 
@@ -117,7 +118,23 @@ option_values = operator.itemgetter(*OPTION_NAMES)
 _T_EVAL, _N_OUT = OPTION_NAMES.index("t_eval"), OPTION_NAMES.index("n_out")
 
 _CACHE: dict[tuple, Options] = {}
+_SHARED: set[int] = set()
+"""The ids of the Options in :data:`_CACHE` (alive, and never modified, while they are there)."""
+_DERIVED: dict[tuple[int, str], object] = {}
 _BOOLS = frozenset((True, False))
+
+
+def derived(opts: Options, purpose: str, make: Callable[[Options], object]):
+    """``make(opts)``, made once for an Options of the cache (:func:`options_of`: never modified, so
+    the same value every time) and afresh for any other (a caller's own may change between calls).
+    What it returns is shared: not to be modified."""
+    if id(opts) not in _SHARED:
+        return make(opts)
+    key = (id(opts), purpose)
+    made = _DERIVED.get(key)
+    if made is None:
+        made = _DERIVED[key] = make(opts)
+    return made
 
 
 def options_of(options, values: tuple) -> Options:
@@ -139,7 +156,10 @@ def options_of(options, values: tuple) -> Options:
             made = make_options(**dict(zip(OPTION_NAMES, values)))
             if len(_CACHE) >= 256:
                 _CACHE.clear()
+                _SHARED.clear()
+                _DERIVED.clear()
             _CACHE[key] = made
+            _SHARED.add(id(made))
             return made
         except TypeError:  # an unhashable value: checked (and refused) by make_options
             pass
