@@ -454,11 +454,11 @@ _NAMES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 def _names(core) -> list[str]:
     """The names of the quantities a run of ``core`` is measured on (:func:`quantities`; kept by
     engine model)."""
+    if isinstance(core, Compared):  # (no weak reference to it: made each time)
+        return [q.name for q in quantities(core)]
     known = _NAMES.get(core)
     if known is None:
-        known = [q.name for q in quantities(core)]
-        if not isinstance(core, Compared):
-            _NAMES[core] = known
+        known = _NAMES[core] = [q.name for q in quantities(core)]
     return known
 
 
