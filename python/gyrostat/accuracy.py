@@ -120,6 +120,9 @@ class Estimate:
     accuracy: float | None = None
     warning: str = ""
     """Why the accuracy asked is not met, with the measured error and what would meet it ("" when it is)."""
+    safety: float = 1.0
+    """The factor the measurement was multiplied by to make ``value`` (a scaled estimate's
+    :data:`gyrostat.contract.SCALE_SAFETY`; 1 for a measurement): ``value / safety`` is what was measured."""
 
     @property
     def met(self) -> bool | None:

@@ -222,7 +222,10 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
             if taken is not None:
                 made[i], estimates[i] = taken
                 continue
-            floor = i in previous and value > 0.5 * previous[i][0] and rtol < 0.25 * previous[i][1]
+            # the rounding floor: the measured error (a scaled estimate's without its safety factor, which
+            # a whole-span measurement before it does not carry) did not halve for rtol 4 times smaller
+            measurement = value / estimate.safety
+            floor = i in previous and measurement > 0.5 * previous[i][0] and rtol < 0.25 * previous[i][1]
             if floor:
                 estimate.warning = (f"the measured error {value:.3g} exceeds the accuracy {accuracy:g} and does not "
                                     f"fall with rtol ({rtol:.3g}): the rounding of doubles over this span; the least "
@@ -233,7 +236,7 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
                                     f"rtol the contract takes ({TIGHTEST_RTOL:g}): ask for an accuracy above "
                                     f"{value:.2g}, or give rtol down to 1e-14 yourself")
                 continue
-            previous[i] = (value, rtol)
+            previous[i] = (measurement, rtol)
             again.append(i)
             scaled_next = tried.method in SCALED and i in bases  # (its next estimate is scaled)
             tighter_rtol.append(max(TIGHTEST_RTOL, rtol * MARGIN * accuracy / value /
@@ -338,7 +341,7 @@ def scaled_estimates(run: Runner, cores: list, opts, t0: float, t1: float, answe
                              f"run's error over the first {WINDOW:.0%} of the span over that run's there ({now:.3g} / "
                              f"{before:.3g}; each against a run with tolerances {ratio(opts.method):g} times "
                              f"tighter), times {SCALE_SAFETY:g}: the error keeps its course over the span when the "
-                             f"tolerance changes, within that factor"))
+                             f"tolerance changes, within that factor", safety=SCALE_SAFETY))
     return made
 
 
