@@ -91,7 +91,10 @@ void taylor_rows(const std::vector<double>& tolerances) {
 /// y + Σ_{n≥1} c_n hⁿ below taylor_detail::compensate_below), (c) recursion, step size
 /// and new state. Parts: recursion = (a), new state = (b) − (a), step size = (c) − (b), the rest
 /// of the integrator's loop (bookkeeping, checks, outputs) = the whole step − (c), the whole step
-/// being a trajectory's time / steps.
+/// being a trajectory's time / steps. Above rtol 1e-12 a single run takes a predicted step where
+/// the allowed one is at least as large (taylor.hpp: OneTaylorRun::step_size), so the step size
+/// is mostly off its chain and the whole step can be shorter than (c): the rest then reads
+/// negative, the part of the step size's time that the prediction hides.
 template <int P>
 void taylor_profile_row(const model::Gyrostat<false>& system, double safety, double rtol, double step_ns, long steps) {
     constexpr int chain = 2000;
@@ -190,7 +193,7 @@ void taylor_profile(std::integer_sequence<int, Orders...>) {
         o.atol = rtol * 1e-3;
         integrate::Result result;
         const double s = seconds_of([&] { result = integrate::solve(system, 0.0, free_w0, free_t1, o); });
-        const int order = integrate::taylor_detail::order_for(rtol, model::Gyrostat<false>::max_taylor_order);
+        const int order = integrate::taylor_detail::single_run_order(rtol, model::Gyrostat<false>::max_taylor_order);
         const double safety = integrate::taylor_detail::safety_for(rtol, order);
         const double step_ns = 1e9 * s / result.stats.steps;
         ((Orders == order ? taylor_profile_row<(Orders < 2 ? 2 : Orders)>(system, safety, rtol, step_ns, result.stats.steps)

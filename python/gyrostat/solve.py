@@ -98,8 +98,9 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         torque; a full top state for the averaged top: its (G_z, H, r)). Or a :class:`Solution`
         to continue its run: ``solve(model, sol, (sol.t_last, t1))`` starts from its last
         accepted state with the step it would have tried next (a run stopped by ``max_steps``
-        or Ctrl-C, continued, follows the uninterrupted one: DOP853 and Taylor step for step,
-        CVODE/ARKODE to the tolerance, since their multistep history restarts).
+        or Ctrl-C, continued, follows the uninterrupted one: DOP853 step for step, Taylor and
+        CVODE/ARKODE to the tolerance, since Taylor's step prediction and their multistep
+        history restart).
     t_span : (float, float)
         (t0, t1), in s; t1 < t0 integrates backwards.
     method : str, optional
