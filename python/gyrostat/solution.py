@@ -132,7 +132,8 @@ class Solution(SolutionViews, SolutionJoin):
     def __init__(self, result: _core.Result, model=None):
         self._result = result
         self._columns = None
-        self.notes: list[str] = list(result.notes) + list(result.warnings) if result.notes or result.warnings else []
+        notes, warnings = result.notes, result.warnings  # (each read converts the engine's strings: read once)
+        self.notes: list[str] = list(notes) + list(warnings) if notes or warnings else []
         self.model = model
         self.pieces: tuple[tuple[str, Solution], ...] = ()
         self.switches: list[tuple] = []

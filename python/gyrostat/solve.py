@@ -260,9 +260,10 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         if report is not None:
             _bars.close(report)
     solution = Solution(result, model)
+    remarked = solution.notes != []  # the engine's notes and warnings (read once by Solution)
     if estimate is not None:
         attach(solution, estimate)
-    if result.success and (not check_validity or type(model).check is BASE_CHECK) and not result.warnings \
+    if result.success and (not check_validity or type(model).check is BASE_CHECK) and not remarked \
             and not solution._doubts:
         return solution
     return checked(solution, model, check_validity)

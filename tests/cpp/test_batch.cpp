@@ -93,9 +93,16 @@ void batch_equals_scalar(Method method) {
                                                                      std::to_string(difference(batched[i], single[i])));
         CHECK(batched[i].t_last == 30.0 && batched[i].y_last.size() == static_cast<std::size_t>(A ? 7 : 3), what + ": t_last");
         CHECK(batched[i].method == integrate::method_name(method), what + ": method named");
-        // the step counts follow each lane's own step size (within 5 % of the scalar run's)
-        CHECK(std::abs(batched[i].stats.steps - single[i].stats.steps) <= 1 + single[i].stats.steps / 20,
-              what + ": steps " + std::to_string(batched[i].stats.steps) + " vs " + std::to_string(single[i].stats.steps));
+        // the step counts follow each lane's own step size (within 5 % of the scalar run's); a
+        // single Taylor run takes its predicted step where the allowed one is larger (taylor.hpp:
+        // OneTaylorRun::step_size), ~5 % more steps on the torque-free body and up to 8.5 % here
+        // with the sanitizer builds' coarser orders: at most 15 % more than the lane's, never fewer
+        // (beyond one)
+        const long lane_steps = batched[i].stats.steps, own_steps = single[i].stats.steps;
+        const bool steps_agree = method == Method::Taylor
+                                     ? own_steps >= lane_steps - 1 && own_steps <= lane_steps + 1 + 3 * lane_steps / 20
+                                     : std::abs(lane_steps - own_steps) <= 1 + own_steps / 20;
+        CHECK(steps_agree, what + ": steps " + std::to_string(lane_steps) + " vs " + std::to_string(own_steps));
         const auto alone = solve(models[i], 0.0, starts[i], 30.0, o);
         CHECK(single[i].y == alone.y && single[i].t == alone.t, what + ": batch = false is the single run bit for bit");
         fewest = std::min(fewest, single[i].stats.steps);
