@@ -258,9 +258,9 @@ inline int order_for(double eps, int max_order, double above = 6.0) {
 /// of a + b·p², which moves the cheapest order up), and fewer steps also mean fewer roundings: on
 /// the torque-free body (bench/taylor_vs_heyoka.py) + 8 took 1356 steps where + 6 took 1543 at
 /// rtol 1e-13, for an error 3.9e-13 against 4.5e-12 (+ 10: faster at 1e-13, slower at 1e-14).
-/// The batch lanes keep + 6: their error grew with + 8 (64 members at rtol 1e-13 over t = 200:
-/// the largest 3.6e-13 against 5.4e-14; tests/test_batch.py), and a batch is bound by its
-/// throughput, not by one step's chain.
+/// The batch lanes keep + 6, not measured for speed at + 8; on tests/test_batch.py's 64 members
+/// at rtol 1e-13 over t = 200 their largest error grew from 5.4e-14 to 3.6e-13 with + 8 (a single
+/// run's from 1.9e-13 to 3.4e-13: truncation, at that rtol, in the larger steps).
 inline int single_run_order(double eps, int max_order) {
     return order_for(eps, max_order, eps < compensate_below ? 8.0 : 6.0);
 }
