@@ -22,7 +22,10 @@ estimate / true within [0.5, 30] (true above 1e-10; below it, estimate ≤ max(3
 explicit rtol: cost with estimate ≤ 1.5× without.
 
 Cost: time is the median of ``--rounds`` repeats, every timed job shuffled into one random order
-per round (the machine is shared and noisy: all ratios come from one run, interleaved);
+per round (the machine is shared and noisy: all ratios come from one run, interleaved); a job is
+called often enough in each round to take ~1 ms (timeit's practice: one call of a ~30 µs solve,
+timed alone after another scene's, measured its cold caches more than its own work) and its mean
+per call taken;
 right-hand-side evaluations (every engine run a solve makes, summed; deterministic) are counted in
 a first, untimed pass. The reference's own error is bounded by its distance to the run at rtol
 1e-13; a true error below 10× that bound is marked ``~`` (the reference cannot judge it).
@@ -58,6 +61,8 @@ from gyrostat import lagrange as lg
 
 RESULTS = Path(__file__).resolve().parent / "results"
 N_OUT = 201
+CALLS_FOR = 1e-3
+"""Each timed job is called in a loop of about this many seconds per round (its mean per call taken)."""
 REFERENCE_RTOL, CHECK_RTOL = 1e-14, 1e-13
 RATIO_GOAL, EXPLICIT_GOAL, LOW, HIGH, FLOOR = 3.0, 1.5, 0.5, 30.0, 1e-10
 
@@ -125,29 +130,35 @@ class Counter:
 
     def __init__(self):
         self.rhs = self.steps = self.runs = 0
-        self._engine, self._window = _core.solve, _core.window_estimate
+        self._engine, self._window, self._both = _core.solve, _core.window_estimate, _core.solve_measured
 
-    def _count(self, result) -> None:
-        self.rhs += result.stats.rhs_evals
-        self.steps += result.stats.steps
+    def _count(self, stats) -> None:
+        self.rhs += stats.rhs_evals
+        self.steps += stats.steps
         self.runs += 1
 
     def __enter__(self):
         def counted(*args, **kwargs):
             result = self._engine(*args, **kwargs)
-            self._count(result)
+            self._count(result.stats)
             return result
 
-        def counted_window(*args, **kwargs):  # (one run's estimate in one engine call: its companion counted)
-            made = self._window(*args, **kwargs)
+        def counted_window(*args, **kwargs):  # (one run's estimate in one engine call: its companion counted,
+            made = self._window(*args, **kwargs)  # a whole span's Result or a window's statistics)
             if made is not None:
-                self._count(made[6])
+                self._count(getattr(made[6], "stats", made[6]))
             return made
-        _core.solve, _core.window_estimate = counted, counted_window
+        def counted_both(*args, **kwargs):  # (a run and its window estimate in one engine call: both counted)
+            answer, made = self._both(*args, **kwargs)
+            self._count(answer.stats)
+            if made is not None:
+                self._count(getattr(made[6], "stats", made[6]))
+            return answer, made
+        _core.solve, _core.window_estimate, _core.solve_measured = counted, counted_window, counted_both
         return self
 
     def __exit__(self, *exc):
-        _core.solve, _core.window_estimate = self._engine, self._window
+        _core.solve, _core.window_estimate, _core.solve_measured = self._engine, self._window, self._both
 
 
 def work(job) -> tuple[object, int, int, str]:
@@ -211,16 +222,23 @@ def main() -> int:
                          warnings=tuple(sol.accuracy_warnings), ok=sol.success,
                          rtol=float(sol._result.options.rtol) if hasattr(sol._result, "options") else math.nan)
         info[key] = entry
-    # ---- timed rounds, interleaved in a random order each round
+    # ---- timed rounds, interleaved in a random order each round; each job called CALLS_FOR seconds' worth
     times: dict[tuple, list[float]] = {key: [] for key in jobs}
     timed = [key for key in jobs if not info[key]["error"]]
+    calls = {}
+    for key in timed:  # (calibrated on a second, warm call)
+        t = time.perf_counter()
+        jobs[key]()
+        calls[key] = max(1, min(200, int(CALLS_FOR / max(time.perf_counter() - t, 1e-9))))
     rng = random.Random(41)
     for _ in range(rounds):
         rng.shuffle(timed)
         for key in timed:
+            job, n = jobs[key], calls[key]
             t = time.perf_counter()
-            jobs[key]()
-            times[key].append(time.perf_counter() - t)
+            for _ in range(n):
+                job()
+            times[key].append((time.perf_counter() - t) / n)
     for key in jobs:
         info[key]["time"] = statistics.median(times[key]) if times[key] else math.nan
 

@@ -8,6 +8,10 @@ against the general path on the same answers (a plain runner: the companion thro
 ``_core.solve`` / ``solve_ensemble``, the comparison and the growth called from Python, per
 member), interleaved, best of 9 (7) rounds; the answer's own engine run beside them. Both paths
 give the same estimates (tests/test_measurement_primitives.py).
+
+Last, what a user pays: ``gyrostat.solve`` of each case with its default estimate against the same
+with ``error_estimate=False`` (the goal: at most 1.5x), alternated for 15 rounds of ~50 ms each;
+the ratio of the bests and the median of the rounds' ratios.
 """
 import time, numpy as np, gyrostat as g, warnings
 from gyrostat import _core, accuracy as acc
@@ -53,3 +57,18 @@ for _ in range(7):
     best["engine"] = min(best["engine"], timed(eng, 3))
     best["general"] = min(best["general"], timed(gen, 3))
 print(f"averaged ensemble, {count} members, one thread: answers {best['plain']/count*1e6:.1f} us/member; estimates: engine path {best['engine']/count*1e6:.1f} us/member, general path {best['general']/count*1e6:.1f} us/member ({best['general']/best['engine']:.2f}x)")
+# a whole solve with its default estimate against without (what a user pays; the goal: <= 1.5x)
+import statistics
+for name, (model, y0, t1, rtol) in cases.items():
+    settings = dict(rtol=rtol, atol=rtol * 1e-3, n_out=201, check_validity=False)
+    off = lambda: g.solve(model, y0, (0.0, t1), error_estimate=False, **settings)
+    on = lambda: g.solve(model, y0, (0.0, t1), **settings)
+    n = max(3, int(0.05 / timed(on, 3)))
+    times = {"off": [], "on": []}
+    for _ in range(15):
+        times["off"].append(timed(off, n))
+        times["on"].append(timed(on, n))
+    ratios = [b / a for a, b in zip(times["off"], times["on"])]
+    print(f"{name:28s} solve {min(times['off'])*1e6:9.1f} us, with its estimate {min(times['on'])*1e6:9.1f} us: "
+          f"{min(times['on'])/min(times['off']):.2f}x (rounds: median {statistics.median(ratios):.2f}x, "
+          f"{min(ratios):.2f}-{max(ratios):.2f}x)")

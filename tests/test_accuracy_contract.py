@@ -192,14 +192,22 @@ def test_explicit_rtol_is_measured(issue_reference, method, rtol, mode):
 
 def test_error_estimate_off_costs_no_run(monkeypatch):
     calls = []
-    engine, window = g._core.solve, g._core.window_estimate  # (the window's companion runs in the second)
+    # (the window's companion runs in the second; solve_measured runs the answer, then its companion where
+    # it returns an estimate)
+    engine, window, both = g._core.solve, g._core.window_estimate, g._core.solve_measured
 
     def counted(*args, **kwargs):
         calls.append(1)
         return engine(*args, **kwargs)
 
+    def counted_both(*args, **kwargs):
+        answer, made = both(*args, **kwargs)
+        calls.extend([1] if made is None else [1, 1])
+        return answer, made
+
     monkeypatch.setattr(g._core, "solve", counted)
     monkeypatch.setattr(g._core, "window_estimate", lambda *args, **kwargs: (calls.append(1), window(*args, **kwargs))[1])
+    monkeypatch.setattr(g._core, "solve_measured", counted_both)
     sol = quiet_solve(damped_model(), W0, (0.0, 100.0), n_out=N_OUT, rtol=1e-8, error_estimate=False)
     assert sol.success
     assert len(calls) == 1, f"error_estimate=False must run the engine once (the answer only), ran {len(calls)}"

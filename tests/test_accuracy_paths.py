@@ -237,3 +237,38 @@ def test_the_companion_is_made_once_for_shared_options_and_afresh_for_a_callers_
     assert before is not after and after[0].rtol == pytest.approx(1e-9 / 4.0, rel=1e-15)
     mutated = g.solve(DAMPED, w0, (0.0, 50.0), options=own, n_out=11)
     assert mutated.error_estimate < first.error_estimate / 10  # rtol 100x tighter: its estimate follows
+
+
+def test_the_basis_is_written_when_read_in_its_place_among_the_notes():
+    # the basis text of a run's estimate is written when first read (the default estimate of a ~20 us
+    # averaged run spent ~3 us formatting it): the words and the notes' order must be what eager
+    # formatting gave, once, and a pickled estimate must carry the text
+    import pickle
+
+    from gyrostat import accuracy
+
+    w0 = np.array([0.15, 0.3, 1.0])
+    sol = g.solve(DAMPED, w0, (0.0, 500.0), rtol=1e-7, n_out=201)
+    estimate = sol.estimate
+    shared = g.options.options_of(None, tuple(1e-7 if name == "rtol" else 201 if name == "n_out" else None
+                                              for name in g.options.OPTION_NAMES))
+    companion, gain, _ = accuracy.companion_of(shared)
+    made = g._core.window_estimate(DAMPED._core, sol._result, 0.0, w0, 500.0, companion, accuracy._rule(gain))
+    values, k, grown, window, count, failure, _ = made
+    assert estimate.basis == (f"measured over the first 20% of the span ([0, {window:.6g}], {count} times) against a run "
+                              f"with rtol and atol / 4 (difference x 1.33), grown as t^{k:.2g} to t = 500, times 3")
+    sol.doubt("a doubt added after the run")
+    assert sol.notes[-2] == f"error estimate {estimate.value:.3g}: {estimate.basis}"
+    assert sol.notes[-1] == "a doubt added after the run" and sol.accuracy_warnings == ("a doubt added after the run",)
+    again = pickle.loads(pickle.dumps(estimate))
+    assert again == estimate and again.basis == estimate.basis and again.value == estimate.value
+
+    fresh = g.solve(DAMPED, w0, (0.0, 500.0), rtol=1e-7, n_out=201)
+    first_look = list(fresh.notes)  # the line written once, on the first look
+    assert fresh.notes == first_look and sum(n.startswith("error estimate") for n in first_look) == 1, first_look
+
+    chosen = g.solve(DAMPED, w0, (0.0, 500.0), accuracy=1e-5, n_out=201)
+    assert chosen.error_basis.startswith("rtol ") and " chosen for the accuracy 1e-05 (" in chosen.error_basis, \
+        chosen.error_basis
+    assert "); measured at 201 output times over the whole run against a run with rtol and atol / " in chosen.error_basis, \
+        chosen.error_basis

@@ -162,7 +162,7 @@ def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
     companion = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4)
     gain = 4.0 / 3.0
     rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=gain)
-    values, k, grown, end, count, failure, _ = _core.window_estimate(core, answer, 0.0, y0, t1, companion, rule)
+    values, k, grown, end, count, failure, stats = _core.window_estimate(core, answer, 0.0, y0, t1, companion, rule)
     times = np.asarray(answer.t)
     inside = int(np.sum(times <= 0.2 * t1))
     window_options = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4, t_eval=times[:inside])
@@ -176,9 +176,31 @@ def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
         expected.append(max(3.0 * value, 1e-16))
         ks.append(k_row)
     assert failure == "" and grown and count == inside and end == times[inside - 1], (failure, grown, count, end)
+    assert stats.rhs_evals == other.stats.rhs_evals and stats.steps == other.stats.steps, "the window's companion's statistics"
     assert np.allclose(values, expected, rtol=1e-14, atol=0.0), f"{case}: engine {values}, rule {expected}"
     assert k == pytest.approx(max(ks), rel=1e-14), (k, ks)
     assert max(expected) > 1e-13, "the runs must differ for the comparison to mean anything"
+
+
+@pytest.mark.parametrize("case", sorted(WINDOW_CASES))
+@pytest.mark.parametrize("whole_span", [False, True])
+def test_a_run_and_its_estimate_in_one_call_are_the_two_calls(case, whole_span):
+    """``_core.solve_measured`` (what a single solve with its default estimate makes: the run, then its
+    window estimate, in one engine call) equals ``_core.solve`` then ``_core.window_estimate`` bit for
+    bit: the same runs in the same order; and it makes none where the run measures itself or failed."""
+    model, y0, t1 = WINDOW_CASES[case]
+    y0 = np.asarray(y0, float)
+    options = make_options(rtol=1e-8, atol=1e-11, n_out=201)
+    companion = make_options(rtol=2.5e-9, atol=2.5e-12)
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    answer, made = _core.solve_measured(model._core, y0, 0.0, t1, options, companion, rule, None, whole_span)
+    alone = _core.solve(model._core, y0, 0.0, t1, options, None)
+    apart = _core.window_estimate(model._core, alone, 0.0, y0, t1, companion, rule, None, whole_span)
+    assert np.array_equal(answer.y, alone.y) and np.array_equal(answer.outputs, alone.outputs, equal_nan=True)
+    assert made[:6] == apart[:6], (made[:6], apart[:6])
+    starved = make_options(rtol=1e-8, atol=1e-11, n_out=201, max_steps=2)
+    failed, none = _core.solve_measured(model._core, y0, 0.0, t1, starved, companion, rule, None, whole_span)
+    assert failed.status == "max_steps_reached" and none is None, failed.status
 
 
 def test_the_engines_window_leaves_what_it_cannot_measure_to_python():
@@ -195,8 +217,10 @@ def test_the_engines_window_leaves_what_it_cannot_measure_to_python():
     assert _core.window_estimate(core, crossing, 0.0, W0, T1, tighter, rule) is None
     short = run(CAVITY, W0, 50.0, 1e-8, n_out=201)
     starved = make_options(rtol=2.5e-9, atol=2.5e-12, max_steps=3)
-    values, *_, failure, companion = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
-    assert failure.startswith("max_steps_reached") and values == [] and companion.status == "max_steps_reached", failure
+    values, *_, failure, stats = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
+    assert failure.startswith("max_steps_reached") and values == [] and stats.steps == 3, (failure, stats.steps)
+    *_, failure, companion = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule, whole_span=True)
+    assert failure.startswith("max_steps_reached") and companion.status == "max_steps_reached", failure
     estimate = g.accuracy._window_estimate((values, 1.0, False, 10.0, 0, failure), ["omega"], 0.0, 50.0, 0.2, "x",
                                             4 / 3)
     assert math.isnan(estimate.value) and "max_steps_reached" in estimate.basis, estimate.basis

@@ -126,30 +126,35 @@ integrate::Result described(const AnyModel& model) {
 
 std::vector<std::string> output_names(const AnyModel& model) { return described(model).output_names(); }
 
-std::vector<MeasuredQuantity> measured_quantities(const AnyModel& model) {
-    return visit(model, [](const auto& m) {
+const std::vector<MeasuredQuantity>& measured_quantities(const AnyModel& model) {
+    return visit(model, [](const auto& m) -> const std::vector<MeasuredQuantity>& {
         using S = std::decay_t<decltype(m)>;
-        std::vector<MeasuredQuantity> made;
-        std::vector<std::string> taken;
-        for (int i = 0; i < S::dim; ++i) {
-            const model::Quantity& q = S::states[i];
-            taken.emplace_back(q.name);
-            if (q.label) continue;
-            const std::string name = q.vector ? q.vector : q.name;
-            auto same = std::find_if(made.begin(), made.end(), [&](const MeasuredQuantity& x) { return !x.output && x.name == name; });
-            if (q.vector && same != made.end())
-                same->columns.push_back(i);
-            else
-                made.push_back({name, false, {i}});
-        }
-        if constexpr (model::system::has_outputs<S>::value) {
-            int column = 0;
-            for (const model::OutputInfo& info : S::outputs_info) {
-                if (info.measured && std::find(taken.begin(), taken.end(), info.name) == taken.end())
-                    made.push_back({info.name, true, {column}});
-                ++column;
+        // (the type's declarations alone decide them: made once per model type, ~1 µs a window estimate saved)
+        static const std::vector<MeasuredQuantity> made = [] {
+            std::vector<MeasuredQuantity> found;
+            std::vector<std::string> taken;
+            for (int i = 0; i < S::dim; ++i) {
+                const model::Quantity& q = S::states[i];
+                taken.emplace_back(q.name);
+                if (q.label) continue;
+                const std::string name = q.vector ? q.vector : q.name;
+                auto same = std::find_if(found.begin(), found.end(),
+                                         [&](const MeasuredQuantity& x) { return !x.output && x.name == name; });
+                if (q.vector && same != found.end())
+                    same->columns.push_back(i);
+                else
+                    found.push_back({name, false, {i}});
             }
-        }
+            if constexpr (model::system::has_outputs<S>::value) {
+                int column = 0;
+                for (const model::OutputInfo& info : S::outputs_info) {
+                    if (info.measured && std::find(taken.begin(), taken.end(), info.name) == taken.end())
+                        found.push_back({info.name, true, {column}});
+                    ++column;
+                }
+            }
+            return found;
+        }();
         return made;
     });
 }
@@ -164,15 +169,21 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
         return given.empty() ? r.t.size() : given.size();
     };
     const std::size_t n = rows(reference, reference_rows), n_other = rows(other, other_rows);
-    if (n != n_other || reference.dim != other.dim || reference.output_names() != other.output_names())
+    // (runs of one model type share their declarations: the names compared only when they do not)
+    const bool alike = reference.declared == other.declared || reference.output_names() == other.output_names();
+    if (n != n_other || reference.dim != other.dim || !alike)
         throw std::invalid_argument("measured_differences: the runs compare " + std::to_string(n) + " and " +
                                     std::to_string(n_other) + " rows of states of " + std::to_string(reference.dim) +
                                     " and " + std::to_string(other.dim) + " components: they must be alike");
-    // row k of each run (every row when none are given)
-    auto a_row = [&](std::size_t k) { return reference_rows.empty() ? k : reference_rows[k]; };
-    auto b_row = [&](std::size_t k) { return other_rows.empty() ? k : other_rows[k]; };
-    const std::vector<MeasuredQuantity> quantities = measured_quantities(model);
+    // row k of each run (every row when none are given), as offsets into its arrays once
+    const std::vector<MeasuredQuantity>& quantities = measured_quantities(model);
     const std::size_t dim = static_cast<std::size_t>(reference.dim), width = reference.output_names().size();
+    auto offsets = [n](const std::vector<std::size_t>& given, std::size_t stride) {
+        std::vector<std::size_t> made(n);
+        for (std::size_t k = 0; k < n; ++k) made[k] = (given.empty() ? k : given[k]) * stride;
+        return made;
+    };
+    std::vector<std::size_t> a_state, b_state, a_output, b_output;
     // NaN anywhere makes a largest size NaN (as NumPy's maximum), which then counts as no size at all: 1
     auto unit_of = [](double top, bool nan) { return nan || !(top > 0.0 && std::isfinite(top)) ? 1.0 : top; };
     Eigen::MatrixXd made(static_cast<Eigen::Index>(quantities.size()), static_cast<Eigen::Index>(n));
@@ -181,41 +192,47 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
         const MeasuredQuantity& quantity = quantities[q];
         const double* a = quantity.output ? reference.outputs.data() : reference.y.data();
         const double* b = quantity.output ? other.outputs.data() : other.y.data();
-        const std::size_t stride = quantity.output ? width : dim;
+        std::vector<std::size_t>& a_at = quantity.output ? a_output : a_state;
+        std::vector<std::size_t>& b_at = quantity.output ? b_output : b_state;
+        if (a_at.empty()) a_at = offsets(reference_rows, quantity.output ? width : dim);
+        if (b_at.empty()) b_at = offsets(other_rows, quantity.output ? width : dim);
         double top = 0.0;
         bool nan = false;
         for (std::size_t k = 0; k < n; ++k)
             for (int c : quantity.columns) {
-                const double v = std::abs(a[a_row(k) * stride + c]);
+                const double v = std::abs(a[a_at[k] + c]);
                 nan = nan || std::isnan(v);
                 top = std::max(top, v);
             }
         const double unit = unit_of(top, nan);
-        double largest = 0.0;  // |x| of one column, the norm of several, relative to the unit
+        const Eigen::Index row = static_cast<Eigen::Index>(q);
+        if (quantity.columns.size() == 1) {
+            // One column: its largest |x|/unit is 1 exactly (|x| <= top, and division is monotone), or
+            // the unit is 1 and so is the scale below (a column of zeros, NaN or infinity): the
+            // differences relative to the unit are the answer.
+            const int c = quantity.columns[0];
+            for (std::size_t k = 0; k < n; ++k)
+                made(row, static_cast<Eigen::Index>(k)) = std::abs((a[a_at[k] + c] - b[b_at[k] + c]) / unit);
+            continue;
+        }
+        double largest = 0.0;  // the norm of the columns relative to the unit
         bool largest_nan = false;
         for (std::size_t k = 0; k < n; ++k) {
-            const double* x = a + a_row(k) * stride;
-            const double* z = b + b_row(k) * stride;
+            const double* x = a + a_at[k];
+            const double* z = b + b_at[k];
             double size = 0.0, distance = 0.0;
-            if (quantity.columns.size() == 1) {
-                const int c = quantity.columns[0];
-                size = std::abs(x[c] / unit);
-                distance = std::abs((x[c] - z[c]) / unit);
-            } else {
-                for (int c : quantity.columns) {
-                    const double s = x[c] / unit, d = (x[c] - z[c]) / unit;
-                    size += s * s;
-                    distance += d * d;
-                }
-                size = std::sqrt(size);
-                distance = std::sqrt(distance);
+            for (int c : quantity.columns) {
+                const double s = x[c] / unit, d = (x[c] - z[c]) / unit;
+                size += s * s;
+                distance += d * d;
             }
+            size = std::sqrt(size);
             largest_nan = largest_nan || std::isnan(size);
             largest = std::max(largest, size);
-            apart[k] = distance;
+            apart[k] = std::sqrt(distance);
         }
         const double scale = unit_of(largest, largest_nan);
-        for (std::size_t k = 0; k < n; ++k) made(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(k)) = apart[k] / scale;
+        for (std::size_t k = 0; k < n; ++k) made(row, static_cast<Eigen::Index>(k)) = apart[k] / scale;
     }
     return made;
 }

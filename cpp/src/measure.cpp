@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace gyrostat {
 
@@ -77,12 +78,15 @@ double horizon_of(const integrate::Result& answer) {
 }
 
 /// The companion's options: `companion` at the answer's first `count` output times, without
-/// events, dense output or every step.
-integrate::Options companion_options(const integrate::Options& companion, const integrate::Result& answer, std::size_t count) {
+/// events, dense output or every step; over a window, recording only the measured outputs (a
+/// whole span's companion may become the answer: python/gyrostat/contract.py).
+integrate::Options companion_options(const integrate::Options& companion, const integrate::Result& answer, std::size_t count,
+                                     bool whole_span) {
     integrate::Options options = companion;
     options.t_eval.assign(answer.t.begin(), answer.t.begin() + static_cast<std::ptrdiff_t>(count));
     options.events.clear();
     options.every_step = options.dense_output = false;
+    options.only_measured_outputs = !whole_span;
     return options;
 }
 
@@ -121,8 +125,18 @@ WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& a
     const std::size_t count = compared_times(answer, t0, t1, rule, whole_span);
     if (!measurable(model, answer, count, t0, t1, rule, whole_span)) return {};
     const double end = whole_span ? horizon_of(answer) : answer.t[count - 1];
-    return measured_against(model, answer, solve(model, t0, y0, end, companion_options(companion, answer, count), control),
-                            count, t0, rule, whole_span);
+    integrate::Result other = solve(model, t0, y0, end, companion_options(companion, answer, count, whole_span), control);
+    return measured_against(model, answer, std::move(other), count, t0, rule, whole_span);
+}
+
+MeasuredRun solve_measured(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
+                           const integrate::Options& options, const integrate::Options& companion,
+                           const WindowRule& rule, const integrate::Control* control, bool whole_span) {
+    MeasuredRun made{solve(model, t0, y0, t1, options, control), {}};
+    const std::string& method = made.answer.method;
+    if (t1 != t0 && made.answer.success() && method != "splitting" && method != "closed_form")
+        made.estimate = window_estimate(model, made.answer, t0, y0, t1, companion, rule, control, whole_span);
+    return made;
 }
 
 std::vector<WindowEstimate> window_estimates(const std::vector<const AnyModel*>& models,
@@ -166,8 +180,8 @@ std::vector<WindowEstimate> window_estimates(const std::vector<const AnyModel*>&
         starts.push_back(y0s[i]);
     }
     std::vector<integrate::Result> companions =
-        solve_ensemble(chosen, starts, t0, end, companion_options(companion, *answers[members.front()], count), threads,
-                       control, batch);
+        solve_ensemble(chosen, starts, t0, end, companion_options(companion, *answers[members.front()], count, whole_span),
+                       threads, control, batch);
     for (std::size_t k = 0; k < members.size(); ++k) {
         const std::size_t i = members[k];
         made[i] = measured_against(model_of(i), *answers[i], std::move(companions[k]), count, t0, rule, whole_span);

@@ -56,11 +56,12 @@ import math
 import time
 import weakref
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
 from gyrostat import _core
+from gyrostat.estimate import Compared, Estimate, Quantity, quantities
 from gyrostat.options import derived
 
 TIGHTER = 4.0
@@ -97,78 +98,6 @@ CLOSED_FORM_ERROR = 1e-14
 """The closed form's error estimate: rounding in its elliptic functions."""
 FLOOR = 1e-16
 """An estimate is never below this (one rounding of the largest component)."""
-
-@dataclass(frozen=True)
-class Quantity:
-    """A compared quantity: its name, and the columns of the state (``role == "state"``) or of
-    the outputs that make it."""
-
-    name: str
-    role: str
-    columns: np.ndarray
-
-
-@dataclass
-class Estimate:
-    """A run's measured global error: the largest relative error over the compared quantities
-    (``value``), each quantity's (``per_quantity``), what it rests on (``basis``) and, for a run
-    given an accuracy, whether the estimate meets it."""
-
-    value: float
-    per_quantity: dict[str, float] = field(default_factory=dict)
-    basis: str = ""
-    accuracy: float | None = None
-    warning: str = ""
-    """Why the accuracy asked is not met, with the measured error and what would meet it ("" when it is)."""
-    safety: float = 1.0
-    """The factor the measurement was multiplied by to make ``value`` (a scaled estimate's
-    :data:`gyrostat.contract.SCALE_SAFETY`; 1 for a measurement): ``value / safety`` is what was measured."""
-
-    @property
-    def met(self) -> bool | None:
-        """Whether the estimate is within the accuracy asked (None: none was asked)."""
-        if self.accuracy is None:
-            return None
-        return bool(self.value <= self.accuracy)
-
-    def as_dict(self) -> dict:
-        return {"value": self.value, "per_quantity": dict(self.per_quantity), "basis": self.basis,
-                "accuracy": self.accuracy, "met": self.met, "warning": self.warning}
-
-
-class Compared:
-    """A model's run measured on the quantities ``compare`` gives (solution → (n, m): one quantity,
-    ``"compared"``, relative to its largest row norm) instead of :func:`quantities`: what the model
-    ladder compares (|G| and T, (a, r), ...) when a scene needs no more."""
-
-    __slots__ = ("core", "compare", "model")
-
-    def __init__(self, core, compare: Callable, model=None):
-        self.core, self.compare, self.model = core, compare, model
-
-
-_QUANTITIES: dict[tuple, list] = {}
-_OF_CORE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-"""Each engine model's quantities, by the model object (its names never change; ~1 µs a run saved)."""
-
-
-def quantities(core) -> list[Quantity]:
-    """The quantities the error of a run of the model ``core`` is measured on: what its C++
-    declarations say (``core.measured_quantities``: a vector's components as one quantity, labels
-    left out, the measured outputs), or ``compared`` for a :class:`Compared` model."""
-    if isinstance(core, Compared):
-        return [Quantity("compared", "compare", np.zeros(0, int))]
-    known = _OF_CORE.get(core)
-    if known is not None:
-        return known
-    key = (tuple(core.state_names), tuple(core.output_names))
-    known = _QUANTITIES.get(key)
-    if known is None:
-        known = _QUANTITIES[key] = [Quantity(name, role, np.asarray(columns, int))
-                                    for name, role, columns in core.measured_quantities]
-    _OF_CORE[core] = known
-    return known
-
 
 def _rows(result, quantity: Quantity, keep=slice(None), core=None) -> np.ndarray:
     """A compared quantity's rows: what ``core.compare`` gives of the result."""
@@ -234,7 +163,11 @@ def tighter(opts, fresh: bool = False) -> tuple[object, float, str]:
 def companion_of(opts) -> tuple[object, float, str]:
     """:func:`tighter` of a copy of ``opts``, made once for each of the options cache's shared Options
     (:func:`gyrostat.options.derived`; ~4 µs a run saved): not to be modified."""
-    return derived(opts, "companion", lambda given: tighter(copy_options(given), fresh=True))
+    return derived(opts, "companion", _companion)
+
+
+def _companion(opts) -> tuple[object, float, str]:
+    return tighter(copy_options(opts), fresh=True)
 
 
 def companion_gain(opts) -> float:
@@ -392,25 +325,32 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
     return made
 
 
-def _single_run_estimate(run: SingleRun, core, opts, t0: float, t1: float, answer, full: bool,
+_OWN_MEASURES = frozenset(("closed_form", "splitting"))
+"""The methods whose runs :func:`estimate_runs` measures otherwise (no companion run)."""
+
+
+def _single_run_estimate(core, y0, t0: float, report, measured_on, opts, t1: float, answer, full: bool,
                          companions: dict | None) -> Estimate | None:
-    """One run's estimate in one engine call (``_core.window_estimate``: the separatrix check, the
-    companion, the comparison, the growth; with ``full``, over the whole span as
-    :func:`span_estimates`), or None where :func:`estimate_runs`' general path takes it: a model
-    ladder's comparison, a closed form or a splitting, a failed or empty run, a run crossing a
-    separatrix, too few output times in the window."""
-    if isinstance(core, Compared) or t1 == t0 or not answer.success or answer.t_last == t0 \
-            or answer.method in ("closed_form", "splitting"):
+    """One run's estimate (the run of ``core`` from (t0, y0)) in one engine call
+    (``_core.window_estimate``: the separatrix check, the companion, the comparison, the growth; with
+    ``full``, over the whole span as :func:`span_estimates`), or None where :func:`estimate_runs`'
+    general path takes it: a model ladder's comparison (``measured_on`` a :class:`Compared`), a
+    closed form or a splitting, a failed or empty run, a run crossing a separatrix, too few output
+    times in the window."""
+    if t1 == t0 or isinstance(measured_on, Compared) or answer.method in _OWN_MEASURES:
         return None
     companion, gain, what = companion_of(opts)
     if not math.isfinite(gain):
         return None
-    made = _core.window_estimate(run.core, answer, t0, run.y0, t1, companion, _rule(gain), run.report, full)
+    # (None from the engine as well for a failed or empty run: it checks that first)
+    made = _core.window_estimate(core, answer, t0, y0, t1, companion, _rule(gain), report, full)
     if made is None:
         return None
-    if companions is not None and full:  # (a whole span's companion: the contract may take it as the answer)
+    if not full:
+        return _window_estimate(made, _names(core), t0, answer.t_last, WINDOW, what, gain)
+    if companions is not None:  # (a whole span's companion: the contract may take it as the answer)
         companions[0] = made[6]
-    return _engine_estimate(made, _names(core), t0, float(answer.t_last), what, gain, full)
+    return _engine_estimate(made, _names(core), t0, answer.t_last, what, gain, full)
 
 
 def _ensemble_estimates(run: EnsembleRun, cores: list, opts, t0: float, t1: float, answers: list, members: list[int],
@@ -447,22 +387,31 @@ def _engine_estimate(made: tuple, names: list[str], t0: float, horizon: float, w
     if failure:
         return Estimate(math.nan, {}, f"no estimate: the companion run stopped ({failure})")
     per = dict(zip(names, values))
-    return Estimate(max(per.values()), per, f"measured at {count} output times over the whole run against a run "
-                                            f"with {what} (difference x {gain:.3g})")
+    return Estimate(max(per.values()), per, partial(_span_basis, count, what, gain))
 
 
-_NAMES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+def _span_basis(count: int, what: str, gain: float) -> str:
+    """The words of a whole span's measurement (written when first read: :class:`Estimate`)."""
+    return f"measured at {count} output times over the whole run against a run with {what} (difference x {gain:.3g})"
+
+
+_NAMES: dict[int, tuple] = {}
+"""id(engine model) → (a weak reference to it, its quantities' names)."""
 
 
 def _names(core) -> list[str]:
     """The names of the quantities a run of ``core`` is measured on (:func:`quantities`; kept by
-    engine model)."""
+    engine model, a plain dict by id checked by a weak reference: a WeakKeyDictionary's look-up
+    cost ~0.5 µs a run)."""
+    known = _NAMES.get(id(core))
+    if known is not None and known[0]() is core:
+        return known[1]
     if isinstance(core, Compared):  # (no weak reference to it: made each time)
         return [q.name for q in quantities(core)]
-    known = _NAMES.get(core)
-    if known is None:
-        known = _NAMES[core] = [q.name for q in quantities(core)]
-    return known
+    names = [q.name for q in quantities(core)]
+    key = id(core)
+    _NAMES[key] = (weakref.ref(core, lambda _, key=key: _NAMES.pop(key, None)), names)
+    return names
 
 
 def _window_estimate(made: tuple, names: list[str], t0: float, horizon: float, fraction: float, what: str,
@@ -472,11 +421,16 @@ def _window_estimate(made: tuple, names: list[str], t0: float, horizon: float, f
     if failure:
         return Estimate(math.nan, {}, f"no estimate: the window's run stopped ({failure})")
     per = dict(zip(names, values))
+    return Estimate(max(per.values()), per, partial(_window_basis, t0, horizon, fraction, what, gain, k, grown, window, count))
+
+
+def _window_basis(t0: float, horizon: float, fraction: float, what: str, gain: float, k: float, grown: bool,
+                  window: float, count: int) -> str:
+    """The words of a window estimate's basis (written when first read: :class:`Estimate`)."""
     growth = (f"grown as t^{k:.2g} to t = {horizon:.6g}, times {WINDOW_SAFETY:g}" if grown
               else "over the whole run" if abs(horizon - t0) <= abs(window - t0) else "not grown")
-    return Estimate(max(per.values()), per,
-                    f"measured over the first {fraction:.0%} of the span ([{t0:.6g}, {window:.6g}], "
-                    f"{count} times) against a run with {what} (difference x {gain:.3g}), {growth}")
+    return (f"measured over the first {fraction:.0%} of the span ([{t0:.6g}, {window:.6g}], "
+            f"{count} times) against a run with {what} (difference x {gain:.3g}), {growth}")
 
 
 def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[int],
@@ -514,9 +468,7 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
         names, made_apart = apart(answer, other, cores[m], keep_mine, keep_theirs)
         largest = made_apart.max(axis=1).tolist() if made_apart.shape[1] else [math.nan] * len(names)
         per = {name: max(d * gain, FLOOR) if not math.isnan(d) else math.nan for name, d in zip(names, largest)}
-        made.append(Estimate(max(per.values()), per,
-                             f"measured at {compared} output times over the whole run against a run "
-                             f"with {what} (difference x {gain:.3g})"))
+        made.append(Estimate(max(per.values()), per, _span_basis(compared, what, gain)))
     return made
 
 
@@ -552,12 +504,41 @@ def crossing(core, answer, after: float) -> float | None:
     return None if math.isnan(when) else float(when)
 
 
+def solve_measured(core, y0, t0: float, t1: float, opts, report=None, full: bool = False) -> tuple:
+    """The run of ``core`` from (t0, y0) to t1 and its :class:`Estimate` (None for a failed or empty
+    run): in one engine call where the engine makes the estimate (``_core.solve_measured``: a
+    single solve's default estimate pays one crossing of the binding), else as :func:`estimate_run`."""
+    companion, gain, what = companion_of(opts)
+    if not math.isfinite(gain):  # (nothing tighter to compare with: the general path says so)
+        answer = _core.solve(core, y0, t0, t1, opts, report)
+        return answer, estimate_run(core, core, y0, t0, t1, opts, answer, report, full) if answer.success else None
+    answer, made = _core.solve_measured(core, y0, t0, t1, opts, companion, _rule(gain), report, full)
+    if made is not None:
+        if full:
+            return answer, _engine_estimate(made, _names(core), t0, answer.t_last, what, gain, full)
+        return answer, _window_estimate(made, _names(core), t0, answer.t_last, WINDOW, what, gain)
+    if t1 == t0 or not answer.success:
+        return answer, None
+    return answer, estimate_runs(SingleRun(core, y0, t0, report), [core], opts, t0, t1, [answer], full, engine=False)[0]
+
+
+def estimate_run(measured_on, core, y0, t0: float, t1: float, opts, answer, report=None, full: bool = False):
+    """The :class:`Estimate` of one run of ``core`` from (t0, y0) (:func:`estimate_runs` of a
+    :class:`SingleRun`), measured on ``measured_on`` (``core``, or a :class:`Compared`)."""
+    made = _single_run_estimate(core, y0, t0, report, measured_on, opts, t1, answer, full, None)
+    if made is not None:
+        return made
+    return estimate_runs(SingleRun(core, y0, t0, report), [measured_on], opts, t0, t1, [answer], full, engine=False)[0]
+
+
 def estimate_runs(run: Runner, cores: list, opts, t0: float, t1: float, answers: list, full: bool = False,
-                  companions: dict | None = None) -> list:
+                  companions: dict | None = None, engine: bool = True) -> list:
     """Each answer's :class:`Estimate` (None for a failed or empty run, which estimates nothing):
-    over a window (``full=False``) or the whole span (``full=True``)."""
-    if type(run) is SingleRun and len(answers) == 1:
-        made_here = _single_run_estimate(run, cores[0], opts, t0, t1, answers[0], full, companions)
+    over a window (``full=False``) or the whole span (``full=True``); ``engine=False``: a single
+    run's one engine call was tried already and left it to the general path."""
+    if engine and type(run) is SingleRun and len(answers) == 1:
+        made_here = _single_run_estimate(run.core, run.y0, run.t0, run.report, cores[0], opts, t1, answers[0], full,
+                                         companions)
         if made_here is not None:
             return [made_here]
     made: list = [None] * len(answers)

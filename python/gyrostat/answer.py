@@ -81,7 +81,7 @@ def attach(solution: Solution, estimate) -> Solution:
     if estimate is None:
         return solution
     solution.estimate = estimate
-    solution.notes.append(f"error estimate {estimate.value:.3g}: {estimate.basis}")
+    solution.note_estimate(estimate)  # (its line written when the notes are read)
     if estimate.warning:
         solution.doubt(estimate.warning)
     return solution

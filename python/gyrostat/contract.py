@@ -184,8 +184,7 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
         why = SHORT if probed is None else ""
     else:
         rtol = first
-    how = (f"no probe: a short run, fewer than {CHEAP_EVALUATIONS} right-hand sides predicted from the probe's first "
-           f"run" if why == SHORT else f"probe at three tolerances over the first {PROBE:.1%} of the span")
+    how = _NO_PROBE if why == SHORT else _PROBED
     why = "" if why == SHORT else why
     swappable = not opts.events and not opts.dense_output and not opts.every_step
     made: list = [None] * count
@@ -209,8 +208,7 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
             answer, estimate = answers[i], measured[i]
             if estimate is not None:
                 estimate.accuracy = accuracy
-                estimate.basis = (why + f"rtol {rtol:.3g}, atol {atol_of(rtol):.3g} chosen for the accuracy "
-                                  f"{accuracy:g} ({how}); " + estimate.basis)
+                estimate.prefix(functools.partial(_chosen, why, rtol, atol_of(rtol), accuracy, how))
             made[i], estimates[i] = answer, estimate
             if estimate is not None and math.isnan(estimate.value) and not estimate.warning:
                 estimate.warning = (f"the error could not be measured ({estimate.basis.rsplit('; ', 1)[-1]}): the "
@@ -265,6 +263,16 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
                                     f"is not met over the span" + (", raise max_steps" if answer.status ==
                                                                     "max_steps_reached" else ""))
     return made, estimates
+
+
+_NO_PROBE = (f"no probe: a short run, fewer than {CHEAP_EVALUATIONS} right-hand sides predicted from the probe's first "
+             f"run")
+_PROBED = f"probe at three tolerances over the first {PROBE:.1%} of the span"
+
+
+def _chosen(why: str, rtol: float, atol: float, accuracy: float, how: str) -> str:
+    """How a contract run's tolerances were chosen, in words (before its measurement's basis)."""
+    return why + f"rtol {rtol:.3g}, atol {atol:.3g} chosen for the accuracy {accuracy:g} ({how}); "
 
 
 SCALED = ("dop853", "arkode_verner6", "arkode_fehlberg8")

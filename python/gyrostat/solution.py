@@ -78,15 +78,8 @@ class Solution(SolutionViews, SolutionJoin):
         "_sensitivities": "name → (∂y/∂p, ∂outputs/∂p) at the output times (gyrostat.sensitivity.attach)",
         "_sensitivity_errors": "name → the sensitivity's measured relative error (gyrostat.sensitivity.measure)",
         "_columns": "name → (array, column), made on first look-up",
-        "notes": """What the run says about its own answer (the splitting's chosen step and estimated
-        error; every :class:`AccuracyWarning`), then remarks added after the run (assumptions
-        checked, paper-specific analysis): a list of sentences.
-
-        Examples
-        --------
-        >>> sol.notes[0].startswith("error estimate")
-        True
-        """,
+        "_notes": "the notes made so far (:attr:`notes` adds the estimate's line to them when first read)",
+        "_noted": "the estimate whose line :attr:`notes` has yet to add (its basis written only when read)",
         "model": """The model that was solved (None when unknown): it evaluates ``sol(t, name)``.
 
         Examples
@@ -133,13 +126,57 @@ class Solution(SolutionViews, SolutionJoin):
         self._result = result
         self._columns = None
         notes, warnings = result.notes, result.warnings  # (each read converts the engine's strings: read once)
-        self.notes: list[str] = list(notes) + list(warnings) if notes or warnings else []
+        self._notes: list[str] = list(notes) + list(warnings) if notes or warnings else []
+        self._noted = None
         self.model = model
         self.pieces: tuple[tuple[str, Solution], ...] = ()
         self.switches: list[tuple] = []
         self.rung: np.ndarray | None = None
         self.estimate = None
         self._doubts: list[str] = []
+
+    @property
+    def notes(self) -> list[str]:
+        """What the run says about its own answer (the splitting's chosen step and estimated
+        error; every :class:`AccuracyWarning`), then remarks added after the run (assumptions
+        checked, paper-specific analysis): a list of sentences.
+
+        Examples
+        --------
+        >>> sol.notes[0].startswith("error estimate")
+        True
+        """
+        if self._noted is not None:
+            self._write_noted()
+        return self._notes
+
+    @notes.setter
+    def notes(self, notes: list[str]) -> None:
+        self._noted, self._notes = None, notes
+
+    def note_estimate(self, estimate) -> None:
+        """Puts the estimate's line among the notes ("error estimate VALUE: BASIS"), written when
+        the notes are next read (the basis is words a run need not format when nobody reads them).
+
+        Parameters
+        ----------
+        estimate : gyrostat.accuracy.Estimate
+            The measured error of this solution's answer (its ``value`` and ``basis``).
+
+        Examples
+        --------
+        >>> copy = gyrostat.Solution(sol._result, model)
+        >>> copy.note_estimate(sol.estimate)
+        >>> copy.notes[-1] == sol.notes[0]
+        True
+        """
+        if self._noted is not None:  # (an earlier estimate's line first: each keeps its place)
+            self._write_noted()
+        self._noted = estimate
+
+    def _write_noted(self) -> None:
+        estimate, self._noted = self._noted, None
+        self._notes.append(f"error estimate {estimate.value:.3g}: {estimate.basis}")
 
     # ---- arrays
     @property
@@ -476,43 +513,6 @@ class Solution(SolutionViews, SolutionJoin):
         """
         self._doubts.append(text)
         self.notes.append(text)
-
-    @property
-    def error_estimate(self) -> float:
-        """The measured global error of the answer: the largest relative error over the compared
-        quantities (:attr:`error_estimates`; how it was measured: :attr:`error_basis`). NaN: not
-        measured (``error_estimate=False``, a failed run), or the splitting's own estimate when
-        only that was made.
-
-        Examples
-        --------
-        >>> bool(0 < sol.error_estimate < 1e-6)
-        True
-        """
-        return self.estimate.value if self.estimate is not None else self._result.error_estimate
-
-    @property
-    def error_estimates(self) -> dict[str, float]:
-        """The measured global error of each compared quantity (:func:`gyrostat.accuracy.quantities`),
-        relative to its largest size.
-
-        Examples
-        --------
-        >>> sorted(sol.error_estimates)
-        ['angular_momentum_norm', 'kinetic_energy', 'omega', 'quaternion']
-        """
-        return dict(self.estimate.per_quantity) if self.estimate is not None else {}
-
-    @property
-    def error_basis(self) -> str:
-        """How :attr:`error_estimate` was measured, in words ("" when it was not).
-
-        Examples
-        --------
-        >>> "tighter" in sol.error_basis or "rtol and atol" in sol.error_basis
-        True
-        """
-        return self.estimate.basis if self.estimate is not None else ""
 
     @property
     def method(self) -> str:

@@ -1,7 +1,8 @@
-"""The labelled-data and attitude views of a :class:`gyrostat.Solution`: every column by name
+"""The labelled-data, attitude and error views of a :class:`gyrostat.Solution`: every column by name
 with its unit (:meth:`~SolutionViews.columns`, :attr:`~SolutionViews.units`), the whole run as an
 ``xarray.Dataset`` (:meth:`~SolutionViews.to_xarray`), the angular velocity, the attitude
-quaternion and its Euler angles. Made from what the Solution holds, without physics recomputed
+quaternion and its Euler angles, the measured error (:attr:`~SolutionViews.error_estimate`). Made
+from what the Solution holds, without physics recomputed
 (the Euler angles of a convention the engine did not record come from :mod:`gyrostat.attitude`)."""
 
 from __future__ import annotations
@@ -257,3 +258,40 @@ class SolutionViews:
         if self.notes:
             attrs["notes"] = "\n".join(self.notes)
         return xr.Dataset(variables, {"time": ("time", np.asarray(self.t), {"units": "s"})}, attrs)
+
+    @property
+    def error_estimate(self) -> float:
+        """The measured global error of the answer: the largest relative error over the compared
+        quantities (:attr:`error_estimates`; how it was measured: :attr:`error_basis`). NaN: not
+        measured (``error_estimate=False``, a failed run), or the splitting's own estimate when
+        only that was made.
+
+        Examples
+        --------
+        >>> bool(0 < sol.error_estimate < 1e-6)
+        True
+        """
+        return self.estimate.value if self.estimate is not None else self._result.error_estimate
+
+    @property
+    def error_estimates(self) -> dict[str, float]:
+        """The measured global error of each compared quantity (:func:`gyrostat.accuracy.quantities`),
+        relative to its largest size.
+
+        Examples
+        --------
+        >>> sorted(sol.error_estimates)
+        ['angular_momentum_norm', 'kinetic_energy', 'omega', 'quaternion']
+        """
+        return dict(self.estimate.per_quantity) if self.estimate is not None else {}
+
+    @property
+    def error_basis(self) -> str:
+        """How :attr:`error_estimate` was measured, in words ("" when it was not).
+
+        Examples
+        --------
+        >>> "tighter" in sol.error_basis or "rtol and atol" in sol.error_basis
+        True
+        """
+        return self.estimate.basis if self.estimate is not None else ""

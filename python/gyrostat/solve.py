@@ -241,16 +241,17 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         return _with_sensitivities(model, core, y0, t0, t1, opts, sensitivities, events, asked, mode, report,
                                    check_validity)
     try:
-        if asked is None:
+        if asked is None and mode and compare is None and t1 != t0:  # the run and its estimate in one engine call
+            result, estimate = _accuracy.solve_measured(core, y0, t0, t1, opts, report, mode == "full")
+        elif asked is None:
             result = _core.solve(core, y0, t0, t1, opts, report)  # an exception of the user's callbacks propagates
             estimate = None
             if mode and t1 != t0 and result.success:
-                estimate = measured([result], [_accuracy.Compared(core, compare, model) if compare else core],
-                                    _accuracy.SingleRun(core, y0, t0, report),
-                                    opts, t0, t1, mode, None, True, 0.0)[1][0]
+                estimate = _accuracy.estimate_run(_accuracy.Compared(core, compare, model), core, y0, t0, t1, opts,
+                                                  result, report, mode == "full")
         else:
             explicit = rtol is not None or atol is not None or step is not None or options is not None
-            size = float(np.max(np.abs(y0))) if y0.size else 1.0
+            size = float(np.abs(y0).max()) if y0.size else 1.0
             measured_on = [_accuracy.Compared(core, compare, model) if compare else core]
             results, estimates = measured(None, measured_on, _accuracy.SingleRun(core, y0, t0, report),
                                           opts, t0, t1, mode, asked, explicit, size,

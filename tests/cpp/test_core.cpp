@@ -365,6 +365,38 @@ int main() {
         CHECK(full.success() && avg.success() && err < 1e-8, "averaged = full for the exact symmetric reduction");
     }
 
+    // A window estimate's companion records only the measured outputs (Options::only_measured_outputs):
+    // the averaged models' |G| and T bit for bit as a full recording's, their other outputs NaN, the
+    // states and steps the same; a model without measured_outputs records all of them as before.
+    {
+        const Body sym(Vec3(8.0, 8.0, 4.0));
+        const TorqueSet set({torque::ViscousCavity(1260.0, 1000.0, 0.48), torque::Constant(Vec3(0.0, 0.0, -0.01))});
+        integrate::Options o;
+        o.rtol = 1e-8;
+        o.n_out = 41;
+        integrate::Options measured_only = o;
+        measured_only.only_measured_outputs = true;
+        const model::AveragedSymmetric averaged(sym, set);
+        const auto all = integrate::solve(averaged, 0.0, Eigen::Vector2d(1.0, 1.0), 12.0, o);
+        const auto some = integrate::solve(averaged, 0.0, Eigen::Vector2d(1.0, 1.0), 12.0, measured_only);
+        const std::size_t width = all.output_names().size();
+        bool measured_same = all.success() && some.success() && all.y == some.y && some.outputs.size() == all.outputs.size(),
+             others_nan = true;
+        for (std::size_t i = 0; measured_same && i < all.size(); ++i)
+            for (std::size_t c = 0; c < width; ++c) {
+                const double a = all.outputs[i * width + c], s = some.outputs[i * width + c];
+                if (c < 2) measured_same = measured_same && a == s;
+                else others_nan = others_nan && std::isnan(s) && !std::isnan(a);
+            }
+        CHECK(width == 7 && measured_same && others_nan && some.stats.steps == all.stats.steps,
+              "only the measured outputs: |G| and T as recorded in full, the others NaN");
+        const model::Gyrostat<false> full(sym, set);
+        const auto full_all = integrate::solve(full, 0.0, Vec3(1.0, 0.0, 1.0), 12.0, o);
+        const auto full_some = integrate::solve(full, 0.0, Vec3(1.0, 0.0, 1.0), 12.0, measured_only);
+        CHECK(full_all.outputs == full_some.outputs && full_all.y == full_some.y,
+              "a model without measured_outputs records every output");
+    }
+
     // Explicit moving mass, stiff damper: |K| conserved by BDF (rtol 1e-10: drift < 1e-8).
     {
         const model::MovingMass mm(Body(Vec3(1.0, 1.0, 1.6)), 0.18, 1.0, std::sqrt(2000.0), 400.0, TorqueSet{});

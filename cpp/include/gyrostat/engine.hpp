@@ -56,7 +56,7 @@ struct MeasuredQuantity {
     bool output = false;       ///< columns index the outputs (else the state)
     std::vector<int> columns;  ///< the components, in order
 };
-std::vector<MeasuredQuantity> measured_quantities(const AnyModel& model);
+const std::vector<MeasuredQuantity>& measured_quantities(const AnyModel& model);
 /// How far two runs of `model` are apart on each measured quantity, at each pair of rows
 /// (`reference_rows[k]` of `reference` against `other_rows[k]` of `other`; empty: every row, the
 /// runs having as many): row q of the result is quantity q's |Δ| (a vector's norm) over its largest

@@ -68,6 +68,19 @@ WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& a
                                const integrate::Options& companion, const WindowRule& rule,
                                const integrate::Control* control = nullptr, bool whole_span = false);
 
+/// A run and, where the engine makes it, its window estimate (with `whole_span`, its measurement
+/// over every output time): what a single solve with its default estimate makes
+/// (python/gyrostat/solve.py), in one call. No estimate (`estimate.made` false) for a failed or
+/// interrupted run, a run over no span, a run that measures itself (method splitting: Richardson
+/// over its step; a closed form: its rounding), or where window_estimate makes none.
+struct MeasuredRun {
+    integrate::Result answer;
+    WindowEstimate estimate;
+};
+MeasuredRun solve_measured(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
+                           const integrate::Options& options, const integrate::Options& companion,
+                           const WindowRule& rule, const integrate::Control* control = nullptr, bool whole_span = false);
+
 /// Each member's window_estimate (or whole-span measurement), the companions run as one ensemble
 /// (engine.hpp: solve_ensemble, with `threads` and `batch` as the answers' own): member i is a
 /// run of models[i] (or models[0] for all) from (t0, y0s[i]). A member is measured here when it is

@@ -75,6 +75,10 @@ struct Options {
     double step = 0.0;
     /// Order of the splitting composition: 2 (Strang), 4 or 6 (Yoshida's triple jumps).
     int splitting_order = 4;
+    /// Record only the named outputs a run's error is measured on, the others NaN where the model
+    /// spares their cost (model/system.hpp: measured_outputs): a window estimate's companion
+    /// (measure.cpp), which compares no more. Not an option of the Python layer.
+    bool only_measured_outputs = false;
 };
 
 enum class Status {

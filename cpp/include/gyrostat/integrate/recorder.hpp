@@ -80,7 +80,9 @@ public:
     using State = typename System::State;
     static constexpr int n_outputs = model::system::n_outputs<System>();
 
-    Recorder(const System& system, Result& result, std::size_t expected) : system_(system), result_(result) {
+    /// `only_measured`: the outputs a run's error is measured on alone (Options::only_measured_outputs).
+    Recorder(const System& system, Result& result, std::size_t expected, bool only_measured = false)
+        : system_(system), result_(result), only_measured_(only_measured) {
         describe<System>(result_, &system_);
         const double bytes = static_cast<double>(expected) * (1 + System::dim + n_outputs) * sizeof(double);
         if (bytes > kMaxOutputBytes)
@@ -102,7 +104,10 @@ public:
         result_.y.insert(result_.y.end(), y.data(), y.data() + System::dim);
         if constexpr (n_outputs > 0) {
             double out[n_outputs];
-            model::system::outputs(system_, t, y, out);
+            if (only_measured_)
+                model::system::measured_outputs(system_, t, y, out);
+            else
+                model::system::outputs(system_, t, y, out);
             result_.outputs.insert(result_.outputs.end(), out, out + n_outputs);
         }
     }
@@ -110,6 +115,7 @@ public:
 private:
     const System& system_;
     Result& result_;
+    bool only_measured_;
 };
 
 /// The output grid of a stepping integrator and the next time to record: what every step does

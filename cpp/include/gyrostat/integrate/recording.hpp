@@ -40,7 +40,7 @@ private:
           t0(t0_),
           t1(t1_),
           direction(t1_ >= t0_ ? 1.0 : -1.0),
-          record(system, result_, outputs.size()),
+          record(system, result_, outputs.size(), options.only_measured_outputs),
           cursor(record, std::move(outputs), direction),
           events(system, options.events, result_) {
         result.dense = make_dense<System>(options);

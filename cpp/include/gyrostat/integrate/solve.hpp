@@ -21,7 +21,7 @@ Result closed_form(const System& system, double t0, const typename System::State
     Result result;
     result.method = "closed_form";
     const std::vector<double> outputs = output_times(options, t0, t1);
-    Recorder<System> record(system, result, outputs.size());
+    Recorder<System> record(system, result, outputs.size(), options.only_measured_outputs);
     EventLocator<System> events(system, options.events, result);
     const auto exact = system.flow(t0, y0);
     if (options.dense_output) {

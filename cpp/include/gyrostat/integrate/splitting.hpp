@@ -302,7 +302,7 @@ Result splitting(const System& system, double t0, const typename System::State& 
     Result result;
     result.method = method_name(Method::Splitting);
     const std::vector<double> outputs = output_times(options, t0, t1);
-    Recorder<System> record(system, result, outputs.size());
+    Recorder<System> record(system, result, outputs.size(), options.only_measured_outputs);
     EventLocator<System> events(system, options.events, result);
     result.dense = make_dense<System>(options);
     Stats& stats = result.stats;

@@ -388,7 +388,9 @@ public:
 
     OneTaylorRun(const System& system, Result& result, const Options& options, double t0, double t1)
         : OneTrajectory<System>(system, result), outputs_(output_times(options, t0, t1)),
-          record_(system, result, outputs_.size()), events_(system, options.events, result), t1_(t1),
+          record_(system, result, outputs_.size(), options.only_measured_outputs),
+          events_(system, options.events, result),
+          t1_(t1),
           direction_(t1 >= t0 ? 1.0 : -1.0), every_step_(options.every_step) {
         result.dense = make_dense<System>(options);
     }

@@ -112,7 +112,8 @@ public:
             results[l] = Result{};
             results[l].method = method_name(options.method);
             results[l].methods_used = {results[l].method};
-            records_[l] = std::make_unique<Recorder<System>>(*systems[l], results[l], outputs_.size());
+            records_[l] = std::make_unique<Recorder<System>>(*systems[l], results[l], outputs_.size(),
+                                                             options.only_measured_outputs);
             active_[l] = true;
         }
     }

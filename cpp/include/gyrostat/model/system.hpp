@@ -64,6 +64,13 @@ struct OutputInfo {
 ///                                                                rtol 1e-12 (default: none)
 ///   static constexpr std::array<OutputInfo, n> outputs_info;     named outputs recorded at every
 ///   void outputs(double t, const State& y, double* out) const;   output time (default: none)
+///   void measured_outputs(double t, const State& y, double* out) const;
+///                                                                the outputs flagged measured
+///                                                                alone, NaN in the others: what a
+///                                                                window estimate's companion records
+///                                                                (Options::only_measured_outputs)
+///                                                                where the others cost more than a
+///                                                                few operations (default: outputs)
 ///   bool keeps(std::size_t output) const;                        whether the output `output`,
 ///                                                                flagged conserved, stays a first
 ///                                                                integral with this model's
@@ -181,6 +188,13 @@ template <class S>
 struct has_outputs<S, std::void_t<decltype(S::outputs_info)>> : std::true_type {};
 
 template <class S, class = void>
+struct has_measured_outputs : std::false_type {};
+template <class S>
+struct has_measured_outputs<S, std::void_t<decltype(std::declval<const S&>().measured_outputs(
+                                   0.0, std::declval<const typename S::State&>(), std::declval<double*>()))>>
+    : std::true_type {};
+
+template <class S, class = void>
 struct has_separatrix : std::false_type {};
 template <class S>
 struct has_separatrix<S, std::void_t<decltype(std::declval<const S&>().separatrix(std::declval<const typename S::State&>()))>>
@@ -296,6 +310,21 @@ void outputs(const S& s, double t, const typename S::State& y, double* out) {
         } catch (const std::exception&) {
             for (int i = 0; i < n_outputs<S>(); ++i) out[i] = std::numeric_limits<double>::quiet_NaN();
         }
+    }
+}
+
+/// The outputs a run's error is measured on (OutputInfo::measured) at (t, y), the others NaN where
+/// the model says so (measured_outputs), else all of them (outputs).
+template <class S>
+void measured_outputs(const S& s, double t, const typename S::State& y, double* out) {
+    if constexpr (has_measured_outputs<S>::value) {
+        try {
+            s.measured_outputs(t, y, out);
+        } catch (const std::exception&) {
+            for (int i = 0; i < n_outputs<S>(); ++i) out[i] = std::numeric_limits<double>::quiet_NaN();
+        }
+    } else {
+        outputs(s, t, y, out);
     }
 }
 
