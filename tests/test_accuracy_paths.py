@@ -272,3 +272,39 @@ def test_the_basis_is_written_when_read_in_its_place_among_the_notes():
         chosen.error_basis
     assert "); measured at 201 output times over the whole run against a run with rtol and atol / " in chosen.error_basis, \
         chosen.error_basis
+
+
+@pytest.mark.parametrize("case", ["short", "probed"])
+def test_a_single_runs_contract_is_the_general_one(case):
+    # gyrostat.solve(accuracy=) runs contract.meet_single: a short run (the averaged model, ~100 right-hand
+    # sides) is run and measured in one engine call, its companion recording only the measured outputs; a
+    # longer one goes on to contract.meet with the probe's first run. Both must give the general path's
+    # answer and estimate bit for bit (the same runs), and its words
+    from gyrostat import _core, accuracy, contract
+
+    if case == "short":
+        model = g.AveragedModel(g.Body([8.0, 8.0, 4.0]), [g.ViscousCavity(1260, 1000, 0.48),
+                                                          g.ConstantTorque([0.0, 0.0, -0.01])])
+        y0, t1, asked, method = np.array([1.0, 1.0]), 60.0, 1e-6, None
+    else:
+        model, y0, t1, asked, method = DAMPED, np.array([0.15, 0.3, 1.0]), 0.2 / EPS, 1e-6, "dop853"
+    kw = {} if method is None else {"method": method}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (the averaged model's validity: not what is tested here)
+        single = g.solve(model, y0, (0.0, t1), accuracy=asked, n_out=201, check_validity=False, **kw)
+    opts = g.options.make_options(n_out=201, **kw)
+    answers, estimates = contract.meet(accuracy.SingleRun(model._core, y0, 0.0), [model._core], opts, 0.0, t1, asked,
+                                       float(np.abs(y0).max()), choose=method is None)
+    assert np.array_equal(single.y, answers[0].y) and np.array_equal(single.t, answers[0].t)
+    assert single.error_estimate == estimates[0].value and single.estimate.per_quantity == estimates[0].per_quantity
+    assert single.error_basis == estimates[0].basis, (single.error_basis, estimates[0].basis)
+    assert 0 < single.error_estimate <= asked and single.estimate.met
+    if case == "short":
+        assert "no probe: a short run" in single.error_basis, single.error_basis
+        reference = _core.solve(model._core, y0, 0.0, t1, g.options.make_options(rtol=1e-13, atol=1e-16, n_out=201),
+                                None)
+        true = max(float(v.max()) for v in accuracy.differences(reference, single._result, model._core).values())
+        # the band the contract promises: the estimate within [1/2, 30] of the true error
+        assert 0.5 <= single.error_estimate / true <= 30, (single.error_estimate, true)
+    else:
+        assert "probe at three tolerances" in single.error_basis, single.error_basis

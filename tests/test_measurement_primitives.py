@@ -187,7 +187,9 @@ def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
 def test_a_run_and_its_estimate_in_one_call_are_the_two_calls(case, whole_span):
     """``_core.solve_measured`` (what a single solve with its default estimate makes: the run, then its
     window estimate, in one engine call) equals ``_core.solve`` then ``_core.window_estimate`` bit for
-    bit: the same runs in the same order; and it makes none where the run measures itself or failed."""
+    bit: the same runs in the same order; and it makes none where the run measures itself or failed.
+    With ``measured_only`` (the contract's short single run: a whole span's companion recording only
+    the measured outputs), the same numbers, the tuple ending with the companion's Stats."""
     model, y0, t1 = WINDOW_CASES[case]
     y0 = np.asarray(y0, float)
     options = make_options(rtol=1e-8, atol=1e-11, n_out=201)
@@ -198,6 +200,10 @@ def test_a_run_and_its_estimate_in_one_call_are_the_two_calls(case, whole_span):
     apart = _core.window_estimate(model._core, alone, 0.0, y0, t1, companion, rule, None, whole_span)
     assert np.array_equal(answer.y, alone.y) and np.array_equal(answer.outputs, alone.outputs, equal_nan=True)
     assert made[:6] == apart[:6], (made[:6], apart[:6])
+    _, lean = _core.solve_measured(model._core, y0, 0.0, t1, options, companion, rule, None, whole_span, True)
+    assert lean[:6] == made[:6] and isinstance(lean[6], _core.Stats), (lean[:6], made[:6])
+    assert lean[6].rhs_evals == getattr(made[6], "stats", made[6]).rhs_evals
+    assert max(lean[0]) > 1e-12, "the runs must differ for the comparison to mean anything"
     starved = make_options(rtol=1e-8, atol=1e-11, n_out=201, max_steps=2)
     failed, none = _core.solve_measured(model._core, y0, 0.0, t1, starved, companion, rule, None, whole_span)
     assert failed.status == "max_steps_reached" and none is None, failed.status
@@ -359,3 +365,56 @@ def test_the_engines_window_refuses_mismatched_inputs_by_name():
         _core.window_estimates([core], [answer, answer], 0.0, np.array([W0]), 50.0, tighter, rule)
     with pytest.raises(ValueError, match="3 models for 2 answers"):
         _core.window_estimates([core] * 3, [answer, answer], 0.0, np.array([W0, W0]), 50.0, tighter, rule)
+
+
+@pytest.mark.parametrize("case", ["attitude", "averaged"])
+def test_every_rows_differences_are_those_of_the_rows_listed(case):
+    """``measured_differences`` over every row (a whole span's measurement: read with the rows' strides)
+    equals the same rows listed one by one (read through offsets) bit for bit: the same arithmetic in
+    the same order, for vectors (ω, the quaternion) and single columns (|G|, T, a, r) alike."""
+    model, y0, t1 = WINDOW_CASES[case]
+    a, b = run(model, y0, t1, 1e-9, n_out=201), run(model, y0, t1, 1e-6, n_out=201)
+    every = np.arange(201)
+    whole = model._core.measured_differences(a, b, None, None)
+    listed = model._core.measured_differences(a, b, every, every)
+    assert np.array_equal(whole, listed), np.max(np.abs(whole - listed))
+    assert np.max(whole) > 1e-9, "the two runs must differ for the comparison to mean anything"
+
+
+def test_only_the_measured_outputs_are_recorded_when_asked():
+    """``Options.only_measured_outputs`` (what the contract's probes and companions record): the
+    averaged model's measured outputs (|G|, T) and its state are those of the full recording bit for
+    bit, every other output NaN (its slow-to-fast ratio needs the right-hand side, its nutation angle
+    an atan2: not computed)."""
+    model, y0, t1 = WINDOW_CASES["averaged"]
+    y0 = np.asarray(y0, float)
+    options = make_options(rtol=1e-8, atol=1e-11, n_out=51)
+    everything = _core.solve(model._core, y0, 0.0, t1, options, None)
+    options.only_measured_outputs = True
+    measured = _core.solve(model._core, y0, 0.0, t1, options, None)
+    names = list(model._core.output_names)
+    kept = [names.index(name) for name, role, _ in model._core.measured_quantities if role == "output"]
+    assert kept == [names.index("angular_momentum_norm"), names.index("kinetic_energy")], kept
+    assert np.array_equal(measured.y, everything.y) and np.array_equal(measured.t, everything.t)
+    assert np.array_equal(measured.outputs[:, kept], everything.outputs[:, kept])
+    others = [i for i in range(len(names)) if i not in kept]
+    assert np.all(np.isnan(measured.outputs[:, others])) and np.all(np.isfinite(everything.outputs[:, others]))
+
+
+def test_a_run_that_measures_itself_is_left_to_python():
+    """The engine makes no companion estimate of a splitting (Richardson over its own step) or a
+    closed form (its rounding): ``window_estimate`` returns None for them, over a window or the whole
+    span, and Python takes their own measures (``Solution.error_estimate`` still set)."""
+    body = g.Body([1.0, 1.4, 2.1])
+    y0 = np.array([0.15, 0.3, 1.0])
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    tighter = make_options(rtol=2.5e-9, atol=2.5e-12)
+    for model, method in ((g.Model(body, [g.LinearDamping(diagonal=[1e-3, 2e-3, 5e-4])]), "splitting"),
+                          (g.TorqueFreeModel(body), None)):
+        options = make_options(rtol=1e-8, atol=1e-11, n_out=201, method=method)
+        answer = _core.solve(model._core, y0, 0.0, 50.0, options, None)
+        assert answer.method in ("splitting", "closed_form") and answer.success, answer.method
+        for whole_span in (False, True):
+            assert _core.window_estimate(model._core, answer, 0.0, y0, 50.0, tighter, rule, None, whole_span) is None
+        solution = g.solve(model, y0, (0.0, 50.0), rtol=1e-8, n_out=201, method=method)
+        assert 0 < solution.error_estimate < 1e-6, (answer.method, solution.error_basis)

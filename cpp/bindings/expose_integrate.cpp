@@ -251,6 +251,7 @@ Examples
         .def_readwrite("max_step", &Options::max_step, "Largest step, in s (inf: no limit).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().max_step\ninf\n")
         .def_readwrite("events", &Options::events, "The engine's events of a run (made by :func:`gyrostat.solve` from :class:`gyrostat.events.Event`).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().events\n[]\n")
         .def_readwrite("dense_output", &Options::dense_output, "Keep each step's continuous extension, for ``solution(t)``.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().dense_output\nFalse\n")
+        .def_readwrite("only_measured_outputs", &Options::only_measured_outputs, "Record only the outputs a run's error is measured on (:func:`gyrostat.accuracy.quantities`), NaN in the others: what the accuracy contract's probes and companions record.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().only_measured_outputs\nFalse\n")
         .def_readwrite("step", &Options::step, "Fixed step of method ``splitting``, in s (0: none given).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().step\n0.0\n")
         .def_readwrite("splitting_order", &Options::splitting_order, "Order of method ``splitting``: 2, 4 or 6.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().splitting_order\n4\n")
         .def(
@@ -422,17 +423,21 @@ Examples
         "solve_measured",
         [window_tuple](const BoundModel& model, const Eigen::Ref<const Eigen::VectorXd>& y0, double t0, double t1,
                        const Options& options, const Options& companion, const WindowRule& rule, py::object progress,
-                       bool whole_span) {
+                       bool whole_span, bool measured_only) {
             MeasuredRun made = with_progress(model, std::move(progress), 0.1, [&](const integrate::Control* control) {
-                return solve_measured(model.model, t0, y0, t1, options, companion, rule, control, whole_span);
+                return solve_measured(model.model, t0, y0, t1, options, companion, rule, control, whole_span,
+                                      measured_only);
             });
-            py::object estimate = made.estimate.made ? py::object(window_tuple(made.estimate, true, whole_span)) : py::none();
+            py::object estimate =
+                made.estimate.made ? py::object(window_tuple(made.estimate, true, whole_span && !measured_only)) : py::none();
             return py::make_tuple(std::move(made.answer), std::move(estimate));
         },
         py::arg("model"), py::arg("y0"), py::arg("t0"), py::arg("t1"), py::arg("options"), py::arg("companion"),
         py::arg("rule"), py::arg("progress") = py::none(), py::arg("whole_span") = false,
+        py::arg("measured_only") = false,
         "A run and its window estimate in one call (gyrostat/measure.hpp: solve_measured): (the Result, "
-        "window_estimate's tuple or None where none is made here).");
+        "window_estimate's tuple or None where none is made here; with ``measured_only``, a whole span's "
+        "companion records only the measured outputs and the tuple ends with its Stats).");
     m.def(
         "window_estimates",
         [window_tuple](const std::vector<const BoundModel*>& bound, const std::vector<const Result*>& answers, double t0,

@@ -159,6 +159,55 @@ const std::vector<MeasuredQuantity>& measured_quantities(const AnyModel& model) 
     });
 }
 
+namespace {
+
+/// NaN anywhere makes a largest size NaN (as NumPy's maximum), which then counts as no size at all: 1.
+double unit_of(double top, bool nan) { return nan || !(top > 0.0 && std::isfinite(top)) ? 1.0 : top; }
+
+/// One measured quantity's row of measured_differences: `a` and `b` the runs' arrays (states or
+/// outputs), `row_a(k)` and `row_b(k)` the offsets of the k-th compared row in each.
+template <class RowA, class RowB>
+void differences_of(const MeasuredQuantity& quantity, const double* a, const double* b, std::size_t n, RowA row_a,
+                    RowB row_b, Eigen::MatrixXd& made, Eigen::Index row) {
+    double top = 0.0;
+    bool nan = false;
+    for (std::size_t k = 0; k < n; ++k)
+        for (int c : quantity.columns) {
+            const double v = std::abs(a[row_a(k) + c]);
+            nan = nan || std::isnan(v);
+            top = std::max(top, v);
+        }
+    const double unit = unit_of(top, nan);
+    if (quantity.columns.size() == 1) {
+        // One column: its largest |x|/unit is 1 exactly (|x| <= top, and division is monotone), or
+        // the unit is 1 and so is the scale below (a column of zeros, NaN or infinity): the
+        // differences relative to the unit are the answer.
+        const int c = quantity.columns[0];
+        for (std::size_t k = 0; k < n; ++k)
+            made(row, static_cast<Eigen::Index>(k)) = std::abs((a[row_a(k) + c] - b[row_b(k) + c]) / unit);
+        return;
+    }
+    double largest = 0.0;  // the norm of the columns relative to the unit
+    bool largest_nan = false;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double* x = a + row_a(k);
+        const double* z = b + row_b(k);
+        double size = 0.0, distance = 0.0;
+        for (int c : quantity.columns) {
+            const double s = x[c] / unit, d = (x[c] - z[c]) / unit;
+            size += s * s;
+            distance += d * d;
+        }
+        size = std::sqrt(size);
+        largest_nan = largest_nan || std::isnan(size);
+        largest = std::max(largest, size);
+        made(row, static_cast<Eigen::Index>(k)) = std::sqrt(distance);
+    }
+    made.row(row) /= unit_of(largest, largest_nan);
+}
+
+}  // namespace
+
 Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Result& reference,
                                      const integrate::Result& other, const std::vector<std::size_t>& reference_rows,
                                      const std::vector<std::size_t>& other_rows) {
@@ -175,64 +224,28 @@ Eigen::MatrixXd measured_differences(const AnyModel& model, const integrate::Res
         throw std::invalid_argument("measured_differences: the runs compare " + std::to_string(n) + " and " +
                                     std::to_string(n_other) + " rows of states of " + std::to_string(reference.dim) +
                                     " and " + std::to_string(other.dim) + " components: they must be alike");
-    // row k of each run (every row when none are given), as offsets into its arrays once
     const std::vector<MeasuredQuantity>& quantities = measured_quantities(model);
     const std::size_t dim = static_cast<std::size_t>(reference.dim), width = reference.output_names().size();
-    auto offsets = [n](const std::vector<std::size_t>& given, std::size_t stride) {
-        std::vector<std::size_t> made(n);
-        for (std::size_t k = 0; k < n; ++k) made[k] = (given.empty() ? k : given[k]) * stride;
-        return made;
-    };
-    std::vector<std::size_t> a_state, b_state, a_output, b_output;
-    // NaN anywhere makes a largest size NaN (as NumPy's maximum), which then counts as no size at all: 1
-    auto unit_of = [](double top, bool nan) { return nan || !(top > 0.0 && std::isfinite(top)) ? 1.0 : top; };
     Eigen::MatrixXd made(static_cast<Eigen::Index>(quantities.size()), static_cast<Eigen::Index>(n));
-    std::vector<double> apart(n);
     for (std::size_t q = 0; q < quantities.size(); ++q) {
         const MeasuredQuantity& quantity = quantities[q];
+        const std::size_t stride = quantity.output ? width : dim;
         const double* a = quantity.output ? reference.outputs.data() : reference.y.data();
         const double* b = quantity.output ? other.outputs.data() : other.y.data();
-        std::vector<std::size_t>& a_at = quantity.output ? a_output : a_state;
-        std::vector<std::size_t>& b_at = quantity.output ? b_output : b_state;
-        if (a_at.empty()) a_at = offsets(reference_rows, quantity.output ? width : dim);
-        if (b_at.empty()) b_at = offsets(other_rows, quantity.output ? width : dim);
-        double top = 0.0;
-        bool nan = false;
-        for (std::size_t k = 0; k < n; ++k)
-            for (int c : quantity.columns) {
-                const double v = std::abs(a[a_at[k] + c]);
-                nan = nan || std::isnan(v);
-                top = std::max(top, v);
-            }
-        const double unit = unit_of(top, nan);
+        // row k of each run: every row (a whole span's measurement) by its stride, else the rows listed
+        auto every = [stride](std::size_t k) { return k * stride; };
+        auto listed = [stride](const std::vector<std::size_t>& given) {
+            return [stride, &given](std::size_t k) { return given[k] * stride; };
+        };
         const Eigen::Index row = static_cast<Eigen::Index>(q);
-        if (quantity.columns.size() == 1) {
-            // One column: its largest |x|/unit is 1 exactly (|x| <= top, and division is monotone), or
-            // the unit is 1 and so is the scale below (a column of zeros, NaN or infinity): the
-            // differences relative to the unit are the answer.
-            const int c = quantity.columns[0];
-            for (std::size_t k = 0; k < n; ++k)
-                made(row, static_cast<Eigen::Index>(k)) = std::abs((a[a_at[k] + c] - b[b_at[k] + c]) / unit);
-            continue;
-        }
-        double largest = 0.0;  // the norm of the columns relative to the unit
-        bool largest_nan = false;
-        for (std::size_t k = 0; k < n; ++k) {
-            const double* x = a + a_at[k];
-            const double* z = b + b_at[k];
-            double size = 0.0, distance = 0.0;
-            for (int c : quantity.columns) {
-                const double s = x[c] / unit, d = (x[c] - z[c]) / unit;
-                size += s * s;
-                distance += d * d;
-            }
-            size = std::sqrt(size);
-            largest_nan = largest_nan || std::isnan(size);
-            largest = std::max(largest, size);
-            apart[k] = std::sqrt(distance);
-        }
-        const double scale = unit_of(largest, largest_nan);
-        for (std::size_t k = 0; k < n; ++k) made(row, static_cast<Eigen::Index>(k)) = apart[k] / scale;
+        if (reference_rows.empty() && other_rows.empty())
+            differences_of(quantity, a, b, n, every, every, made, row);
+        else if (reference_rows.empty())
+            differences_of(quantity, a, b, n, every, listed(other_rows), made, row);
+        else if (other_rows.empty())
+            differences_of(quantity, a, b, n, listed(reference_rows), every, made, row);
+        else
+            differences_of(quantity, a, b, n, listed(reference_rows), listed(other_rows), made, row);
     }
     return made;
 }

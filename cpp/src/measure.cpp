@@ -77,16 +77,23 @@ double horizon_of(const integrate::Result& answer) {
     return std::isnan(answer.t_last) ? answer.t.back() : answer.t_last;
 }
 
+/// Whether a run measures its own error, so that no companion measures it here: method
+/// splitting (Richardson over its step) and a closed form (its rounding).
+bool measures_itself(const integrate::Result& answer) {
+    return answer.method == "splitting" || answer.method == "closed_form";
+}
+
 /// The companion's options: `companion` at the answer's first `count` output times, without
 /// events, dense output or every step; over a window, recording only the measured outputs (a
-/// whole span's companion may become the answer: python/gyrostat/contract.py).
+/// whole span's companion may become the answer, python/gyrostat/contract.py, unless `companion`
+/// says only_measured_outputs itself).
 integrate::Options companion_options(const integrate::Options& companion, const integrate::Result& answer, std::size_t count,
                                      bool whole_span) {
     integrate::Options options = companion;
     options.t_eval.assign(answer.t.begin(), answer.t.begin() + static_cast<std::ptrdiff_t>(count));
     options.events.clear();
     options.every_step = options.dense_output = false;
-    options.only_measured_outputs = !whole_span;
+    if (!whole_span) options.only_measured_outputs = true;
     return options;
 }
 
@@ -122,6 +129,7 @@ WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& a
                                const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                                const integrate::Options& companion, const WindowRule& rule,
                                const integrate::Control* control, bool whole_span) {
+    if (measures_itself(answer)) return {};
     const std::size_t count = compared_times(answer, t0, t1, rule, whole_span);
     if (!measurable(model, answer, count, t0, t1, rule, whole_span)) return {};
     const double end = whole_span ? horizon_of(answer) : answer.t[count - 1];
@@ -131,11 +139,16 @@ WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& a
 
 MeasuredRun solve_measured(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                            const integrate::Options& options, const integrate::Options& companion,
-                           const WindowRule& rule, const integrate::Control* control, bool whole_span) {
+                           const WindowRule& rule, const integrate::Control* control, bool whole_span,
+                           bool measured_only) {
     MeasuredRun made{solve(model, t0, y0, t1, options, control), {}};
-    const std::string& method = made.answer.method;
-    if (t1 != t0 && made.answer.success() && method != "splitting" && method != "closed_form")
+    if (!measured_only || !whole_span) {
         made.estimate = window_estimate(model, made.answer, t0, y0, t1, companion, rule, control, whole_span);
+    } else {
+        integrate::Options measuring = companion;
+        measuring.only_measured_outputs = true;
+        made.estimate = window_estimate(model, made.answer, t0, y0, t1, measuring, rule, control, whole_span);
+    }
     return made;
 }
 

@@ -2233,6 +2233,20 @@ class Options:
     def n_out(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
+    def only_measured_outputs(self) -> bool:
+        """
+        Record only the outputs a run's error is measured on (:func:`gyrostat.accuracy.quantities`), NaN in the others: what the accuracy contract's probes and companions record.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().only_measured_outputs
+        False
+        """
+    @only_measured_outputs.setter
+    def only_measured_outputs(self, arg0: bool) -> None:
+        ...
+    @property
     def rtol(self) -> float:
         """
         Relative tolerance of the adaptive methods (1: dimensionless).
@@ -2654,9 +2668,9 @@ def solve(model: Model, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64]
     ...
 def solve_ensemble(models: collections.abc.Sequence[Model], y0s: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1, batch: bool = True) -> list[Result]:
     ...
-def solve_measured(model: Model, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, companion: Options, rule: WindowRule, progress: typing.Any = None, whole_span: bool = False) -> tuple[Result, typing.Any]:
+def solve_measured(model: Model, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, companion: Options, rule: WindowRule, progress: typing.Any = None, whole_span: bool = False, measured_only: bool = False) -> tuple[Result, typing.Any]:
     """
-    A run and its window estimate in one call (gyrostat/measure.hpp: solve_measured): (the Result, window_estimate's tuple or None where none is made here).
+    A run and its window estimate in one call (gyrostat/measure.hpp: solve_measured): (the Result, window_estimate's tuple or None where none is made here; with ``measured_only``, a whole span's companion records only the measured outputs and the tuple ends with its Stats).
     """
 def solve_sensitivities(model: Model, columns: collections.abc.Sequence[tuple], y0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex, options: Options, progress: typing.Any = None, interval: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> tuple:
     """

@@ -325,10 +325,6 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
     return made
 
 
-_OWN_MEASURES = frozenset(("closed_form", "splitting"))
-"""The methods whose runs :func:`estimate_runs` measures otherwise (no companion run)."""
-
-
 def _single_run_estimate(core, y0, t0: float, report, measured_on, opts, t1: float, answer, full: bool,
                          companions: dict | None) -> Estimate | None:
     """One run's estimate (the run of ``core`` from (t0, y0)) in one engine call
@@ -337,12 +333,13 @@ def _single_run_estimate(core, y0, t0: float, report, measured_on, opts, t1: flo
     general path takes it: a model ladder's comparison (``measured_on`` a :class:`Compared`), a
     closed form or a splitting, a failed or empty run, a run crossing a separatrix, too few output
     times in the window."""
-    if t1 == t0 or isinstance(measured_on, Compared) or answer.method in _OWN_MEASURES:
+    if t1 == t0 or isinstance(measured_on, Compared):
         return None
     companion, gain, what = companion_of(opts)
     if not math.isfinite(gain):
         return None
-    # (None from the engine as well for a failed or empty run: it checks that first)
+    # (None from the engine for a failed or empty run, and for a closed form or a splitting, which measure
+    # themselves: it checks that first)
     made = _core.window_estimate(core, answer, t0, y0, t1, companion, _rule(gain), report, full)
     if made is None:
         return None
@@ -504,15 +501,19 @@ def crossing(core, answer, after: float) -> float | None:
     return None if math.isnan(when) else float(when)
 
 
-def solve_measured(core, y0, t0: float, t1: float, opts, report=None, full: bool = False) -> tuple:
+def solve_measured(core, y0, t0: float, t1: float, opts, report=None, full: bool = False,
+                   companion: tuple | None = None) -> tuple:
     """The run of ``core`` from (t0, y0) to t1 and its :class:`Estimate` (None for a failed or empty
     run): in one engine call where the engine makes the estimate (``_core.solve_measured``: a
-    single solve's default estimate pays one crossing of the binding), else as :func:`estimate_run`."""
-    companion, gain, what = companion_of(opts)
+    single solve's default estimate pays one crossing of the binding), else as :func:`estimate_run`.
+    ``companion``: :func:`tighter`'s (Options, gain, words) for ``opts``, made already; then a whole
+    span's companion records only the measured outputs (it is not to become the answer)."""
+    measured_only = companion is not None
+    companion, gain, what = companion if measured_only else companion_of(opts)
     if not math.isfinite(gain):  # (nothing tighter to compare with: the general path says so)
         answer = _core.solve(core, y0, t0, t1, opts, report)
         return answer, estimate_run(core, core, y0, t0, t1, opts, answer, report, full) if answer.success else None
-    answer, made = _core.solve_measured(core, y0, t0, t1, opts, companion, _rule(gain), report, full)
+    answer, made = _core.solve_measured(core, y0, t0, t1, opts, companion, _rule(gain), report, full, measured_only)
     if made is not None:
         if full:
             return answer, _engine_estimate(made, _names(core), t0, answer.t_last, what, gain, full)

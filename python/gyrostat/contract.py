@@ -5,7 +5,8 @@ over its whole span (:func:`meet`), with the measurements of :mod:`gyrostat.accu
   tolerances measure the error per unit rtol at the horizon (grown as t^k, as the window's
   estimate is); with no method given, DOP853's and Taylor's probes are timed and the cheaper
   taken (:func:`choose_method`). rtol (and atol = rtol · :data:`ATOL_RATIO` · max|y0|) is chosen
-  for :data:`MARGIN` of the accuracy.
+  for :data:`MARGIN` of the accuracy. The probe's runs record only the measured outputs
+  (``Options.only_measured_outputs``), which is all they compare.
 * **The first run** and its tighter companion cover the whole span; their difference (× ρ/(ρ−1))
   at every output time is the estimate. Where the companion meets the accuracy by a bound of its
   own error (the difference itself), the companion is the answer.
@@ -19,7 +20,8 @@ over its whole span (:func:`meet`), with the measurements of :mod:`gyrostat.accu
   again.
 * **A short run** (fewer than :data:`CHEAP_EVALUATIONS` right-hand sides predicted from the probe's
   first run) is not probed further: its first run, at rtol = accuracy / 10, and the companion
-  measure it directly.
+  measure it directly; for a single solve in one engine call, the companion recording only the
+  measured outputs (:func:`meet_single`).
 * A run that still cannot meet it (rounding of doubles over a long span, ``max_steps``) warns
   (:class:`gyrostat.AccuracyWarning`) with the measured error and what would meet it.
 """
@@ -32,9 +34,11 @@ import time
 
 import numpy as np
 
-from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Estimate, Runner, apart, companion_gain, copy_options,
-                               estimate_runs, even_times, grow, ratio, running_maxima, window_error,
-                               window_estimates)
+from gyrostat import _core
+from gyrostat.accuracy import (ENGINE_RTOL, FLOOR, WINDOW, Compared, Estimate, Runner, SingleRun, apart, companion_gain,
+                               copy_options, estimate_runs, even_times, grow, ratio, running_maxima, solve_measured,
+                               tighter, window_error, window_estimates)
+from gyrostat.options import derived
 
 PROBE = 1.0 / 16.0
 """The fraction of the span the accuracy's probe covers (to choose rtol)."""
@@ -88,25 +92,32 @@ def with_tolerances(opts, rtol: float, atol: float):
 
 
 def probe_rtol(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
-               atol_of, seconds: list | None = None) -> tuple[float, dict | None]:
+               atol_of, seconds: list | None = None, first_run: tuple | None = None) -> tuple[float, dict | None]:
     """The rtol predicted to give MARGIN · accuracy at the horizon: runs at ``first``, first/ρ and
     first/ρ² over the first :data:`PROBE` of the span; the errors of the first two (against the
     third) give the exponent α of error ∝ rtol^α, the first's error grown to the horizon
     (:func:`gyrostat.accuracy.grow`) its size there. The tightest rtol any member needs, and each member's α (the
     probe's runs' (rtol, seconds) appended to ``seconds`` when given); (``first``, None) when the
-    first run predicts a whole run cheaper than the probe (:data:`CHEAP_EVALUATIONS`)."""
+    first run predicts a whole run cheaper than the probe (:data:`CHEAP_EVALUATIONS`). ``first_run``:
+    (the first run's results, its seconds) made already (:func:`meet_single`)."""
     window = t0 + PROBE * (t1 - t0)
     grid = even_times(t0, window, PROBE_SAMPLES)
     members = list(range(len(cores)))
     rho = ratio(opts.method)
     first = max(first, ENGINE_RTOL * rho * rho)
     tolerances = (first, first / rho, first / rho**2)
+    measured_only = not any(isinstance(core, Compared) for core in cores)  # (they compare only the quantities)
     runs = []
     for r in tolerances:
         started = time.perf_counter()
-        probing = copy_options(opts, grid)  # (its events, dense output and every_step off)
-        probing.rtol, probing.atol = float(r), float(atol_of(r))
-        runs.append(run(probing, window, members))
+        if first_run is not None and not runs:
+            runs.append(first_run[0])
+            started -= first_run[1]
+        else:
+            probing = copy_options(opts, grid)  # (its events, dense output and every_step off)
+            probing.rtol, probing.atol = float(r), float(atol_of(r))
+            probing.only_measured_outputs = measured_only
+            runs.append(run(probing, window, members))
         if seconds is not None:
             seconds.append((r, time.perf_counter() - started))
         if len(runs) == 1 and all(r.success for r in runs[0]) and \
@@ -136,12 +147,13 @@ TAYLOR_BELOW = 1e-5
 
 
 def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, first: float,
-                  atol_of) -> tuple[object, float, str]:
+                  atol_of, first_run: tuple | None = None) -> tuple[object, float, str]:
     """The cheaper of DOP853 and Taylor for this accuracy (the options with it, its rtol, why in
     words): each one's probe (:func:`probe_rtol`) gives its rtol and the time of its three runs, whose
     log-log slope in rtol predicts the whole run's time at that rtol. Taylor is tried only for
     accuracies at or below :data:`TAYLOR_BELOW` (where its high order pays) and models it covers
-    (constant and linear torques: a ValueError otherwise)."""
+    (constant and linear torques: a ValueError otherwise). ``first_run``: DOP853's first probe run, made
+    already (:func:`probe_rtol`)."""
     trials = []
     for method in ("dop853", "taylor") if accuracy <= TAYLOR_BELOW else ("dop853",):
         trial = copy_options(opts)
@@ -149,7 +161,8 @@ def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy
         trial.method = method
         seconds: list = []
         try:
-            rtol, probed = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds)
+            rtol, probed = probe_rtol(run, cores, trial, t0, t1, accuracy, first, atol_of, seconds,
+                                      first_run if method == "dop853" else None)
         except ValueError:  # the method does not cover this model (a single run raises)
             continue
         if probed is None:  # a short run: no probe (and no other method) pays
@@ -166,21 +179,22 @@ def choose_method(run: Runner, cores: list, opts, t0: float, t1: float, accuracy
 
 
 def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, size: float,
-         choose: bool = False) -> tuple[list, list]:
+         choose: bool = False, first_run: tuple | None = None) -> tuple[list, list]:
     """Every member run at tolerances chosen for ``accuracy`` and measured over the whole span
     (module doc); ``size`` is the largest |y0| component (atol = rtol · ATOL_RATIO · size).
     ``opts`` holds the run's other options (output times, events, method, max_steps). Returns
     each member's answer (the engine's Result) and its :class:`Estimate` (None when the answer
     estimates nothing: a failed run; then a warning stands in an Estimate of NaN). With ``choose``
-    (no method was given), the method too (:func:`choose_method`)."""
+    (no method was given), the method too (:func:`choose_method`). ``first_run``: the probe's first
+    run, made already (:func:`meet_single`)."""
     count = len(cores)
-    atol_of = lambda r: r * ATOL_RATIO * (size if size > 0 else 1.0)  # noqa: E731
-    first = min(LOOSEST_RTOL, max(TIGHTEST_RTOL, 0.1 * accuracy))
+    atol_of = functools.partial(_atol_of, size)
+    first = _first_rtol(accuracy)
     why = ""
     if choose and t1 != t0:
-        opts, rtol, why = choose_method(run, cores, opts, t0, t1, accuracy, first, atol_of)
+        opts, rtol, why = choose_method(run, cores, opts, t0, t1, accuracy, first, atol_of, first_run)
     elif t1 != t0:
-        rtol, probed = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of)
+        rtol, probed = probe_rtol(run, cores, opts, t0, t1, accuracy, first, atol_of, None, first_run)
         why = SHORT if probed is None else ""
     else:
         rtol = first
@@ -263,6 +277,58 @@ def meet(run: Runner, cores: list, opts, t0: float, t1: float, accuracy: float, 
                                     f"is not met over the span" + (", raise max_steps" if answer.status ==
                                                                     "max_steps_reached" else ""))
     return made, estimates
+
+
+def _atol_of(size: float, rtol: float) -> float:
+    """atol for this rtol: rtol · :data:`ATOL_RATIO` · the state's size (1 for a zero state)."""
+    return rtol * ATOL_RATIO * (size if size > 0 else 1.0)
+
+
+def _first_rtol(accuracy: float) -> float:
+    """The probe's first (loosest) rtol, and a short run's own: accuracy / 10 within the range."""
+    return min(LOOSEST_RTOL, max(TIGHTEST_RTOL, 0.1 * accuracy))
+
+
+def meet_single(core, y0, t0: float, t1: float, opts, accuracy: float, size: float, report=None,
+                choose: bool = False) -> tuple:
+    """:func:`meet` of one run (:func:`gyrostat.solve`): (the answer, its Estimate). The probe's first
+    run comes first; a run it predicts short (:data:`CHEAP_EVALUATIONS`) is run and measured over
+    the whole span in one engine call (:func:`gyrostat.accuracy.solve_measured`: the same runs and
+    numbers as :func:`meet`'s, without its rounds' Python), its Options made once for each cached
+    Options (:func:`gyrostat.options.derived`). Any other run, or a short one whose estimate does not
+    meet the accuracy, goes on to :func:`meet`, given that first run."""
+    probing, window, tried, companion = derived(opts, ("meet", t0, t1, accuracy, size, choose),
+                                                functools.partial(_single_plan, t0, t1, accuracy, size, choose))
+    started = time.perf_counter()
+    first_run = [_core.solve(core, y0, t0, window, probing, report)]
+    seconds = time.perf_counter() - started
+    stats = first_run[0].stats
+    if first_run[0].success and 0 < stats.rhs_evals < CHEAP_EVALUATIONS * PROBE:
+        answer, estimate = solve_measured(core, y0, t0, t1, tried, report, True, companion)
+        if answer.status == "interrupted":  # Ctrl-C: what was computed, no more runs
+            return answer, None
+        if answer.success and estimate is not None and estimate.value <= accuracy:  # (NaN is not)
+            estimate.accuracy = accuracy
+            estimate.prefix(functools.partial(_chosen, "", tried.rtol, tried.atol, accuracy, _NO_PROBE))
+            return answer, estimate
+    made, estimates = meet(SingleRun(core, y0, t0, report), [core], opts, t0, t1, accuracy, size, choose,
+                           (first_run, seconds))
+    return made[0], estimates[0]
+
+
+def _single_plan(t0: float, t1: float, accuracy: float, size: float, choose: bool, opts) -> tuple:
+    """:func:`meet_single`'s Options: the probe's first run's (as :func:`probe_rtol` makes them), the
+    end of its window, a short run's (as :func:`meet` makes them) and its companion's
+    (:func:`gyrostat.accuracy.tighter`)."""
+    method = "dop853" if choose else opts.method
+    first = max(_first_rtol(accuracy), ENGINE_RTOL * ratio(method) ** 2)
+    window = t0 + PROBE * (t1 - t0)
+    probing = copy_options(opts, even_times(t0, window, PROBE_SAMPLES))
+    probing.method, probing.rtol, probing.atol = method, float(first), float(_atol_of(size, first))
+    probing.only_measured_outputs = True
+    tried = with_tolerances(opts, first, _atol_of(size, first))
+    tried.method = method
+    return probing, window, tried, tighter(copy_options(tried), fresh=True)
 
 
 _NO_PROBE = (f"no probe: a short run, fewer than {CHEAP_EVALUATIONS} right-hand sides predicted from the probe's first "

@@ -120,11 +120,11 @@ _T_EVAL, _N_OUT = OPTION_NAMES.index("t_eval"), OPTION_NAMES.index("n_out")
 _CACHE: dict[tuple, Options] = {}
 _SHARED: set[int] = set()
 """The ids of the Options in :data:`_CACHE` (alive, and never modified, while they are there)."""
-_DERIVED: dict[tuple[int, str], object] = {}
+_DERIVED: dict[tuple[int, object], object] = {}
 _BOOLS = frozenset((True, False))
 
 
-def derived(opts: Options, purpose: str, make: Callable[[Options], object]):
+def derived(opts: Options, purpose, make: Callable[[Options], object]):
     """``make(opts)``, made once for an Options of the cache (:func:`options_of`: never modified, so
     the same value every time) and afresh for any other (a caller's own may change between calls).
     What it returns is shared: not to be modified."""
@@ -133,6 +133,8 @@ def derived(opts: Options, purpose: str, make: Callable[[Options], object]):
     key = (id(opts), purpose)
     made = _DERIVED.get(key)
     if made is None:
+        if len(_DERIVED) >= 4096:  # (purposes keyed by a run's span and accuracy: bounded)
+            _DERIVED.clear()
         made = _DERIVED[key] = make(opts)
     return made
 

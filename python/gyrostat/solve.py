@@ -15,6 +15,7 @@ import numpy as np
 
 from gyrostat import _core
 from gyrostat import accuracy as _accuracy
+from gyrostat import contract as _contract
 from gyrostat import progress as _bars
 from gyrostat import sensitivity as _sensitivity
 from gyrostat.answer import BASE_CHECK, accuracy_asked, attach, checked, estimate_mode, measured
@@ -29,6 +30,14 @@ __all__ = ["solve", "solve_ensemble", "ensemble_results", "METHODS", "Options", 
            "check_run", "RUN_MEMORY_LIMIT", "check_output_memory"]
 
 _FLOAT = np.dtype(float)
+
+
+def _size(y0: np.ndarray) -> float:
+    """The largest |y0| component (the accuracy contract's atol scale), 1 for an empty state (a
+    model's short state read as a list: ~0.3 µs against NumPy's ~2 µs reduction)."""
+    if not y0.size:
+        return 1.0
+    return float(max(map(abs, y0.tolist()))) if y0.size <= 64 else float(np.abs(y0).max())
 
 
 def _continuation(previous: Solution, t0, opts: Options, first_step) -> tuple[np.ndarray, Options]:
@@ -249,9 +258,12 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
             if mode and t1 != t0 and result.success:
                 estimate = _accuracy.estimate_run(_accuracy.Compared(core, compare, model), core, y0, t0, t1, opts,
                                                   result, report, mode == "full")
+        elif not (explicit := rtol is not None or atol is not None or step is not None or options is not None) \
+                and compare is None and t1 != t0:  # accuracy asked: the contract's single run
+            result, estimate = _contract.meet_single(core, y0, t0, t1, opts, asked, _size(y0), report,
+                                                     choose=method is None)
         else:
-            explicit = rtol is not None or atol is not None or step is not None or options is not None
-            size = float(np.abs(y0).max()) if y0.size else 1.0
+            size = _size(y0)
             measured_on = [_accuracy.Compared(core, compare, model) if compare else core]
             results, estimates = measured(None, measured_on, _accuracy.SingleRun(core, y0, t0, report),
                                           opts, t0, t1, mode, asked, explicit, size,

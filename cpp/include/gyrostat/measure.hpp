@@ -62,7 +62,8 @@ struct WindowEstimate {
 /// safety factor (python/gyrostat/accuracy.py: window_estimates). With `whole_span`, the
 /// companion runs to t_last at every output time of the answer and each quantity's estimate is its
 /// largest difference there times the gain (accuracy.py: span_estimates; no separatrix check, no
-/// least number of times).
+/// least number of times). None (`made` false) for a run that measures itself (method splitting,
+/// a closed form: python/gyrostat/accuracy.py takes their own measures).
 WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& answer, double t0,
                                const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                                const integrate::Options& companion, const WindowRule& rule,
@@ -72,14 +73,17 @@ WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& a
 /// over every output time): what a single solve with its default estimate makes
 /// (python/gyrostat/solve.py), in one call. No estimate (`estimate.made` false) for a failed or
 /// interrupted run, a run over no span, a run that measures itself (method splitting: Richardson
-/// over its step; a closed form: its rounding), or where window_estimate makes none.
+/// over its step; a closed form: its rounding), or where window_estimate makes none. With
+/// `measured_only`, a whole span's companion too records only the measured outputs (it is not to
+/// become the answer: python/gyrostat/contract.py, meet_single).
 struct MeasuredRun {
     integrate::Result answer;
     WindowEstimate estimate;
 };
 MeasuredRun solve_measured(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                            const integrate::Options& options, const integrate::Options& companion,
-                           const WindowRule& rule, const integrate::Control* control = nullptr, bool whole_span = false);
+                           const WindowRule& rule, const integrate::Control* control = nullptr, bool whole_span = false,
+                           bool measured_only = false);
 
 /// Each member's window_estimate (or whole-span measurement), the companions run as one ensemble
 /// (engine.hpp: solve_ensemble, with `threads` and `batch` as the answers' own): member i is a

@@ -77,7 +77,8 @@ struct Options {
     int splitting_order = 4;
     /// Record only the named outputs a run's error is measured on, the others NaN where the model
     /// spares their cost (model/system.hpp: measured_outputs): a window estimate's companion
-    /// (measure.cpp), which compares no more. Not an option of the Python layer.
+    /// (measure.cpp) and the accuracy contract's probes (python/gyrostat/contract.py), which
+    /// compare no more.
     bool only_measured_outputs = false;
 };
 
