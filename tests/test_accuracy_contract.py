@@ -624,3 +624,23 @@ def test_a_scaled_estimate_is_not_taken_for_the_rounding_floor(monkeypatch):
     assert rtols[1] < 0.25 * rtols[0], f"the second round's rtol must be 4 times smaller for the test to bite: {rtols}"
     assert len(rtols) == 3, f"a third round expected after a scaled estimate above the accuracy: rtols {rtols}"
     assert estimates[0].met and not estimates[0].warning, estimates[0].warning
+
+
+def test_a_first_run_of_order_one_error_is_not_scaled_from():
+    # The repeat's estimate is its first run's whole-span error times the ratio of the two runs' errors
+    # over the window: that holds while the errors are small against the quantities. A first run whose
+    # whole-span error is of order one no longer follows the tolerance (bench/accuracy_cost.py's cavity,
+    # probed over 1/32 of its span: 0.66 at rtol 1e-4, and the repeat scaled from it read 0.048x its
+    # true error). Such a run is no base: the repeat is measured over the whole span again.
+    from gyrostat import contract
+
+    model = damped_model()
+    core = model._core
+    options = g.options.make_options(rtol=1e-6, atol=1e-9, n_out=201)
+    answer = g._core.solve(core, W0, 0.0, 200.0, options, None)
+    companion = g._core.solve(core, W0, 0.0, 200.0, g.options.make_options(rtol=2.5e-7, atol=2.5e-10, n_out=201), None)
+    small = accuracy_module.Estimate(0.05, {"omega": 0.05}, "whole span")
+    large = accuracy_module.Estimate(0.66, {"omega": 0.66}, "whole span")
+    made = contract._base(1e-6, small, answer, companion, core, 0.0, 200.0, 4.0 / 3.0)
+    assert made is not None and made[0] == 1e-6 and made[2] > contract.SCALE_FLOOR, made
+    assert contract._base(1e-6, large, answer, companion, core, 0.0, 200.0, 4.0 / 3.0) is None
