@@ -644,3 +644,95 @@ def test_a_first_run_of_order_one_error_is_not_scaled_from():
     made = contract._base(1e-6, small, answer, companion, core, 0.0, 200.0, 4.0 / 3.0)
     assert made is not None and made[0] == 1e-6 and made[2] > contract.SCALE_FLOOR, made
     assert contract._base(1e-6, large, answer, companion, core, 0.0, 200.0, 4.0 / 3.0) is None
+
+
+@pytest.mark.parametrize("method", ["auto", "dop853"])
+def test_a_companion_is_not_taken_as_the_answer_on_the_difference_alone(method):
+    # The moving mass, lambda = 63, t = 19.8, accuracy 1e-3 (found by a sweep of the families): its first
+    # run (DOP853 at rtol 1.1e-5, error 7e-4 over the stiff transient) missed, and its companion at rtol/4
+    # (error 2e-6: DOP853's error fell 350x between the two) was taken as the answer with the runs'
+    # difference, 9.2e-4, as the estimate: 430x its true error, outside the band. Under "auto" the
+    # companion is now the next round's answer, measured in turn; under "dop853" it is taken, its error
+    # measured as a repeat's (scaled over the window), the lesser kept. Against SciPy's DOP853 on the
+    # model's equations (tests/references.py), omega, the displacement u and the velocity v as vectors.
+    from references import moving_mass_rhs
+
+    lam, t1 = 63.2264, 19.832
+    model = g.MovingMassModel(g.Body([4.0, 4.0, 2.0]), mass=1.0, arm=1.0, frequency=10.0, damping=lam)
+    y0 = model.quasi_static_state([1.0, 0.0, 1.0])
+    times = np.linspace(0.0, t1, 101)
+    f = _moving_mass_scalar(lam)
+    probe = np.random.default_rng(3).normal(size=9)
+    assert np.allclose(f(0.0, probe), moving_mass_rhs([4.0, 4.0, 2.0], 1.0, 1.0, 100.0, lam)(0.0, probe),
+                       rtol=1e-13, atol=1e-13), "the scalar right-hand side must be references.py's"
+    # (rtol 1e-11: the error judged is ~1e-6; the run at 1e-10 bounds the reference's own)
+    reference, looser = dop853(f, y0, times, 1e-11, 1e-12), dop853(f, y0, times, 1e-10, 1e-11)
+    vectors = (slice(0, 3), slice(3, 6), slice(6, 9))
+    own_error = max(_vector_error(looser[:, c], reference[:, c]) for c in vectors)
+    sol = quiet_solve(model, y0, (0.0, t1), t_eval=times, accuracy=1e-3, method=method)
+    taken = "taken as the answer (the difference of the two runs" in sol.error_basis
+    assert taken == (method == "dop853"), sol.error_basis
+    y = np.asarray(sol.y, float)
+    true = max(_vector_error(y[:, c], reference[:, c]) for c in vectors)
+    assert true > 10 * own_error, (true, own_error)
+    # the band (2): the estimate covers the other measured quantities too (|G|, the energies), so only
+    # its upper end is judged against these three vectors alone, and the delivered error (1)
+    assert LOW * true <= sol.error_estimate <= HIGH * true, (sol.error_estimate, true, sol.error_basis)
+    assert true <= 1e-3, (true, sol.error_basis)
+
+
+def _moving_mass_scalar(lam):
+    """tests/references.py's moving_mass_rhs (J = (4, 4, 2), μ = ρ = 1, Ω² = 100, no damping) in scalar
+    arithmetic: NumPy's cross products cost ~0.3 ms a call there, and the stiff transient takes ~3e4."""
+    jb = (3.0, 3.0, 2.0)  # J − diag(μρ², μρ², 0)
+
+    def cross(a, b):
+        return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+    def f(t, y):
+        w, u, v = y[0:3], y[3:6], y[6:9]
+        d = (u[0], u[1], 1.0 + u[2])
+        wd_ = cross(w, d)
+        inner = (wd_[0] + v[0], wd_[1] + v[1], wd_[2] + v[2])
+        dk = cross(d, inner)
+        K = tuple(jb[i] * w[i] + dk[i] for i in range(3))
+        wv, wwd = cross(w, v), cross(w, wd_)
+        R = tuple(-2.0 * wv[i] - wwd[i] - 100.0 * u[i] - lam * v[i] for i in range(3))
+        dv = d[0] * v[0] + d[1] * v[1] + d[2] * v[2]
+        dw = d[0] * w[0] + d[1] * w[1] + d[2] * w[2]
+        vw = v[0] * w[0] + v[1] * w[1] + v[2] * w[2]
+        wK, dR = cross(w, K), cross(d, R)
+        wd = tuple((-wK[i] - (2.0 * dv * w[i] - v[i] * dw - d[i] * vw) - dR[i]) / jb[i] for i in range(3))
+        wdd = cross(wd, d)
+        return [wd[0], wd[1], wd[2], v[0], v[1], v[2], R[0] - wdd[0], R[1] - wdd[1], R[2] - wdd[2]]
+    return f
+
+
+def test_a_loose_accuracy_does_not_choose_an_rtol_where_the_error_is_erratic():
+    # The orthogonal torque (J = (1, 1.4, 2.1), L = 0.01) over t = 194.7 at accuracy 1e-3 (found by
+    # bench/contract_sweep.py): the probe chose rtol 2.8e-4, where DOP853's error over the span is
+    # erratic in rtol (1.8e-3 at 1e-4, 2.7e-3 at 5e-5, 2.9e-4 at 2.5e-5), and the run delivered 2.7e-3
+    # with an estimate 0.23x that. A probed rtol is now at most 1e-5. Against SciPy's DOP853 on
+    # J w' = -(1 - L/|Q|) Q, tau' = 1 - L/|Q|, Q = w x Jw.
+    from gyrostat import contract
+
+    J, L, t1 = np.array([1.0, 1.4, 2.1]), 0.01, 194.7
+    y0 = np.array([-0.7828, 0.2292, -2.4939, 0.0])
+
+    def servo(t, y):
+        w = y[:3]
+        Q = np.cross(w, J * w)
+        rate = 1.0 - L / np.linalg.norm(Q)
+        return np.concatenate([-rate * Q / J, [rate]])
+
+    times = np.linspace(0.0, t1, 101)
+    reference, looser = dop853(servo, y0, times, 1e-13, 1e-15), dop853(servo, y0, times, 1e-12, 1e-14)
+    sol = quiet_solve(o.OrthogonalModel(g.Body(list(J)), L), y0, (0.0, t1), t_eval=times, accuracy=1e-3)
+    assert sol.options.rtol <= contract.LOOSEST_PROBED_RTOL, sol.error_basis
+    y = np.asarray(sol.y, float)
+    true = max(_vector_error(y[:, :3], reference[:, :3]), _scalar_error(y[:, 3], reference[:, 3]))
+    own = max(_vector_error(looser[:, :3], reference[:, :3]), _scalar_error(looser[:, 3], reference[:, 3]))
+    assert true > 10 * own, (true, own)
+    assert true <= 1e-3, (true, sol.error_basis)
+    # the band (2), its upper end against omega and tau alone (the estimate covers |G| too)
+    assert LOW * true <= sol.error_estimate <= HIGH * true, (sol.error_estimate, true, sol.error_basis)
