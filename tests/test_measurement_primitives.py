@@ -417,4 +417,9 @@ def test_a_run_that_measures_itself_is_left_to_python():
         for whole_span in (False, True):
             assert _core.window_estimate(model._core, answer, 0.0, y0, 50.0, tighter, rule, None, whole_span) is None
         solution = g.solve(model, y0, (0.0, 50.0), rtol=1e-8, n_out=201, method=method)
+        # (who measures is what is checked here: the splitting's Richardson estimate and the closed form's
+        # rounding, each far below 1e-6 for this run, are checked against references in test_splitting.py
+        # and test_torque_free.py)
         assert 0 < solution.error_estimate < 1e-6, (answer.method, solution.error_basis)
+        assert ("Richardson" in solution.error_basis or "steps of h" in solution.error_basis) if method else \
+            "round" in solution.error_basis, solution.error_basis
