@@ -708,6 +708,17 @@ def _moving_mass_scalar(lam):
     return f
 
 
+def _servo(J, L):
+    """The orthogonal torque's right-hand side, written here: J w' = -(1 - L/|Q|) Q, tau' = 1 - L/|Q|,
+    Q = w x Jw."""
+    def servo(t, y):
+        w = y[:3]
+        Q = np.cross(w, J * w)
+        rate = 1.0 - L / np.linalg.norm(Q)
+        return np.concatenate([-rate * Q / J, [rate]])
+    return servo
+
+
 def test_a_loose_accuracy_does_not_choose_an_rtol_where_the_error_is_erratic():
     # The orthogonal torque (J = (1, 1.4, 2.1), L = 0.01) over t = 194.7 at accuracy 1e-3 (found by
     # bench/contract_sweep.py): the probe chose rtol 2.8e-4, where DOP853's error over the span is
@@ -718,12 +729,7 @@ def test_a_loose_accuracy_does_not_choose_an_rtol_where_the_error_is_erratic():
 
     J, L, t1 = np.array([1.0, 1.4, 2.1]), 0.01, 194.7
     y0 = np.array([-0.7828, 0.2292, -2.4939, 0.0])
-
-    def servo(t, y):
-        w = y[:3]
-        Q = np.cross(w, J * w)
-        rate = 1.0 - L / np.linalg.norm(Q)
-        return np.concatenate([-rate * Q / J, [rate]])
+    servo = _servo(J, L)
 
     times = np.linspace(0.0, t1, 101)
     reference, looser = dop853(servo, y0, times, 1e-13, 1e-15), dop853(servo, y0, times, 1e-12, 1e-14)
@@ -736,3 +742,68 @@ def test_a_loose_accuracy_does_not_choose_an_rtol_where_the_error_is_erratic():
     assert true <= 1e-3, (true, sol.error_basis)
     # the band (2), its upper end against omega and tau alone (the estimate covers |G| too)
     assert LOW * true <= sol.error_estimate <= HIGH * true, (sol.error_estimate, true, sol.error_basis)
+
+
+@pytest.mark.parametrize("kw", [dict(accuracy=1e-3), dict(rtol=1e-4)], ids=["accuracy=1e-3", "rtol=1e-4"])
+def test_a_run_of_few_steps_is_measured_inside_them(kw):
+    # The triaxial averaged model over t = 300 (found by bench/contract_sweep.py): DOP853 takes two
+    # steps, set by its first step's rule and the span's end, not by rtol, so a companion at rtol/4
+    # took the same two and the difference read 1e-16 at accuracy 1e-3 where the true error, inside
+    # the long steps' interpolation, was 2.9e-9. A companion of an answer of fewer than 4 steps now
+    # steps at most half the answer's mean step (_core.companion_step_limit). Against SciPy's DOP853
+    # at rtol 1e-13, max_step 10, on the model's right-hand side (checked against mpmath in
+    # tests/test_averaged_triaxial.py): the integration is what is measured here.
+    model = g.TriaxialAveragedModel(g.Body([1.0, 1.4, 2.1]), [g.LinearDamping(diagonal=[1e-3, 2.5e-3, 7e-4])])
+    sol = quiet_solve(model, [0.15, 0.3, 1.0], (0.0, 300.0), n_out=21, check_validity=False, **kw)
+    assert sol.success and sol.stats["steps"] < 4, sol.stats  # the premise: a run of few steps
+    y = np.asarray(sol.y, float)
+    reference = solve_ivp(lambda t, z: np.asarray(model._core.rhs(t, z)), (0.0, 300.0), y[0], method="DOP853",
+                          rtol=1e-13, atol=1e-16, t_eval=sol.t, max_step=10.0).y.T
+    # |G|^2, p_b and the phase, each relative to its largest size (the branch is constant)
+    errors = {name: _scalar_error(y[:, k], reference[:, k]) for k, name in ((0, "G2"), (1, "pb"), (3, "phase"))}
+    true = max(errors.values())
+    assert 1e-10 < true < 1e-6, errors  # above the reference's own error (~1e-13), far inside the accuracy
+    for name, error in errors.items():  # the band (2), quantity by quantity
+        assert LOW * error <= sol.error_estimates[name] <= HIGH * error, (name, sol.error_estimates, errors)
+
+
+def test_a_companion_whose_steps_its_tolerance_did_not_set_runs_again_limited():
+    # The orthogonal torque (J = (1, 1.4, 2.1), L = 0.01) over t = 90.5 at accuracy 1e-3 (found by
+    # bench/contract_sweep.py): DOP853 at rtol 1e-5 and its companion at 2.5e-6 took 129 and 130
+    # steps, on the method's stability boundary, with errors 4.3e-4 and 3.6e-4: their difference
+    # read 0.2x the answer's error. A companion of a Runge-Kutta pair with fewer than 1.05x the
+    # answer's steps now runs again, its steps at most half the answer's mean step. Against SciPy's
+    # DOP853 on J w' = -(1 - L/|Q|) Q, tau' = 1 - L/|Q|, Q = w x Jw (as the test above).
+    J, L, t1 = np.array([1.0, 1.4, 2.1]), 0.01, 90.49246995440471
+    y0 = np.array([-2.44146738, 1.79970738, 1.14416587, 0.0])
+    servo = _servo(J, L)
+
+    times = np.linspace(0.0, t1, 101)
+    reference = dop853(servo, y0, times, 1e-13, 1e-15)
+    sol = quiet_solve(o.OrthogonalModel(g.Body(list(J)), L), y0, (0.0, t1), t_eval=times, accuracy=1e-3)
+    assert "its steps at most" in sol.error_basis, sol.error_basis  # the premise: the companion ran again
+    y = np.asarray(sol.y, float)
+    true = max(_vector_error(y[:, :3], reference[:, :3]), _scalar_error(y[:, 3], reference[:, 3]))
+    assert 1e-5 < true <= 1e-3, (true, sol.error_basis)
+    assert LOW * true <= sol.error_estimate <= HIGH * true, (sol.error_estimate, true, sol.error_basis)
+
+
+def test_the_companions_step_limit():
+    # the rule itself (gyrostat/measure.hpp: companion_step_limit), on runs whose steps are known
+    body = g.Model(g.Body([1.0, 2.0, 3.0]))
+    answer = g.solve(body, [1.0, 0.5, -0.3], (0.0, 100.0), rtol=1e-6, n_out=11, error_estimate=False)._result
+    steps = answer.stats.steps
+    assert steps >= 8 and g._core.companion_step_limit(answer, 0.0) == math.inf  # many steps, nothing to compare
+    same = g.solve(body, [1.0, 0.5, -0.3], (0.0, 100.0), rtol=1e-6, n_out=11, error_estimate=False)._result
+    tighter = g.solve(body, [1.0, 0.5, -0.3], (0.0, 100.0), rtol=2.5e-7, n_out=11, error_estimate=False)._result
+    assert tighter.stats.steps >= 1.05 * steps  # its tolerance sets its steps: no limit
+    assert g._core.companion_step_limit(answer, 0.0, tighter.stats) == math.inf
+    # the same steps at a tighter tolerance: half the mean step
+    assert g._core.companion_step_limit(answer, 0.0, same.stats) == pytest.approx(0.5 * 100.0 / steps, rel=1e-15)
+    few = g.solve(body, [1.0, 0.5, -0.3], (0.0, 1e-3), rtol=1e-6, n_out=3, error_estimate=False)._result
+    assert 0 < few.stats.steps < 4
+    assert g._core.companion_step_limit(few, 0.0) == pytest.approx(0.5 * 1e-3 / few.stats.steps, rel=1e-15)
+    taylor = g.solve(body, [1.0, 0.5, -0.3], (0.0, 100.0), rtol=1e-6, method="taylor", n_out=11,
+                     error_estimate=False)._result  # not a Runge-Kutta pair of one order: its order follows rtol
+    assert taylor.stats.steps >= 8 and g._core.companion_step_limit(taylor, 0.0, taylor.stats) == math.inf
+

@@ -162,7 +162,7 @@ def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
     companion = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4)
     gain = 4.0 / 3.0
     rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=gain)
-    values, k, grown, end, count, failure, stats = _core.window_estimate(core, answer, 0.0, y0, t1, companion, rule)
+    values, k, grown, end, count, failure, stats, _ = _core.window_estimate(core, answer, 0.0, y0, t1, companion, rule)
     times = np.asarray(answer.t)
     inside = int(np.sum(times <= 0.2 * t1))
     window_options = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4, t_eval=times[:inside])
@@ -223,9 +223,9 @@ def test_the_engines_window_leaves_what_it_cannot_measure_to_python():
     assert _core.window_estimate(core, crossing, 0.0, W0, T1, tighter, rule) is None
     short = run(CAVITY, W0, 50.0, 1e-8, n_out=201)
     starved = make_options(rtol=2.5e-9, atol=2.5e-12, max_steps=3)
-    values, *_, failure, stats = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
+    values, *_, failure, stats, _ = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
     assert failure.startswith("max_steps_reached") and values == [] and stats.steps == 3, (failure, stats.steps)
-    *_, failure, companion = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule, whole_span=True)
+    *_, failure, companion, _ = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule, whole_span=True)
     assert failure.startswith("max_steps_reached") and companion.status == "max_steps_reached", failure
     estimate = g.accuracy._window_estimate((values, 1.0, False, 10.0, 0, failure), ["omega"], 0.0, 50.0, 0.2, "x",
                                             4 / 3)

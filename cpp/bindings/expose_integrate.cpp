@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "convert.hpp"
 #include "expose.hpp"
@@ -366,6 +367,9 @@ Examples
         .def_readonly("message", &Result::message)
         .def_readonly("notes", &Result::notes, "What the run says about its own answer (information).")
         .def_readonly("warnings", &Result::warnings, "What the run doubts about its own answer (warned in Python).")
+        .def_property_readonly(
+            "remarked", [](const Result& r) { return !r.notes.empty() || !r.warnings.empty(); },
+            "Whether the run left notes or warnings (one test, where reading them converts their strings).")
         .def_readonly("error_estimate", &Result::error_estimate,
                       "The run's own global error estimate relative to max|y_i| (splitting); NaN: none.")
         .def_readonly("t_last", &Result::t_last, "Where the run stopped: the last accepted time.")
@@ -398,8 +402,10 @@ Examples
     auto window_tuple = [](WindowEstimate& w, bool with_companion, bool whole_span) -> py::tuple {
         if (!with_companion) return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure);
         if (!whole_span)
-            return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, w.companion.stats);
-        return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, std::move(w.companion));
+            return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, w.companion.stats,
+                                  w.companion_max_step);
+        return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, std::move(w.companion),
+                              w.companion_max_step);
     };
     m.def(
         "window_estimate",
@@ -417,7 +423,8 @@ Examples
         "The window estimate of a run (gyrostat/measure.hpp), or with ``whole_span`` its measurement over every "
         "output time: (each measured quantity's estimate, the largest growth exponent, whether grown to the "
         "horizon, the window's end, the times compared, why there is none or '', the companion's Result with "
-        "``whole_span``, else its Stats); None "
+        "``whole_span``, else its Stats, the largest step the companion was allowed (infinity: no limit; "
+        "``companion_step_limit``)); None "
         "where the window cannot be measured here (too few output times in it, a separatrix crossed).");
     m.def(
         "solve_measured",
@@ -465,6 +472,16 @@ Examples
         py::arg("whole_span") = false,
         "Each member's window_estimate (or whole-span measurement), the companions run as one ensemble "
         "(gyrostat/measure.hpp): a list of window_estimate's tuples, None for a member left to the caller.");
+    m.def(
+        "companion_step_limit",
+        [](const Result& answer, double t0, const std::optional<integrate::Stats>& first) {
+            return companion_step_limit(answer, t0, first ? &*first : nullptr);
+        },
+        py::arg("answer"), py::arg("t0"), py::arg("first") = py::none(),
+        "The largest step a companion measuring ``answer`` (a run from t0) may take: half the answer's mean step "
+        "where it took fewer than 4 steps, or where ``first`` (a companion's Stats, run without the limit) took "
+        "fewer than 1.05 times its steps for a Runge-Kutta pair of one order (its steps not its tolerance's); "
+        "infinity otherwise (gyrostat/measure.hpp).");
     m.def(
         "window_from_differences",
         [window_tuple](const Eigen::Ref<const Eigen::MatrixXd>& apart, const std::vector<double>& times, double t0,

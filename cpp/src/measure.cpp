@@ -64,13 +64,16 @@ std::size_t compared_times(const integrate::Result& answer, double t0, double t1
 }
 
 /// Whether the engine measures this answer: a run that reached past t0 with output times; over a
-/// window, at least least_times of them there and no separatrix crossed after the window's first
-/// half (the window cannot foresee the jump of the error there: the caller measures the whole span).
+/// window, at least least_times of them there, at least kFewSteps steps (a run of fewer has its
+/// error inside its long steps' interpolation, which runs over a window do not share) and no
+/// separatrix crossed after the window's first half (the window cannot foresee the jump of the
+/// error there). The caller measures the others over the whole span.
 bool measurable(const AnyModel& model, const integrate::Result& answer, std::size_t count, double t0, double t1,
                 const WindowRule& rule, bool whole_span) {
     if (answer.t.empty() || t1 == t0 || !answer.success()) return false;
     if (whole_span) return true;
-    return count >= rule.least_times && std::isnan(first_crossing(model, answer, t0 + 0.5 * rule.fraction * (t1 - t0)));
+    return count >= rule.least_times && !std::isfinite(companion_step_limit(answer, t0)) &&
+           std::isnan(first_crossing(model, answer, t0 + 0.5 * rule.fraction * (t1 - t0)));
 }
 
 double horizon_of(const integrate::Result& answer) {
@@ -84,12 +87,13 @@ bool measures_itself(const integrate::Result& answer) {
 }
 
 /// The companion's options: `companion` at the answer's first `count` output times, without
-/// events, dense output or every step; over a window, recording only the measured outputs (a
-/// whole span's companion may become the answer, python/gyrostat/contract.py, unless `companion`
-/// says only_measured_outputs itself).
+/// events, dense output or every step, its steps at most `step_limit` (companion_step_limit); over a
+/// window, recording only the measured outputs (a whole span's companion may become the answer,
+/// python/gyrostat/contract.py, unless `companion` says only_measured_outputs itself).
 integrate::Options companion_options(const integrate::Options& companion, const integrate::Result& answer, std::size_t count,
-                                     bool whole_span) {
+                                     bool whole_span, double step_limit) {
     integrate::Options options = companion;
+    options.max_step = std::min(options.max_step, step_limit);
     options.t_eval.assign(answer.t.begin(), answer.t.begin() + static_cast<std::ptrdiff_t>(count));
     options.events.clear();
     options.every_step = options.dense_output = false;
@@ -125,6 +129,18 @@ WindowEstimate measured_against(const AnyModel& model, const integrate::Result& 
 
 }  // namespace
 
+double companion_step_limit(const integrate::Result& answer, double t0, const integrate::Stats* first) {
+    constexpr double none = std::numeric_limits<double>::infinity();
+    const long steps = answer.stats.steps;
+    if (steps <= 0 || answer.t.empty()) return none;
+    const bool one_order = answer.method == "dop853" || answer.method == "arkode_verner6" ||
+                           answer.method == "arkode_fehlberg8";
+    const bool unset = steps < kFewSteps || (first != nullptr && one_order && first->steps > 0 &&
+                                             static_cast<double>(first->steps) < kStepsFollowTolerance * steps);
+    const double limit = 0.5 * std::abs(horizon_of(answer) - t0) / static_cast<double>(steps);
+    return unset && limit > 0.0 && std::isfinite(limit) ? limit : none;
+}
+
 WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& answer, double t0,
                                const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
                                const integrate::Options& companion, const WindowRule& rule,
@@ -133,8 +149,17 @@ WindowEstimate window_estimate(const AnyModel& model, const integrate::Result& a
     const std::size_t count = compared_times(answer, t0, t1, rule, whole_span);
     if (!measurable(model, answer, count, t0, t1, rule, whole_span)) return {};
     const double end = whole_span ? horizon_of(answer) : answer.t[count - 1];
-    integrate::Result other = solve(model, t0, y0, end, companion_options(companion, answer, count, whole_span), control);
-    return measured_against(model, answer, std::move(other), count, t0, rule, whole_span);
+    integrate::Options options = companion_options(companion, answer, count, whole_span, companion_step_limit(answer, t0));
+    integrate::Result other = solve(model, t0, y0, end, options, control);
+    // over the whole span, a companion whose steps its tolerance did not set runs again, limited
+    const double limit = whole_span && other.success() ? companion_step_limit(answer, t0, &other.stats) : options.max_step;
+    if (limit < options.max_step) {
+        options.max_step = limit;
+        other = solve(model, t0, y0, end, options, control);
+    }
+    WindowEstimate made = measured_against(model, answer, std::move(other), count, t0, rule, whole_span);
+    made.companion_max_step = options.max_step;
+    return made;
 }
 
 MeasuredRun solve_measured(const AnyModel& model, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0, double t1,
@@ -192,12 +217,22 @@ std::vector<WindowEstimate> window_estimates(const std::vector<const AnyModel*>&
         if (models.size() != 1 || chosen.empty()) chosen.push_back(&model_of(i));
         starts.push_back(y0s[i]);
     }
-    std::vector<integrate::Result> companions =
-        solve_ensemble(chosen, starts, t0, end, companion_options(companion, *answers[members.front()], count, whole_span),
-                       threads, control, batch);
+    const integrate::Options options = companion_options(companion, *answers[members.front()], count, whole_span,
+                                                         std::numeric_limits<double>::infinity());
+    std::vector<integrate::Result> companions = solve_ensemble(chosen, starts, t0, end, options, threads, control, batch);
     for (std::size_t k = 0; k < members.size(); ++k) {
         const std::size_t i = members[k];
+        integrate::Options own = options;
+        // over the whole span, a companion whose steps its tolerance did not set runs again, limited by its own
+        // member's rule (window_estimate; a member's measurement is the same in any ensemble)
+        const double limit =
+            whole_span && companions[k].success() ? companion_step_limit(*answers[i], t0, &companions[k].stats) : own.max_step;
+        if (limit < own.max_step) {
+            own.max_step = limit;
+            companions[k] = solve(model_of(i), t0, starts[k], end, own, control);
+        }
         made[i] = measured_against(model_of(i), *answers[i], std::move(companions[k]), count, t0, rule, whole_span);
+        made[i].companion_max_step = own.max_step;
     }
     return made;
 }

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'WindowRule', 'averaged_model', 'averaged_triaxial_model', 'complete_elliptic', 'elliptic_E', 'elliptic_K', 'euler_angles', 'grow', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_measured', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector', 'window_estimate', 'window_estimates', 'window_from_differences']
+__all__: list[str] = ['Body', 'ConstantTorque', 'CustomTorque', 'DipoleFieldTorque', 'Event', 'GravityGradient', 'InertialTorque', 'LagrangeNutation', 'LagrangeUnperturbed', 'LinearDamping', 'MagneticTorque', 'MagnitudeLaw', 'Model', 'Motion', 'MovingMassDamper', 'Options', 'Orbit', 'ResistiveMedium', 'Result', 'Stats', 'TorqueAssumption', 'TorqueFreeSolution', 'ViscousCavity', 'WindowRule', 'averaged_model', 'averaged_triaxial_model', 'companion_step_limit', 'complete_elliptic', 'elliptic_E', 'elliptic_K', 'euler_angles', 'grow', 'gyrostat_model', 'jacobi_sn_cn_dn', 'lagrange_averaged_model', 'lagrange_nutation', 'lagrange_nutation_table', 'lagrange_top_model', 'large', 'load_batches', 'max_output_bytes', 'mean_sn_squared', 'method_descriptions', 'methods', 'moving_mass_model', 'orthogonal_model', 'quaternion_from_euler', 'quaternion_from_matrix', 'rotation_matrix', 'simd_instruction_set', 'simd_lanes', 'small', 'solve', 'solve_ensemble', 'solve_measured', 'solve_sensitivities', 'solve_sensitivities_ensemble', 'summaries', 'taylor_kernel', 'torque_free_model', 'torque_types', 'unit_vector', 'window_estimate', 'window_estimates', 'window_from_differences']
 class Body:
     """
     A rigid body or gyrostat: its moments of inertia and the constant angular momentum of its rotors.
@@ -2392,6 +2392,11 @@ class Result:
     def outputs(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def remarked(self) -> bool:
+        """
+        Whether the run left notes or warnings (one test, where reading them converts their strings).
+        """
+    @property
     def state_descriptions(self) -> list[str]:
         ...
     @property
@@ -2593,6 +2598,10 @@ def averaged_model(body: Body, torques: collections.abc.Iterable) -> Model:
     ...
 def averaged_triaxial_model(body: Body, torques: collections.abc.Iterable) -> Model:
     ...
+def companion_step_limit(answer: Result, t0: typing.SupportsFloat | typing.SupportsIndex, first: Stats | None = None) -> float:
+    """
+    The largest step a companion measuring ``answer`` (a run from t0) may take: half the answer's mean step where it took fewer than 4 steps, or where ``first`` (a companion's Stats, run without the limit) took fewer than 1.05 times its steps for a Runge-Kutta pair of one order (its steps not its tolerance's); infinity otherwise (gyrostat/measure.hpp).
+    """
 def complete_elliptic(m: typing.SupportsFloat | typing.SupportsIndex, m1: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float]:
     """
     (K(m), <sn^2> = (K - E)/(m K)) by polynomial pieces (the triaxial averaged model's), m read up to 1/2 and its complement m1 = 1 - m beyond
@@ -2693,7 +2702,7 @@ def unit_vector(v: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], name
     """
 def window_estimate(model: Model, answer: Result, t0: typing.SupportsFloat | typing.SupportsIndex, y0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], t1: typing.SupportsFloat | typing.SupportsIndex, companion: Options, rule: WindowRule, progress: typing.Any = None, whole_span: bool = False) -> typing.Any:
     """
-    The window estimate of a run (gyrostat/measure.hpp), or with ``whole_span`` its measurement over every output time: (each measured quantity's estimate, the largest growth exponent, whether grown to the horizon, the window's end, the times compared, why there is none or '', the companion's Result with ``whole_span``, else its Stats); None where the window cannot be measured here (too few output times in it, a separatrix crossed).
+    The window estimate of a run (gyrostat/measure.hpp), or with ``whole_span`` its measurement over every output time: (each measured quantity's estimate, the largest growth exponent, whether grown to the horizon, the window's end, the times compared, why there is none or '', the companion's Result with ``whole_span``, else its Stats, the largest step the companion was allowed (infinity: no limit; ``companion_step_limit``)); None where the window cannot be measured here (too few output times in it, a separatrix crossed).
     """
 def window_estimates(models: collections.abc.Sequence[Model], answers: collections.abc.Sequence[Result], t0: typing.SupportsFloat | typing.SupportsIndex, y0s: typing.Any, t1: typing.SupportsFloat | typing.SupportsIndex, companion: Options, rule: WindowRule, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None, batch: bool = True, whole_span: bool = False) -> list:
     """

@@ -54,14 +54,13 @@ from __future__ import annotations
 import copy
 import math
 import time
-import weakref
 from collections.abc import Callable
 from functools import partial
 
 import numpy as np
 
 from gyrostat import _core
-from gyrostat.estimate import Compared, Estimate, Quantity, quantities
+from gyrostat.estimate import Compared, Estimate, Quantity, quantities, quantity_names
 from gyrostat.options import derived
 
 TIGHTER = 4.0
@@ -321,7 +320,7 @@ def window_estimates(run: Runner, cores: list, opts, t0: float, t1: float, horiz
             continue
         _, made_apart = apart(b, a, core, slice(None), inside)
         window_made = _core.window_from_differences(made_apart, grid, t0, horizons[i], rule, to_horizon)
-        made.append(_window_estimate(window_made, _names(core), t0, horizons[i], fraction, what, gain))
+        made.append(_window_estimate(window_made, quantity_names(core), t0, horizons[i], fraction, what, gain))
     return made
 
 
@@ -344,10 +343,10 @@ def _single_run_estimate(core, y0, t0: float, report, measured_on, opts, t1: flo
     if made is None:
         return None
     if not full:
-        return _window_estimate(made, _names(core), t0, answer.t_last, WINDOW, what, gain)
+        return _window_estimate(made, quantity_names(core), t0, answer.t_last, WINDOW, what, gain)
     if companions is not None:  # (a whole span's companion: the contract may take it as the answer)
         companions[0] = made[6]
-    return _engine_estimate(made, _names(core), t0, answer.t_last, what, gain, full)
+    return _engine_estimate(made, quantity_names(core), t0, answer, what, gain, full)
 
 
 def _ensemble_estimates(run: EnsembleRun, cores: list, opts, t0: float, t1: float, answers: list, members: list[int],
@@ -369,46 +368,30 @@ def _ensemble_estimates(run: EnsembleRun, cores: list, opts, t0: float, t1: floa
             core = cores[m]
             known = names.get(id(core))
             if known is None:
-                known = names[id(core)] = _names(core)
-            made[m] = _engine_estimate(one, known, t0, answers[m].t_last, what, gain, full)
+                known = names[id(core)] = quantity_names(core)
+            made[m] = _engine_estimate(one, known, t0, answers[m], what, gain, full)
     return made
 
 
-def _engine_estimate(made: tuple, names: list[str], t0: float, horizon: float, what: str, gain: float,
+def _engine_estimate(made: tuple, names: list[str], t0: float, answer, what: str, gain: float,
                      full: bool) -> Estimate:
     """The :class:`Estimate` of the engine's measurement of one run (``_core.window_estimate``'s
     tuple): over the window, or over the whole span (``full``) as :func:`span_estimates` says it."""
     if not full:
-        return _window_estimate(made, names, t0, horizon, WINDOW, what, gain)
-    values, _, _, _, count, failure, _ = made
+        return _window_estimate(made, names, t0, answer.t_last, WINDOW, what, gain)
+    values, _, _, _, count, failure = made[:6]
     if failure:
         return Estimate(math.nan, {}, f"no estimate: the companion run stopped ({failure})")
     per = dict(zip(names, values))
-    return Estimate(max(per.values()), per, partial(_span_basis, count, what, gain))
+    return Estimate(max(per.values()), per, partial(_span_basis, count, what, gain, made[7]))
 
 
-def _span_basis(count: int, what: str, gain: float) -> str:
+def _span_basis(count: int, what: str, gain: float, limit: float) -> str:
     """The words of a whole span's measurement (written when first read: :class:`Estimate`)."""
-    return f"measured at {count} output times over the whole run against a run with {what} (difference x {gain:.3g})"
-
-
-_NAMES: dict[int, tuple] = {}
-"""id(engine model) → (a weak reference to it, its quantities' names)."""
-
-
-def _names(core) -> list[str]:
-    """The names of the quantities a run of ``core`` is measured on (:func:`quantities`; kept by
-    engine model, a plain dict by id checked by a weak reference: a WeakKeyDictionary's look-up
-    cost ~0.5 µs a run)."""
-    known = _NAMES.get(id(core))
-    if known is not None and known[0]() is core:
-        return known[1]
-    if isinstance(core, Compared):  # (no weak reference to it: made each time)
-        return [q.name for q in quantities(core)]
-    names = [q.name for q in quantities(core)]
-    key = id(core)
-    _NAMES[key] = (weakref.ref(core, lambda _, key=key: _NAMES.pop(key, None)), names)
-    return names
+    steps = (f", its steps at most {limit:.3g} (half the run's mean step: the run's own were not its tolerance's)"
+             if math.isfinite(limit) else "")
+    return (f"measured at {count} output times over the whole run against a run with {what}{steps} (difference x "
+            f"{gain:.3g})")
 
 
 def _window_estimate(made: tuple, names: list[str], t0: float, horizon: float, fraction: float, what: str,
@@ -430,11 +413,13 @@ def _window_basis(t0: float, horizon: float, fraction: float, what: str, gain: f
             f"{count} times) against a run with {what} (difference x {gain:.3g}), {growth}")
 
 
-def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[int],
+def span_estimates(run: Runner, cores: list, opts, t0: float, answers: list, members: list[int],
                    companions: dict | None = None) -> list[Estimate]:
-    """The estimate of each member's answer from a companion run with :func:`tighter` options over
-    the whole span, compared at every output time of the answer (the companions' results kept in
-    ``companions`` by member, when given)."""
+    """The estimate of each member's answer (a run from ``t0``) from a companion run with
+    :func:`tighter` options over the whole span (run again with its steps limited where
+    ``_core.companion_step_limit`` says its tolerance did not set them), compared
+    at every output time of the answer (the companions' results kept in ``companions`` by member,
+    when given)."""
     if not members:
         return []
     times = np.asarray(answers[members[0]].t, float)
@@ -444,7 +429,13 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
     if not math.isfinite(gain):
         return [Estimate(math.nan, {}, f"no estimate: compared with {what}") for _ in members]
     t_end = float(max(answers[m].t_last for m in members)) if len(grid) else float(opts.t_eval[-1])
-    results = run(companion, t_end, members)
+    results, limits = list(run(companion, t_end, members)), {}
+    for k, m in enumerate(members):  # a companion whose steps its tolerance did not set runs again, limited
+        if results[k].success and type(answers[m]) is _core.Result and \
+                (redo := _core.companion_step_limit(answers[m], t0, results[k].stats)) < companion.max_step:
+            limited = copy.copy(companion)
+            limited.max_step = limits[m] = redo
+            results[k] = run(limited, t_end, [m])[0]
     made = []
     for m, other in zip(members, results):
         if companions is not None:
@@ -465,7 +456,7 @@ def span_estimates(run: Runner, cores: list, opts, answers: list, members: list[
         names, made_apart = apart(answer, other, cores[m], keep_mine, keep_theirs)
         largest = made_apart.max(axis=1).tolist() if made_apart.shape[1] else [math.nan] * len(names)
         per = {name: max(d * gain, FLOOR) if not math.isnan(d) else math.nan for name, d in zip(names, largest)}
-        made.append(Estimate(max(per.values()), per, _span_basis(compared, what, gain)))
+        made.append(Estimate(max(per.values()), per, _span_basis(compared, what, gain, limits.get(m, math.inf))))
     return made
 
 
@@ -516,8 +507,8 @@ def solve_measured(core, y0, t0: float, t1: float, opts, report=None, full: bool
     answer, made = _core.solve_measured(core, y0, t0, t1, opts, companion, _rule(gain), report, full, measured_only)
     if made is not None:
         if full:
-            return answer, _engine_estimate(made, _names(core), t0, answer.t_last, what, gain, full)
-        return answer, _window_estimate(made, _names(core), t0, answer.t_last, WINDOW, what, gain)
+            return answer, _engine_estimate(made, quantity_names(core), t0, answer, what, gain, full)
+        return answer, _window_estimate(made, quantity_names(core), t0, answer.t_last, WINDOW, what, gain)
     if t1 == t0 or not answer.success:
         return answer, None
     return answer, estimate_runs(SingleRun(core, y0, t0, report), [core], opts, t0, t1, [answer], full, engine=False)[0]
@@ -564,12 +555,18 @@ def estimate_runs(run: Runner, cores: list, opts, t0: float, t1: float, answers:
             return made
     crossings = {} if full else {m: t for m in members
                                  if (t := crossing(cores[m], answers[m], t0 + 0.5 * WINDOW * (t1 - t0))) is not None}
-    if full or crossings:  # the whole span: asked, or where the window cannot see a separatrix crossing
-        spanned = members if full else list(crossings)
-        for m, e in zip(spanned, span_estimates(run, cores, opts, answers, spanned, companions)):
+    few = [] if full else [m for m in members if m not in crossings and
+                           math.isfinite(_core.companion_step_limit(answers[m], t0))]
+    if full or crossings or few:  # the whole span: asked, or where a window cannot see the error's course
+        spanned = members if full else list(crossings) + few
+        for m, e in zip(spanned, span_estimates(run, cores, opts, t0, answers, spanned, companions)):
             if m in crossings:
                 e.basis = (f"the run crosses a separatrix at t = {crossings[m]:.6g}, after the first half of the window, "
                            f"where its error grows faster than the window shows: {e.basis}")
+            elif m in few:
+                e.basis = (f"the run took {answers[m].stats.steps} steps, set by its first step and the span's end "
+                           f"rather than its tolerance: its error lies inside them, where a window does not see it; "
+                           f"{e.basis}")
             made[m] = e
         members = [m for m in members if m not in spanned]
         if not members:

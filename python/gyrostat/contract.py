@@ -89,8 +89,11 @@ LOOSEST_PROBED_RTOL = 1e-5
 rtol (the orthogonal torque over t = 195: 1.8e-3 at rtol 1e-4, 2.7e-3 at 5e-5, 2.9e-4 at 2.5e-5) and
 a companion at rtol/4 misreads it (the probe's choice there, 2.8e-4 at accuracy 1e-3, delivered
 2.7e-3 with an estimate 0.23× that; ``bench/contract_sweep.py``). The probed rtols of
-``bench/accuracy_cost.py``'s scenes lie below it already (a short run, not probed, keeps
-accuracy/10)."""
+``bench/accuracy_cost.py``'s scenes lie below it already. A short run (not probed) keeps
+accuracy/10: held to this too, the orthogonal torque over t = 90.3 at accuracy 1e-3 went from an
+estimate 0.43× its true error (rtol 1e-4) to 0.59× (1e-5), but a constant torque over t = 270 from
+3.6× to 0.42× (its error 1.8e-4, 2.1e-4, 1.3e-4 at rtol 1e-5, 5e-6, 2.5e-6), at ~1.3× the cost
+(``bench/contract_sweep.py`` seeds 2 and 5)."""
 
 
 def with_tolerances(opts, rtol: float, atol: float):

@@ -116,6 +116,7 @@ option_values = operator.itemgetter(*OPTION_NAMES)
 (a function whose keywords include every name of :data:`OPTIONS`), as a tuple in the order of
 :data:`OPTIONS` (one call in C: :func:`gyrostat.solve` reads its options so on every call)."""
 _T_EVAL, _N_OUT = OPTION_NAMES.index("t_eval"), OPTION_NAMES.index("n_out")
+_ALL_BUT_T_EVAL = operator.itemgetter(*(i for i, name in enumerate(OPTION_NAMES) if name != "t_eval"))
 
 _CACHE: dict[tuple, Options] = {}
 _SHARED: set[int] = set()
@@ -146,7 +147,7 @@ def options_of(options, values: tuple) -> Options:
     :data:`OPTIONS`, in its order (None: not given; :data:`option_values`)."""
     t_eval, n_out = values[_T_EVAL], values[_N_OUT]
     if options is None and (t_eval is None or (n_out is None and type(t_eval) in (list, tuple) and len(t_eval) <= 64)):
-        key = values if t_eval is None else values[:_T_EVAL] + values[_T_EVAL + 1:]
+        key = values if t_eval is None else _ALL_BUT_T_EVAL(values)
         if not _BOOLS.isdisjoint(key):  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
             key += tuple(map(type, key))
         if t_eval is not None:  # a short list of output times: its values (and their types where one is a bool)
@@ -182,6 +183,8 @@ def with_events(opts: Options, events, dense_output: bool, core) -> Options:
 
 def span(t_span) -> tuple[float, float]:
     """(t0, t1) as floats, or a ValueError naming t_span and its value."""
+    if type(t_span) is tuple and len(t_span) == 2 and type(t_span[0]) is float and type(t_span[1]) is float:
+        return t_span  # the commonest case, in the fewest steps (bench/python_overhead.py)
     try:
         t0, t1 = t_span
     except (TypeError, ValueError):

@@ -454,7 +454,8 @@ def estimates(cores, column_sets, y0s, t0: float, opts, results, states, names, 
 
     members = [i for i, r in enumerate(results) if r.success and len(r.t) and r.t_last != t0]
     made_estimates: list = [None] * len(results)
-    spans = span_estimates(runner, [cores[0 if one else i] for i in range(len(results))], opts, list(results), members)
+    spans = span_estimates(runner, [cores[0 if one else i] for i in range(len(results))], opts, t0, list(results),
+                           members)
     for m, e in zip(members, spans):
         made_estimates[m] = e
     _, gain, words = tighter(opts)

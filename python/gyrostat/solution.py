@@ -125,8 +125,8 @@ class Solution(SolutionViews, SolutionJoin):
     def __init__(self, result: _core.Result, model=None):
         self._result = result
         self._columns = None
-        notes, warnings = result.notes, result.warnings  # (each read converts the engine's strings: read once)
-        self._notes: list[str] = list(notes) + list(warnings) if notes or warnings else []
+        # (each read of notes or warnings converts the engine's strings: read once, and only where there are some)
+        self._notes: list[str] = list(result.notes) + list(result.warnings) if result.remarked else []
         self._noted = None
         self.model = model
         self.pieces: tuple[tuple[str, Solution], ...] = ()

@@ -87,7 +87,7 @@ class SolutionJoin:
             message=(f"terminal event {terminal_event} ('{event_names[terminal_event]}') at t = {last.t_last:.17g}"
                      if terminal_event >= 0 else last.message),
             success=last.success, method="+".join(dict.fromkeys(f"{name}:{sol.method}" for name, sol in pieces)),
-            methods_used=(), switches=[], warnings=(), notes=tuple(notes), t_events=list(t_events or []),
+            methods_used=(), switches=[], warnings=(), notes=tuple(notes), remarked=bool(notes), t_events=list(t_events or []),
             y_events=list(y_events or []), event_names=tuple(event_names), terminal_event=terminal_event,
             error_estimate=float("nan"), dense=_no_dense_output)
         joined = cls(result, model)

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,7 @@ struct WindowEstimate {
     std::size_t times = 0;
     std::string failure;
     integrate::Result companion;  ///< the companion's run (window_estimate)
+    double companion_max_step = std::numeric_limits<double>::infinity();  ///< its steps' limit (companion_step_limit)
 };
 
 /// The window estimate of `answer`, a run of `model` from (t0, y0) toward t1 (ending at t_last,
@@ -96,6 +98,30 @@ std::vector<WindowEstimate> window_estimates(const std::vector<const AnyModel*>&
                                              const integrate::Options& companion, const WindowRule& rule, int threads,
                                              const integrate::Control* control = nullptr, bool batch = true,
                                              bool whole_span = false);
+
+/// The most steps below which an answer's steps are taken as set by its first step's rule and the
+/// span's end rather than by its tolerance (companion_step_limit).
+inline constexpr long kFewSteps = 4;
+
+/// A companion of a Runge–Kutta pair of one order at a tighter tolerance whose steps are fewer than
+/// this times the answer's did not have its steps set by its tolerance (ρ = 4 asks DOP853 for
+/// 4^(1/8) ≈ 1.19 times as many; bench/accuracy_cost.py's scenes take 1.12–1.22).
+inline constexpr double kStepsFollowTolerance = 1.05;
+
+/// The largest step a companion measuring `answer` (a run from t0) may take: half the answer's mean
+/// step where the answer's steps are not its tolerance's, infinity otherwise. Two such cases:
+/// * the answer took fewer than kFewSteps steps (DOP853's first step, grown by its largest factor,
+///   then clipped to the end), so a companion at a tighter tolerance took the same ones and the
+///   difference read rounding where the error lives inside the long steps' interpolation (the
+///   triaxial averaged model over 300 s in two steps: 1e-16 against a true error of 2.9e-9);
+/// * `first`, the stats of a companion run without the limit, took fewer than kStepsFollowTolerance
+///   times the answer's steps, for a Runge–Kutta pair of one order: the steps sit on the method's
+///   stability boundary, where the error does not follow the tolerance (the orthogonal torque over
+///   t = 90.5 at rtol 1e-5 and 2.5e-6: 129 and 130 steps, errors 4.3e-4 and 3.6e-4, an estimate
+///   0.2 times the true error); half those steps are inside it.
+/// bench/contract_sweep.py found both. One rule for every companion: the engine's (window_estimate,
+/// window_estimates) and python/gyrostat/accuracy.py's.
+double companion_step_limit(const integrate::Result& answer, double t0, const integrate::Stats* first = nullptr);
 
 /// Each quantity's estimate from its differences over a window (`apart`: quantities × times, at
 /// the output times `times`, which start the span at t0), grown to `horizon` when it lies past the
