@@ -236,7 +236,7 @@ def test_the_option_names_are_written_once(monkeypatch):
     # each function hands its option keywords on in the order of OPTIONS (solve names them for speed)
     seen = []
 
-    def caught(opts, values):
+    def caught(opts, values, listed=None):
         seen.append(dict(zip(options.OPTION_NAMES, values)))
         raise KeyboardInterrupt
 
@@ -262,8 +262,9 @@ def test_t_eval_lists_reuse_their_options_and_keep_every_check():
         assert g.solve(model, W0, (0.0, 1.0), t_eval=[0.25]).t.tolist() == [0.25]
         with pytest.raises(ValueError, match=r"t_eval\[1\] = 2 lies outside"):
             g.solve(model, W0, (0.0, 1.0), t_eval=[0.0, 2.0])
-        with pytest.raises(ValueError, match="t_eval must be output times"):
+        with pytest.raises(ValueError, match=r"t_eval must be output times .*got \[0\.0, 'a'\]"):  # the list given
             g.solve(model, W0, (0.0, 1.0), t_eval=[0.0, "a"])
+        assert g.solve(model, W0, (0.0, 1.0), t_eval=[1.0]).t.tolist() == [1.0]  # kept; [True] == [1.0], refused:
         with pytest.raises(ValueError, match="t_eval must be output times"):
             g.solve(model, W0, (0.0, 1.0), t_eval=[True])  # True == 1, yet a boolean is no time
         with pytest.raises(ValueError, match="t_eval must be one-dimensional"):

@@ -192,6 +192,21 @@ def attitude(d33=0.03):
     return g.Model(g.Body(list(J3)), [g.LinearDamping(diagonal=[0.05, 0.08, d33])], attitude=True)
 
 
+# Torques that read the attitude: ∂M/∂q enters the variational equations (the orbit's rate is fast
+# here, 0.5 rad/s, so that the gravity gradient turns the body within the span)
+def gravity_gradient(C=2.1):
+    return g.Model(g.Body([1.0, 1.4, C]), [g.GravityGradient()], orbit=g.Orbit(rate=0.5))
+
+
+def inertial(m1=0.2):
+    return g.Model(g.Body(list(J3)), [g.InertialTorque([0.1, m1, -0.3]), g.LinearDamping(diagonal=[0.01, 0.02, 0.03])],
+                   attitude=True)
+
+
+def orthogonal_inertial(m1=0.2):
+    return o.OrthogonalModel(g.Body([2.0, 3.0, 4.0]), 0.1, torques=[g.InertialTorque([0.1, m1, -0.3])], attitude=True)
+
+
 # family → (model builder, its nominal parameter, y0, span, solve keywords). The averaged models
 # start from their own state (not from ω, whose conversion would depend on the parameter). The
 # averaged top's scene breaks rate·T_nut ≪ 1 (N > 0.5 by t = 10): its equations are differentiated, not its
@@ -204,18 +219,26 @@ FAMILIES = {
     "triaxial_averaged": (triaxial, 0.01, triaxial().initial_state(W0), 20.0, {}),
     "orthogonal": (orthogonal, 3.0, np.array([1.0, 0.5, -0.8, 0.0]), 10.0, {}),
     "attitude": (attitude, 0.03, np.r_[W0, Q0], 5.0, {}),
+    "gravity_gradient": (gravity_gradient, 2.1, np.r_[0.05, -0.02, 0.5, Q0], 10.0, {}),
+    "inertial": (inertial, 0.2, np.r_[W0, Q0], 10.0, {}),
+    "orthogonal_inertial": (orthogonal_inertial, 0.2, np.r_[1.0, 0.5, -0.8, Q0, 0.0], 10.0, {}),
 }
 # (family, name asked, whether it is the builder's parameter (else a component of y0), step / |value|):
 # 1e-4 balances truncation (~h²) and the runs' noise (~1e-13/h); the orthogonal model's third
 # derivative in A2 is large (1e-5: spread 2e-9 vs 2e-7 at 1e-4), the triaxial averaged runs are
-# noisier (3e-3: spread 5e-8, truncation-dominated; 3e-7 at 1e-4)
+# noisier (3e-3: spread 5e-8, truncation-dominated; 3e-7 at 1e-4); the gravity gradient's C likewise
+# (3e-5: spread 2.2e-7 at 1e-4)
 DIFFERENCE_CASES = [("moving_mass", "damping", True, 1e-4), ("moving_mass", "q", False, 1e-4),
                     ("lagrange_top", "mu", True, 1e-4), ("lagrange_top", "p", False, 1e-4),
                     ("lagrange_averaged", "mu", True, 1e-4), ("lagrange_averaged", "H", False, 1e-4),
                     ("triaxial_averaged", "LinearDamping.matrix[0,0]", True, 3e-3),
                     ("orthogonal", "moments[1]", True, 1e-5), ("orthogonal", "r", False, 1e-4),
                     ("attitude", "torques[0].matrix[2,2]", True, 1e-4), ("attitude", "p", False, 1e-4),
-                    ("attitude", "q_x", False, 1e-4)]  # solve normalises the quaternion given: d/dq_x includes it
+                    ("attitude", "q_x", False, 1e-4),  # solve normalises the quaternion given: d/dq_x includes it
+                    # an attitude torque: without ∂M/∂q in the equations these read 0.7-1.0 (before 2026-11-29)
+                    ("gravity_gradient", "q_y", False, 1e-4), ("gravity_gradient", "p", False, 1e-4),
+                    ("gravity_gradient", "moments[2]", True, 3e-5), ("inertial", "q_z", False, 1e-4),
+                    ("inertial", "torques[0].moment[1]", True, 1e-4), ("orthogonal_inertial", "q_w", False, 1e-4)]
 
 
 def central_difference(family, name, is_parameter, t, h):
@@ -302,6 +325,16 @@ def test_unknown_name_lists_the_valid_ones(asked):
     assert wrong in message, f"the message must name the unknown {wrong!r}: {message}"
     for valid in ("moments[0]", "LinearDamping.matrix[2,2]", "torques[0].matrix[1,0]"):
         assert valid in message, f"the message must list the valid names ({valid!r} missing): {message}"
+
+
+def test_an_orbit_torque_on_the_models_orbit_lists_its_parameters():
+    """A GravityGradient that takes the model's orbit has no orbit parameters of its own (None): the
+    names listed are the body's (this raised a TypeError from abs(None) before 2026-11-29)."""
+    model = gravity_gradient()
+    assert g.sensitivity.parameter_names(model) == ("moments[0]", "moments[1]", "moments[2]", "rotor[0]", "rotor[1]",
+                                                    "rotor[2]")
+    with pytest.raises(ValueError, match=r"no parameter or state component 'GravityGradient.orbit_rate'.*moments\[0\]"):
+        run(model, np.r_[W0, Q0], T_VAR, sensitivities="GravityGradient.orbit_rate")
 
 
 @pytest.mark.parametrize("method", ["splitting", "auto", "cvode_adams"])

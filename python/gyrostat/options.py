@@ -116,7 +116,6 @@ option_values = operator.itemgetter(*OPTION_NAMES)
 (a function whose keywords include every name of :data:`OPTIONS`), as a tuple in the order of
 :data:`OPTIONS` (one call in C: :func:`gyrostat.solve` reads its options so on every call)."""
 _T_EVAL, _N_OUT = OPTION_NAMES.index("t_eval"), OPTION_NAMES.index("n_out")
-_ALL_BUT_T_EVAL = operator.itemgetter(*(i for i, name in enumerate(OPTION_NAMES) if name != "t_eval"))
 
 _CACHE: dict[tuple, Options] = {}
 _SHARED: set[int] = set()
@@ -140,23 +139,28 @@ def derived(opts: Options, purpose, make: Callable[[Options], object]):
     return made
 
 
-def options_of(options, values: tuple) -> Options:
+def options_of(options, values: tuple, listed=None) -> Options:
     """make_options, with the Options of recent keyword combinations kept (they are never
     modified once made): repeated calls with the same options, ``t_eval`` given as a short list
     or tuple included, cost a dictionary look-up. ``values``: the value of every option of
-    :data:`OPTIONS`, in its order (None: not given; :data:`option_values`)."""
+    :data:`OPTIONS`, in its order (None: not given; :data:`option_values`). ``listed``: the list of
+    output times given, where ``values`` holds it as a tuple (:func:`gyrostat.solve` passes it so:
+    a tuple keys the cache as it is, with no key rebuilt; a refusal names the list given)."""
     t_eval, n_out = values[_T_EVAL], values[_N_OUT]
     if options is None and (t_eval is None or (n_out is None and type(t_eval) in (list, tuple) and len(t_eval) <= 64)):
-        key = values if t_eval is None else _ALL_BUT_T_EVAL(values)
-        if not _BOOLS.isdisjoint(key):  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
-            key += tuple(map(type, key))
-        if t_eval is not None:  # a short list of output times: its values (and their types where one is a bool)
-            times = tuple(t_eval)
-            key += (times,) if bool not in map(type, times) else (times, tuple(map(type, times)))
+        if type(t_eval) is list:
+            listed, t_eval = t_eval, tuple(t_eval)
+            values = values[:_T_EVAL] + (t_eval,) + values[_T_EVAL + 1:]
+        key = values
         try:
+            if not _BOOLS.isdisjoint(key):  # True == 1 == 1.0, yet n_out=True is refused and n_out=1 is not: typed
+                key += tuple(map(type, key))
+            if t_eval is not None and not (len(t_eval) == 2 and type(t_eval[0]) is float and type(t_eval[1]) is float) \
+                    and bool in map(type, t_eval):  # the output times' types too, where one is a bool
+                key += (tuple(map(type, t_eval)),)
             return _CACHE[key]
         except KeyError:
-            made = make_options(**dict(zip(OPTION_NAMES, values)))
+            made = make_options(**_named(values, listed))
             if len(_CACHE) >= 256:
                 _CACHE.clear()
                 _SHARED.clear()
@@ -168,7 +172,15 @@ def options_of(options, values: tuple) -> Options:
             pass
     elif n_out is not None and t_eval is not None:
         raise ValueError("give t_eval or n_out, not both")
-    return make_options(options, **dict(zip(OPTION_NAMES, values)))
+    return make_options(options, **_named(values, listed))
+
+
+def _named(values: tuple, listed) -> dict:
+    """The options by name, ``t_eval`` as the user gave it (``listed``: a list passed as a tuple)."""
+    named = dict(zip(OPTION_NAMES, values))
+    if listed is not None:
+        named["t_eval"] = listed
+    return named
 
 
 def with_events(opts: Options, events, dense_output: bool, core) -> Options:

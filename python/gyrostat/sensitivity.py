@@ -73,6 +73,8 @@ def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float
     made = {}
     for name in stored if only is None else [n for n in stored if n == wanted]:
         value = getattr(torque, name)
+        if value is None:  # not given (an orbit torque's own orbit, where the model gives the orbit)
+            continue
         scale = float(np.max(np.abs(value))) if np.size(value) else 0.0
         for suffix, index in _entries(value):
             if only is not None and suffix != ("[" + entry if entry else ""):

@@ -223,12 +223,15 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     """
     # the options in the order of OPTIONS, named here rather than read by option_values(locals()): that
     # costs ~1 us of the ~2 us a call adds to the engine (bench/python_overhead.py); the order is tested
-    values = (method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, step, splitting_order)
+    # (a list of output times as a tuple: it keys options_of's cache as it is)
+    listed = type(t_eval) is list
+    values = (method, rtol, atol, tuple(t_eval) if listed else t_eval, n_out, every_step, max_steps, first_step, max_step,
+              step, splitting_order)
     try:
         core = model._core
     except AttributeError:
         core = core_of(model)
-    opts = options_of(options, values)
+    opts = options_of(options, values, t_eval if listed else None)
     if events is not None or dense_output is not False:
         opts = with_events(opts, events, dense_output, core)
     t0, t1 = span(t_span)

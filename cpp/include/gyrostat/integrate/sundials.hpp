@@ -135,7 +135,12 @@ int jacobian_callback(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void
         return -1;
     }
     Eigen::Map<model::system::Jacobian<System>>(SM_DATA_D(jac)) = j;
-    return all_finite(Eigen::Map<const Eigen::VectorXd>(j.data(), j.size())) ? 0 : 1;
+    if (all_finite(Eigen::Map<const Eigen::VectorXd>(j.data(), j.size()))) return 0;
+    // A non-finite ∂f/∂y (an attitude torque of 1e308: its ∂M/∂q overflows before f does) is a
+    // non-finite derivative too: retried, and reported so if it persists.
+    data->non_finite = true;
+    data->t_non_finite = t;
+    return 1;
 }
 
 /// Post-step projection (ARKODE): keeps constrained parts (a quaternion) on their manifold.

@@ -250,7 +250,8 @@ public:
     ///         = Qᵀ ∂Q/∂ω / δ + (½ − |Q|²/(2δ²)) ∂δ/∂ω       (|Q| < δ: the regularised branch),
     ///         = (Qᵀ ∂Q/∂ω + δ ∂δ/∂ω) / n                     (smooth),
     ///   ∂g/∂ω = L(t)/n² ∂n/∂ω  (0 at Q = 0, where g = 1),
-    ///   ∂ω̇/∂ω = J⁻¹ (−Q ∂g/∂ω − g ∂Q/∂ω + ΣM_i'),  ∂τ̇/∂ω = ∂g/∂ω; the quaternion rows as in
+    ///   ∂ω̇/∂ω = J⁻¹ (−Q ∂g/∂ω − g ∂Q/∂ω + ΣM_i'),  ∂ω̇/∂q = J⁻¹ ΣM_q (TorqueSet::add_attitude_jacobian),
+    ///   ∂τ̇/∂ω = ∂g/∂ω; the quaternion rows as in
     /// quaternion_rate_jacobian; nothing depends on τ.
     using Jacobian = Eigen::Matrix<double, dim, dim>;
     void jacobian(double t, const State& y, Jacobian& jac) const {
@@ -283,7 +284,12 @@ public:
         if (!torques_.empty()) dm += torques_.jacobian(t, omega, J, system::attitude_of<OrthogonalTorque>(y, attitude));
         jac.template topLeftCorner<3, 3>() = body_.inverse_moments().asDiagonal() * dm;
         jac.template block<1, 3>(tau_index, 0) = dg;
-        if constexpr (WithAttitude) quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
+        if constexpr (WithAttitude) {
+            quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), omega);
+            Eigen::Matrix<double, 3, 4> d_attitude = Eigen::Matrix<double, 3, 4>::Zero();
+            if (torques_.add_attitude_jacobian(t, omega, J, y.template segment<4>(3), d_attitude))
+                jac.template block<3, 4>(0, 3) = body_.inverse_moments().asDiagonal() * d_attitude;
+        }
     }
 
     // --- Splitting (integrate/splitting.hpp) ---------------------------------------------------

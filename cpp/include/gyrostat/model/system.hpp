@@ -156,6 +156,18 @@ struct has_jacobian_product<S, std::void_t<decltype(std::declval<const S&>().jac
                                    0.0, std::declval<const typename S::State&>(), std::declval<const typename S::State&>(),
                                    std::declval<typename S::State&>()))>> : std::true_type {};
 
+/// The most columns for which the variational equations take a model's jacobian_product rather
+/// than its whole Jacobian: its `static constexpr std::size_t product_columns` where it declares one
+/// (a product that evaluates shared parts again per column), else fewer than dim / 2.
+template <class S, class = void>
+struct product_columns {
+    static constexpr std::size_t value = (static_cast<std::size_t>(S::dim) - 1) / 2;
+};
+template <class S>
+struct product_columns<S, std::void_t<decltype(S::product_columns)>> {
+    static constexpr std::size_t value = S::product_columns;
+};
+
 template <class S, class = void>
 struct has_projection : std::false_type {};
 template <class S>

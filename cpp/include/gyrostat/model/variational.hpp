@@ -7,8 +7,8 @@
 //
 // (Hairer, Nørsett & Wanner, Solving ODEs I, §I.14). The terms:
 // * ∂f/∂y · S_j: the model's analytic Jacobian where it gives one (every full model; its product
-//   with each column alone where the model gives that and the columns are few: the moving mass's
-//   directional dual numbers), else the
+//   with each column alone where the model gives that and the columns are few (system.hpp:
+//   product_columns): the moving mass's directional dual numbers, the gyrostat's one column), else the
 //   directional central difference (f(y + δ S_j) − f(y − δ S_j)) / 2δ with δ‖S_j‖ = ε^{1/3} ‖y‖
 //   (truncation and rounding both ~ε^{2/3} ≈ 4e-11 relative: the averaged models);
 // * ∂f/∂p_j: (f(t, y; p_j + h_j) − f(t, y; p_j − h_j)) / 2h_j on the two models the caller built
@@ -75,7 +75,7 @@ public:
         // columns of a model that gives the product alone).
         [[maybe_unused]] system::Jacobian<M> jacobian;
         [[maybe_unused]] bool by_products = false;
-        if constexpr (system::has_jacobian_product<M>::value) by_products = 2 * columns_.size() < static_cast<std::size_t>(dim);
+        if constexpr (system::has_jacobian_product<M>::value) by_products = columns_.size() <= system::product_columns<M>::value;
         if constexpr (system::has_jacobian<M>::value)
             if (!by_products) model_.jacobian(t, y, jacobian);
         for (std::size_t j = 0; j < columns_.size(); ++j) {

@@ -31,9 +31,8 @@ namespace gyrostat {
 /// small value type. It must give
 ///   Vec3 operator()(t, ω, J)                       the torque in body axes (J: principal moments);
 ///   void add_jacobian(t, ω, J, Mat3& dM_dω)        its derivative with respect to ω (an attitude
-///                                                  torque's ∂M/∂q is left out of the Jacobian: the
-///                                                  implicit methods' Newton iteration only needs an
-///                                                  approximation, the answer is the right-hand side's);
+///                                                  torque's ∂M/∂q is the set's central difference:
+///                                                  TorqueSet::add_attitude_jacobian);
 ///   bool axisymmetric()                            it commutes with rotations about body z;
 /// and declare beside its equations (torque/parameter.hpp)
 ///   static name, python_name, description          its scene type, its Python class, one line,
@@ -399,6 +398,28 @@ public:
                     x.add_jacobian(t, omega, moments, d);
             }, part);
         return d;
+    }
+    /// Σ ∂M_i/∂q of the torques that read the attitude, added to `d` (3 × 4, q = (w, x, y, z)):
+    /// central differences in each component of q, step ε^{1/3} (|q| = 1: truncation and rounding
+    /// both ~4e-11 relative; a torque normalises q, so the radial column is its formula's, which a
+    /// tangent direction never weighs). The variational equations need it (model/variational.hpp:
+    /// without it the sensitivities under an attitude torque were wrong by their own size); false,
+    /// `d` untouched, where no torque reads the attitude.
+    bool add_attitude_jacobian(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d& attitude,
+                               Eigen::Matrix<double, 3, 4>& d) const {
+        constexpr double step = 6.0554544523933395e-06;  // ε^{1/3}
+        bool any = false;
+        for (const auto& part : others_) {
+            if (!std::visit([](const auto& x) { return gyrostat::uses_attitude(x); }, part)) continue;
+            any = true;
+            for (int k = 0; k < 4; ++k) {
+                Eigen::Vector4d plus = attitude, minus = attitude;
+                plus[k] += step;
+                minus[k] -= step;
+                d.col(k) += (evaluate(part, t, omega, moments, &plus) - evaluate(part, t, omega, moments, &minus)) / (2.0 * step);
+            }
+        }
+        return any;
     }
     /// The torques outside the folded affine part, evaluated one by one.
     const std::vector<AnyTorque>& others() const { return others_; }
