@@ -203,6 +203,10 @@ def inertial(m1=0.2):
                    attitude=True)
 
 
+def top_inertial(mu=0.5):
+    return lg.LagrangeTop(1.5, 1.0, mu, [g.InertialTorque([0.3, -0.2, 0.1])])
+
+
 def orthogonal_inertial(m1=0.2):
     return o.OrthogonalModel(g.Body([2.0, 3.0, 4.0]), 0.1, torques=[g.InertialTorque([0.1, m1, -0.3])], attitude=True)
 
@@ -222,6 +226,7 @@ FAMILIES = {
     "gravity_gradient": (gravity_gradient, 2.1, np.r_[0.05, -0.02, 0.5, Q0], 10.0, {}),
     "inertial": (inertial, 0.2, np.r_[W0, Q0], 10.0, {}),
     "orthogonal_inertial": (orthogonal_inertial, 0.2, np.r_[1.0, 0.5, -0.8, Q0, 0.0], 10.0, {}),
+    "top_inertial": (top_inertial, 0.5, TOP_Y0, 5.0, {}),
 }
 # (family, name asked, whether it is the builder's parameter (else a component of y0), step / |value|):
 # 1e-4 balances truncation (~h²) and the runs' noise (~1e-13/h); the orthogonal model's third
@@ -238,7 +243,8 @@ DIFFERENCE_CASES = [("moving_mass", "damping", True, 1e-4), ("moving_mass", "q",
                     # an attitude torque: without ∂M/∂q in the equations these read 0.7-1.0 (before 2026-11-29)
                     ("gravity_gradient", "q_y", False, 1e-4), ("gravity_gradient", "p", False, 1e-4),
                     ("gravity_gradient", "moments[2]", True, 3e-5), ("inertial", "q_z", False, 1e-4),
-                    ("inertial", "torques[0].moment[1]", True, 1e-4), ("orthogonal_inertial", "q_w", False, 1e-4)]
+                    ("inertial", "torques[0].moment[1]", True, 1e-4), ("orthogonal_inertial", "q_w", False, 1e-4),
+                    ("top_inertial", "q_y", False, 1e-4), ("top_inertial", "mu", True, 1e-4)]
 
 
 def central_difference(family, name, is_parameter, t, h):

@@ -141,7 +141,8 @@ public:
 
     /// ∂f/∂y of the equations above: the Euler rows through (A − C) q r / A, the gravity torque
     /// through γ(Q) (∂γ1/∂(w, x, y, z) = 2(−y, z, −w, x), ∂γ2/∂(w, x, y, z) = 2(x, w, z, y)) and the
-    /// torques through their own ∂M/∂ω; the quaternion rows as in quaternion_rate_jacobian.
+    /// torques through their own ∂M/∂ω and, those that read the attitude, ∂M/∂Q
+    /// (TorqueSet::add_attitude_jacobian); the quaternion rows as in quaternion_rate_jacobian.
     using Jacobian = Eigen::Matrix<double, 7, 7>;
     void jacobian(double t, const State& y, Jacobian& jac) const {
         const double p = y[0], q = y[1], r = y[2];
@@ -160,6 +161,11 @@ public:
         const double k = 2.0 * mu_ / A_;
         jac.template block<1, 4>(0, 3) << k * x, k * w, k * z, k * yy;          //  μ ∂γ2/∂Q / A
         jac.template block<1, 4>(1, 3) << k * yy, -k * z, k * w, -k * x;        // −μ ∂γ1/∂Q / A
+        Eigen::Matrix<double, 3, 4> dM_dQ = Eigen::Matrix<double, 3, 4>::Zero();
+        if (torques_.add_attitude_jacobian(t, Vec3(p, q, r), body_.moments(), Eigen::Vector4d(w, x, yy, z), dM_dQ)) {
+            jac.template block<2, 4>(0, 3) += dM_dQ.template topRows<2>() / A_;
+            jac.template block<1, 4>(2, 3) += dM_dQ.row(2) / C_;
+        }
         quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), Vec3(p, q, r));
     }
 
