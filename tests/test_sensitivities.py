@@ -290,6 +290,47 @@ def test_against_central_differences(family, name, is_parameter, step):
         assert np.all(branch == 0.0), f"branch is a label (ds/dt = 0): its derivative must be 0, got {branch}"
 
 
+def test_cvode_bdf_starts_from_the_normalised_quaternion():
+    """A quaternion given with |q| = 0.975: solve normalises it for every method, and the variational
+    run by cvode_bdf must start there too (it ran from q as given before 2026-11-29: the state 2.3e-2
+    off, dy/d moment 5.2e-3, with a reported error of 2.8e-9)."""
+    y0 = np.r_[W0, 0.9, 0.1, 0.3, 0.2]
+    t = np.linspace(0.0, 10.0, 11)
+    name = "torques[0].moment[1]"
+    h = 1e-4 * 0.2
+    moved = [run(inertial(0.2 + sign * h), y0, t, rtol=1e-13, atol=1e-15, error_estimate=False) for sign in (1, -1)]
+    reference = (moved[0].y - moved[1].y) / (2 * h)
+    plain = run(inertial(), y0, t, rtol=1e-13, atol=1e-15, error_estimate=False)
+    sol = run(inertial(), y0, t, rtol=1e-11, method="cvode_bdf", sensitivities=name)
+    assert sol.success, sol.message
+    # 1e-7: BDF at rtol 1e-11 over 10 s (measured 3.4e-9); the unnormalised start read 2.3e-2
+    assert rel_error(sol.y, plain.y) < 1e-7, f"the state against the normalised start's: {rel_error(sol.y, plain.y):.2e}"
+    err = rel_error(sol.sensitivity(name), reference)
+    # 1e-6 as above (measured 1.3e-8; 5.2e-3 from the unnormalised start)
+    assert err < 1e-6, f"dy/d {name} by cvode_bdf: relative error {err:.2e} against central differences (bound 1e-6)"
+
+
+def test_output_sensitivities_where_their_parts_cancel():
+    """The averaged top's nutation roots u1, u2 and modulus m near small nutation: their derivative in
+    μ is the sum of a change through the state and one through μ itself, each ~9 where the sum is
+    ~0.45; taken as one central difference along (S, 1) it holds to ~1e-8 (taken apart, each part's
+    truncation left 1e-3; before 2026-11-29)."""
+    y0 = lg.initial_state([0.1, 0.2, 2.0], theta=np.radians(50.0), phi=0.3, psi=0.2)
+    t = [0.0, 5.0]
+
+    def plain(mu):
+        return run(lg.LagrangeAveraged(1.5, 1.0, mu), y0, t, rtol=1e-13, atol=1e-15, error_estimate=False)
+
+    sol = run(lg.LagrangeAveraged(1.5, 1.0, 0.5), y0, t, rtol=1e-11, error_estimate=False, sensitivities="mu")
+    for output in ("u1", "u2", "m", "u3", "v"):
+        coarse, fine = ((plain(0.5 + h)[output] - plain(0.5 - h)[output]) / (2 * h) for h in (5e-6, 2.5e-6))
+        spread = rel_error(coarse, fine)
+        assert spread < 1e-7, f"d{output}/dmu: central differences at h, h/2 differ by {spread:.2e}: reference unusable"
+        err = rel_error(sol.sensitivity("mu", of=output), fine)
+        # 1e-6: the differences agree to ≤ 1e-7 (measured ~1e-9); the output's derivative measured 1e-8 … 4e-8
+        assert err < 1e-6, f"d{output}/dmu: relative error {err:.2e} against central differences (bound 1e-6)"
+
+
 # ------------------------------------------------------------------------------- 4. outputs
 @pytest.mark.parametrize("name", ["q", "moments[1]", "LinearDamping.matrix[0,1]"])
 def test_output_sensitivities_follow_the_chain_rule(name):

@@ -178,6 +178,10 @@ def test_dense_output_carries_them(method):
         assert np.allclose(sol.sensitivity(name, t=middle), reference, rtol=0, atol=100 * rtol * scale), name
         assert np.allclose(sol.sensitivity(name, t=sol.t), sol.sensitivity(name), rtol=0, atol=10 * rtol * scale), name
         assert np.allclose(sol.sensitivity(name, of="r", t=middle), reference[:, 2], rtol=0, atol=100 * rtol * scale)
+        # one time: one row, as sol(t) gives for one time
+        assert sol.sensitivity(name, t=middle[3]).shape == sol(middle[3]).shape == (7,)
+        assert np.array_equal(sol.sensitivity(name, t=middle[3]), sol.sensitivity(name, t=middle)[3])
+        assert np.ndim(sol.sensitivity(name, of="r", t=middle[3])) == 0
     assert np.allclose(sol(middle)[:, :3], there.y[:, :3], rtol=0, atol=100 * rtol)
     with pytest.raises(ValueError, match="dense_output=True"):
         there.sensitivity(names[0], t=1.0)

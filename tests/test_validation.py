@@ -69,3 +69,23 @@ def test_nan_torque_and_damping():
         g.ConstantTorque([0.0, 0.0, math.nan])
     with pytest.raises(ValueError, match="LinearDamping"):
         g.LinearDamping(np.full((3, 3), math.inf))
+
+
+def test_a_models_arguments_are_fixed_once_it_is_built():
+    """Setting a constructor argument again (model.torques = ...) left every run on the engine model
+    built before and rebuilt the sensitivities' moved models from the new value (0.9 relative error,
+    no warning; before 2026-11-29): it is refused, naming the attribute; other attributes are free."""
+    from gyrostat import lagrange
+
+    model = g.Model(g.Body([1.0, 1.4, 2.1]), [g.LinearDamping(diagonal=[0.05, 0.02, 0.02])])
+    with pytest.raises(AttributeError, match="Model.torques is fixed once the model is built"):
+        model.torques = [g.LinearDamping(diagonal=[0.5, 0.02, 0.02])]
+    with pytest.raises(AttributeError, match="Model.body is fixed"):
+        model.body = g.Body([1.0, 1.0, 1.0])
+    with pytest.raises(AttributeError, match="LagrangeTop.mu is fixed"):
+        lagrange.LagrangeTop(1.5, 1.0, 0.5).mu = 2.0
+    with pytest.raises(AttributeError, match="MovingMassModel.damping is fixed"):
+        g.MovingMassModel(g.Body([2.0, 2.0, 1.0]), 0.1, 0.2, 10.0, 0.5).damping = 1.0
+    model.label = "mine"  # not an argument: free
+    assert model.label == "mine"
+    assert g.solve(model, [0.3, 0.2, 1.0], (0.0, 1.0), n_out=2).success

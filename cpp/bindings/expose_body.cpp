@@ -568,6 +568,22 @@ Examples
 >>> gyrostat.Body(inertia=[[2.0, 0.1, 0.0], [0.1, 2.0, 0.0], [0.0, 0.0, 1.0]]).principal
 False
 )doc")
+        .def("with_rotor", &Body::with_rotor, py::arg("rotor"), R"doc(The same body with the rotors' momentum k (kg m^2/s, your body frame).
+
+Its moments and principal axes are this body's, bit for bit (a tensor given again would be
+decomposed again, and its axes could differ in their last bits).
+
+Parameters
+----------
+rotor : array_like
+    k, three numbers in your body frame.
+
+Examples
+--------
+>>> import gyrostat
+>>> gyrostat.Body([3.0, 2.0, 1.0]).with_rotor([0.0, 0.0, 0.5]).rotor
+array([0. , 0. , 0.5])
+)doc")
         .def("__repr__", &Body::describe);
 
     py::class_<torque::Motion>(m, "Motion",

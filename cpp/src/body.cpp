@@ -46,6 +46,13 @@ Body::Body(const Vec3& moments, const Vec3& rotor) : moments_(moments), rotor_(r
     inverse_moments_ = moments_.cwiseInverse();
 }
 
+Body Body::with_rotor(const Vec3& rotor) const {
+    require_finite(rotor, "Body: rotor momentum k");
+    Body body = *this;
+    body.rotor_ = axes_.transpose() * rotor;
+    return body;
+}
+
 Body Body::from_inertia(const Mat3& inertia, const Vec3& rotor) {
     for (int i = 0; i < 9; ++i)
         if (!std::isfinite(inertia.data()[i]))

@@ -52,6 +52,24 @@ class Body:
         ...
     def __repr__(self) -> str:
         ...
+    def with_rotor(self, rotor: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> Body:
+        """
+        The same body with the rotors' momentum k (kg m^2/s, your body frame).
+        
+        Its moments and principal axes are this body's, bit for bit (a tensor given again would be
+        decomposed again, and its axes could differ in their last bits).
+        
+        Parameters
+        ----------
+        rotor : array_like
+            k, three numbers in your body frame.
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Body([3.0, 2.0, 1.0]).with_rotor([0.0, 0.0, 0.5]).rotor
+        array([0. , 0. , 0.5])
+        """
     @property
     def inertia(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
         """

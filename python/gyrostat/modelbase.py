@@ -51,7 +51,9 @@ class ModelBase:
 
     Subclasses set ``_core`` in their constructor; ``kind`` names the model in reports. Users
     build one of the family models (:class:`gyrostat.Model`, :class:`gyrostat.AveragedModel`,
-    …); this class is what they have in common.
+    …); this class is what they have in common. What a model was built from (its body, torques
+    and numbers) is fixed once it is built: setting one again raises AttributeError (build a new
+    model), since the engine's model was made from it.
 
     Examples
     --------
@@ -66,6 +68,14 @@ class ModelBase:
 
     __slots__ = ("_core", "__dict__")
     kind = "model"
+
+    def __setattr__(self, name: str, value) -> None:
+        # The engine's model is made once from the constructor's arguments: one set again afterwards
+        # would leave every run on the old model, and the sensitivities' moved models on the new one.
+        if name in self.__dict__ and name in getattr(self, "_arguments", dict)():
+            raise AttributeError(f"{type(self).__name__}.{name} is fixed once the model is built (its engine model was "
+                                 f"made from it): build a new {type(self).__name__} with the {name} you want")
+        object.__setattr__(self, name, value)
 
     @property
     def family(self) -> str:

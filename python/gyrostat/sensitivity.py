@@ -80,7 +80,7 @@ def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float
             if only is not None and suffix != ("[" + entry if entry else ""):
                 continue
             def rebuild(new, name=name, value=value, index=index):
-                arguments = {p: getattr(torque, p) for p in stored}
+                arguments = {p: getattr(torque, p) for p in stored if getattr(torque, p) is not None}  # (None: not given)
                 arguments[name] = _moved(value, index, new)
                 return type(torque)(**arguments)
             made[f"{name}{suffix}"] = (float(np.asarray(value, dtype=float)[index]), scale, rebuild,
@@ -131,7 +131,7 @@ def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, C
         def rebuild(new, k=k):
             changed = rotor.copy()
             changed[k] = new
-            return rebuilt(body=_core.Body(inertia=tensor, rotor=changed))
+            return rebuilt(body=body.with_rotor(changed))  # (the same axes: a tensor given again turns them by 1e-16)
         made[f"rotor[{k}]"] = (float(rotor[k]), float(np.max(np.abs(rotor))), rebuild, False)
     return made
 

@@ -86,7 +86,8 @@ class SolutionViews:
         -------
         numpy.ndarray
             (n, dim) in the state's order; (n,) with ``of``; (occurrences,) with ``event``; (len(t),
-            dim) or (len(t),) with ``t``. KeyError for a name the run does not carry.
+            dim) or (len(t),) with ``t`` ((dim,) or a scalar with one ``t``, as ``sol(t)``). KeyError
+            for a name the run does not carry.
 
         Examples
         --------
@@ -112,7 +113,8 @@ class SolutionViews:
             result, j = dense
             dim = len(self.state_names)
             block = result.dense_whole(np.atleast_1d(np.asarray(t, dtype=float)))[:, dim * (1 + j):dim * (2 + j)]
-            return block if of is None else block[:, self.state_names.index(of)]
+            block = block if of is None else block[:, self.state_names.index(of)]
+            return block[0] if np.ndim(t) == 0 else block  # one time: one row, as sol(t) gives
         if event is not None:
             if events is None or not 0 <= event < len(events):
                 raise KeyError(f"no event {event!r} in this run's sensitivities ({len(events or ())} events)")

@@ -43,6 +43,11 @@ public:
     /// and the moments in the order given.
     static Body from_inertia(const Mat3& inertia, const Vec3& rotor = Vec3::Zero());
 
+    /// The same body (moments and principal axes, bit for bit) with the rotor momentum k given in
+    /// the user's frame: a rotor moved without a tensor decomposed again (whose axes and moments
+    /// would differ in their last bits: gyrostat.sensitivity's moved models).
+    Body with_rotor(const Vec3& rotor) const;
+
     const Vec3& moments() const { return moments_; }
     const Vec3& inverse_moments() const { return inverse_moments_; }
     /// k in principal axes.

@@ -56,6 +56,11 @@ public:
         torque::MovingMassDamper check(mass, arm, frequency, damping);
         (void)check;
         torques_.require_no_attitude("MovingMassModel");
+        // The carrier is rigid (docs/papers/001_moving_mass.md): a rotor given here was ignored.
+        if (body_.rotor().squaredNorm() != 0.0)
+            throw std::invalid_argument("MovingMassModel: the carrier is a rigid body (rotor k = 0); this body has |k| = " +
+                                        format_value(body_.rotor().norm()) +
+                                        ": for a gyrostat with a damper use gyrostat.Model with a MovingMassDamper torque");
         const double shift = mu_ * rho_ * rho_;
         carrier_ = Vec3(body_.moments()[0] - shift, body_.moments()[1] - shift, body_.moments()[2]);
         if (!(carrier_[0] > 0.0) || !(carrier_[1] > 0.0))

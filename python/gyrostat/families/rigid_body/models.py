@@ -78,11 +78,14 @@ class Model(ModelBase):
         if orbit is not None and not isinstance(orbit, _core.Orbit):
             raise TypeError(f"orbit must be a gyrostat.Orbit, not {type(orbit).__name__}")
         attitude = orbit is not None if attitude is None else flag(attitude, "attitude")
+        self._orbit_given = orbit
         self._core = _core.gyrostat_model(body, self.torques, attitude, orbit)
 
     def _arguments(self) -> dict:
-        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it)."""
-        return {"body": self.body, "torques": self.torques, "attitude": self.attitude, "orbit": self.orbit}
+        """What it was built from, as its constructor takes it (gyrostat.sensitivity rebuilds from it):
+        the orbit as given (None where its orbit torques bring their own, so that one of theirs moved
+        moves the model's with it)."""
+        return {"body": self.body, "torques": self.torques, "attitude": self.attitude, "orbit": self._orbit_given}
 
     @property
     def orbit(self) -> _core.Orbit | None:
