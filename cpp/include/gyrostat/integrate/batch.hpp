@@ -22,6 +22,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -79,6 +81,56 @@ inline Lanes product_error(const Lanes& a, const Lanes& b, const Lanes& p) {
 #endif
 }
 
+/// taylor_detail::fast_log2 lane by lane, to the same bits, in a form the compiler vectorises: the
+/// exponent read as a double from the bits of 2^52 + e (no integer conversion, which AVX2 lacks
+/// for 64-bit lanes). Eigen's log costs ~5× more per lane, and the step size needs ρ to a few
+/// digits only (taylor.hpp: fast_log2).
+inline Lanes fast_log2(const Lanes& x) {
+    constexpr double two_52 = 4503599627370496.0;
+    Lanes out;
+    for (int l = 0; l < W; ++l) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &x[l], sizeof bits);
+        const std::uint64_t exponent_bits = (bits >> 52) | 0x4330000000000000ULL;  // the double 2^52 + e
+        double exponent;
+        std::memcpy(&exponent, &exponent_bits, sizeof exponent);
+        out[l] = (exponent - (two_52 + 1023.0)) + taylor_detail::log2_of_mantissa(bits);  // exact difference
+    }
+    return out;
+}
+
+/// taylor_detail::fast_exp2 lane by lane, to the same bits, without a branch or an integer
+/// conversion: ⌊y⌋ by adding and subtracting 1.5·2^52 (y rounded to an integer) and stepping down
+/// where that rounded up; 2^⌊y⌋ from the bits of the double 2^52 + ⌊y⌋ + 1023 shifted into the
+/// exponent; +∞ from y ≥ 1023 (NaN for NaN), 0 below −1022. In GCC's vector types, whose
+/// comparisons select lane by lane (a loop of scalar comparisons is not vectorised: they may trap).
+inline Lanes fast_exp2(const Lanes& lanes) {
+    using Vector = double __attribute__((vector_size(W * sizeof(double))));
+    using Bits = std::uint64_t __attribute__((vector_size(W * sizeof(double))));
+    constexpr double round = 6755399441055744.0, two_52 = 4503599627370496.0;  // 1.5·2^52, 2^52
+    constexpr double lowest = -1022.0, below_highest = 1023.0 - 0x1p-43;       // (the largest double below 1023)
+    const Vector zero{};
+    Vector y;
+    std::memcpy(&y, lanes.data(), sizeof y);
+    Vector x = y > zero + lowest ? y : zero + lowest;  // y itself where it is in range; NaN and the rest selected out below
+    x = x < zero + below_highest ? x : zero + below_highest;
+    Vector n = (x + round) - round;
+    n = n > x ? n - 1.0 : n;  // ⌊x⌋
+    const Vector biased = (n + 1023.0) + two_52;  // its low bits hold n + 1023
+    Bits bits;
+    std::memcpy(&bits, &biased, sizeof bits);
+    bits <<= 52;
+    Vector scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    Vector out;
+    for (int l = 0; l < W; ++l) out[l] = taylor_detail::exp2_of_fraction(x[l] - n[l]) * scale[l];
+    out = y < zero + lowest ? zero : out;
+    out = y < zero + 1023.0 ? out : y + std::numeric_limits<double>::infinity();
+    Lanes result;
+    std::memcpy(result.data(), &out, sizeof out);
+    return result;
+}
+
 /// The value as stored: the compiler may not fuse the multiplication that made it into the
 /// additions that use it (a fused y + c·dt would leave two_sum_error and product_error reading a
 /// product the sum never saw: their "exact" errors would not be).
@@ -87,12 +139,15 @@ inline void as_stored(Lanes& value) { asm volatile("" : "+m"(value)); }
 /// The lanes of a batch for taylor_steps (taylor.hpp): one order for every lane and every step,
 /// from rtol (atol when rtol = 0), so that a lane's arithmetic never depends on its neighbours (a
 /// member's result is the same in any batch); a lane in absolute mode (rtol·‖y‖ ≤ atol) sizes its
-/// steps for atol at that order. Step size from the lanes' log and exp; the new state by Horner's
-/// scheme at each lane's own step or, where that order's ε is below taylor_detail::compensate_below
-/// (rtol < 1e-12), as the scalar path makes it there (taylor.hpp: advance_compensated): y + (c_1 dt
-/// added exactly) + the rest, with the state's rounding error carried from step to step (with
-/// Horner's scheme alone the batch's state rounding walked as the scalar's once did: error 2.85e-12
-/// at rtol 1e-13 over the benchmark's t = 200, against 5.96e-13 for the scalar path).
+/// steps for atol at that order. Step size from the lanes' fast_log2 and fast_exp2 (as the scalar
+/// path's: Eigen's log and exp took a third of the step's time outside the recursion); the new
+/// state by Horner's scheme at each lane's own step, the components' chains side by side
+/// (Estrin's, as the scalar path's, was 7–10 % slower here) or, where that order's ε is below
+/// taylor_detail::compensate_below (rtol < 1e-12), as the scalar path makes it there (taylor.hpp:
+/// advance_compensated): y + (c_1 dt added exactly) + the rest, with the state's rounding error
+/// carried from step to step (with Horner's scheme alone the batch's state rounding walked as the
+/// scalar's once did: error 2.85e-12 at rtol 1e-13 over the benchmark's t = 200, against 5.96e-13
+/// for the scalar path).
 template <class LaneModel>
 class LaneTaylorRuns : public LaneRuns<LaneModel> {
 public:
@@ -117,7 +172,8 @@ public:
     int prepare(const Vector& y, const Options& /*options*/) {
         norm_ = max_abs<dim>(y.data());
         const auto relative = rtol_ * norm_ > atol_;
-        log2_scale_ = relative.select(norm_.log() / ln2, Lanes::Zero());
+        const Lanes log2_norm = fast_log2(norm_);  // (apart: a select's operands are evaluated lane by lane)
+        log2_scale_ = relative.select(log2_norm, Lanes::Zero());
         safety_ = relative.select(Lanes::Constant(safety_relative_), Lanes::Constant(safety_absolute_));
         return order_;
     }
@@ -126,19 +182,25 @@ public:
         for (int i = 0; i < dim; ++i) c[0][i] = y[i];
         this->model().template taylor<Order>(c);
     }
-    /// h = safety · min(ρ_{p−1}, ρ_p), ρ_m = (scale / ‖c_m‖)^{1/m} (a zero coefficient: no limit)
+    /// h = safety · min(ρ_{p−1}, ρ_p), ρ_m = (scale / ‖c_m‖)^{1/m} (a zero coefficient: no limit),
+    /// in base-2 logarithms to ~2e-4 as the scalar path's (taylor_detail::step_size).
     template <int Order>
     Lanes step_size(const Coefficient* c) const {
-        const Lanes low = (log2_scale_ - max_abs<dim>(c[Order - 1]).log() / ln2) / (Order - 1);
-        const Lanes high = (log2_scale_ - max_abs<dim>(c[Order]).log() / ln2) / Order;
-        return safety_ * (low.min(high) * ln2).exp();
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        const Lanes c_low = max_abs<dim>(c[Order - 1]), c_high = max_abs<dim>(c[Order]);
+        const Lanes low = (log2_scale_ - fast_log2(c_low)) * (1.0 / (Order - 1));
+        const Lanes high = (log2_scale_ - fast_log2(c_high)) * (1.0 / Order);
+        const Lanes exponent = (c_low == 0.0).select(Lanes::Constant(inf), low).min((c_high == 0.0).select(Lanes::Constant(inf), high));
+        return safety_ * fast_exp2(exponent);
     }
     bool finite(int l, const Coefficient& c_last, const Lanes& h) const {
         bool finite = std::isfinite(norm_[l]) && !std::isnan(h[l]);
         for (int i = 0; i < dim && finite; ++i) finite = std::isfinite(c_last[i][l]);
         return finite;
     }
+    /// (min_step(t) ≤ 10 ulp(t) ≤ 10·2⁻⁵²|t| for a normal t: a step above that bound needs no nextafter.)
     static bool too_small(double t, double step, double remaining, double direction) {
+        if (step > 10.0 * 0x1p-52 * std::abs(t) + 1e-300) return false;
         return step < min_step(t, direction) && step != remaining;
     }
     /// Horner at each lane's own step (dt = 0 leaves a finished lane where it is); the outputs
@@ -147,11 +209,15 @@ public:
     void advance(Lanes& t, Vector& y, const Coefficient* c, const Lanes& dt, double t1) {
         Vector y_new;
         const Vector low_start = y_low_;
+        // Σ_{n ≥ lowest} c_n dt^{n − lowest} by Horner's scheme, the components' chains side by side
+        const int lowest = compensated_ ? 2 : 0;
+        Vector horner;
+        for (int i = 0; i < dim; ++i) horner[i] = c[Order][i];
+        for (int n = Order - 1; n >= lowest; --n)
+            for (int i = 0; i < dim; ++i) horner[i] = horner[i] * dt + c[n][i];
         for (int i = 0; i < dim; ++i) {
             if (compensated_) {  // c_0 + c_1 dt + dt²(c_2 + c_3 dt + …) + low, as advance_compensated
-                Lanes rest = c[Order][i];
-                for (int n = Order - 1; n >= 2; --n) rest = rest * dt + c[n][i];
-                rest *= dt * dt;
+                const Lanes rest = horner[i] * (dt * dt);
                 Lanes first = c[1][i] * dt;
                 as_stored(first);
                 const Lanes partial = c[0][i] + first;
@@ -161,9 +227,7 @@ public:
                 y_new[i] = partial + b;
                 y_low_[i] = taylor_detail::two_sum_error(partial, b, y_new[i]);
             } else {
-                Lanes v = c[Order][i];
-                for (int n = Order - 1; n >= 0; --n) v = v * dt + c[n][i];
-                y_new[i] = v;
+                y_new[i] = horner[i];
             }
         }
         for (int l = 0; l < this->count(); ++l) {
@@ -208,7 +272,6 @@ public:
     }
 
 private:
-    static constexpr double ln2 = 0.69314718055994530942;
     double rtol_, atol_, safety_relative_ = 0.0, safety_absolute_ = 0.0;
     int order_ = 0;
     bool compensated_ = false;

@@ -61,6 +61,21 @@ namespace gyrostat::integrate {
 
 namespace taylor_detail {
 
+/// log2 of the mantissa of x's bits (1 + u, u ∈ [0, 1)) by fast_log2's cubic (shared with the
+/// SIMD lanes' form, batch.hpp).
+inline double log2_of_mantissa(std::uint64_t bits) {
+    bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
+    double mantissa;
+    std::memcpy(&mantissa, &bits, sizeof mantissa);
+    const double u = mantissa - 1.0;
+    return (1.33453924e-03 + 1.41348539 * u) + u * u * (-5.67752150e-01 + 1.53913535e-01 * u);
+}
+
+/// 2^f for f ∈ [0, 1) by fast_exp2's cubic.
+inline double exp2_of_fraction(double f) {
+    return (0.99981196 + 0.69683858 * f) + f * f * (0.22412644 + 0.07901994 * f);
+}
+
 /// log2 of a positive x to 1.4e-3 (the exponent's bits plus a cubic fit of log2 on the mantissa in
 /// [1, 2), Chebyshev nodes). The step size needs ρ to a few digits only: this error moves h by
 /// ≤ 1e-4 (it is divided by the order), while libm's log2 on the step's critical path (recursion →
@@ -70,11 +85,7 @@ inline double fast_log2(double x) {
     std::uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
     const double exponent = static_cast<double>(static_cast<int>(bits >> 52) - 1023);
-    bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
-    double mantissa;
-    std::memcpy(&mantissa, &bits, sizeof mantissa);
-    const double u = mantissa - 1.0;
-    return exponent + ((1.33453924e-03 + 1.41348539 * u) + u * u * (-5.67752150e-01 + 1.53913535e-01 * u));
+    return exponent + log2_of_mantissa(bits);
 }
 
 /// 2^y to 1.9e-4 relative (a cubic fit of 2^f on f ∈ [0, 1), scaled by 2^⌊y⌋ in the exponent's
@@ -85,7 +96,7 @@ inline double fast_exp2(double y) {
     int n = static_cast<int>(y);
     n -= (n > y);  // ⌊y⌋
     const double f = y - n;
-    const double fraction = (0.99981196 + 0.69683858 * f) + f * f * (0.22412644 + 0.07901994 * f);
+    const double fraction = exp2_of_fraction(f);
     const std::uint64_t bits = static_cast<std::uint64_t>(n + 1023) << 52;
     double scale;
     std::memcpy(&scale, &bits, sizeof scale);
