@@ -109,8 +109,8 @@ namespace {
 std::vector<SensitivityColumn> sensitivity_columns(const std::vector<py::tuple>& given) {
     std::vector<SensitivityColumn> columns;
     for (const py::tuple& c : given) {
-        if (c.size() != 5 && c.size() != 7)
-            throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol[, far, far_step])");
+        if (c.size() != 5 && c.size() != 7 && c.size() != 8)
+            throw std::invalid_argument("a sensitivity column is (component, plus, minus, step, atol[, far, far_step[, analytic]])");
         SensitivityColumn column;
         column.component = c[0].cast<int>();
         if (!c[1].is_none()) column.plus = &c[1].cast<const BoundModel&>().model;
@@ -121,6 +121,7 @@ std::vector<SensitivityColumn> sensitivity_columns(const std::vector<py::tuple>&
             column.far = &c[5].cast<const BoundModel&>().model;
             column.far_step = c[6].cast<double>();
         }
+        if (c.size() == 8) column.analytic = c[7].cast<int>();
         columns.push_back(column);
     }
     return columns;

@@ -24,6 +24,14 @@ void expose_lagrange(py::module_& m) {
     m.def("lagrange_nutation", &model::nutation, py::arg("A"), py::arg("C"), py::arg("mu"), py::arg("G_z"), py::arg("H"),
           py::arg("r"));
     m.def(
+        "lagrange_nutation_slopes",
+        [](double A, double C, double mu, double Gz, double H, double r) {
+            const model::NutationSlopes s = model::nutation_slopes(A, C, mu, Gz, H, r, model::nutation(A, C, mu, Gz, H, r));
+            return std::make_tuple(s.Gz, s.H, s.r, s.mu);
+        },
+        py::arg("A"), py::arg("C"), py::arg("mu"), py::arg("G_z"), py::arg("H"), py::arg("r"),
+        "(dv/dG_z, dv/dH, dv/dr, dv/dmu) of v = <cos theta> over the nutation, at fixed A and C");
+    m.def(
         "lagrange_nutation_table",
         [](double A, double C, double mu, const std::vector<double>& Gz, const std::vector<double>& H,
            const std::vector<double>& r) {

@@ -42,6 +42,14 @@ void expose_models(py::module_& m) {
             },
             "The model's own numbers its right-hand side is affine in (sensitivities take their derivative by a "
             "one-sided difference, exact to rounding).")
+        .def_property_readonly(
+            "analytic_in",
+            [](const BoundModel& b) {
+                return std::visit([](const auto& x) { return model::system::analytic_in<std::decay_t<decltype(x)>>(); },
+                                  b.model);
+            },
+            "The model's own numbers whose derivative of the right-hand side it gives in closed form (sensitivities "
+            "take it instead of a difference quotient).")
         .def_property_readonly("output_names", [](const BoundModel& b) { return output_names(b.model); })
         .def_property_readonly(
             "quantities",

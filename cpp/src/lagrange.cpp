@@ -89,6 +89,45 @@ Nutation nutation(double A, double C, double mu, double Gz, double H, double r) 
     return n;
 }
 
+namespace {
+/// Z(m) = (1 − 2W(m))/m, W = (K − E)/(m K): its Taylor coefficients (exact rationals from the
+/// series of K and E) below m = 0.05, where 13 terms leave < 1e-19; above, the quotient itself
+/// (W to ~1e-16, so Z to ~3e-14).
+double one_minus_twice_mean_over_m(double m) {
+    static constexpr double z[13] = {-1.0 / 8, -1.0 / 16, -41.0 / 1024, -59.0 / 2048, -727.0 / 32768, -1171.0 / 65536,
+                                     -498409.0 / 33554432, -848479.0 / 67108864, -11768921.0 / 1073741824,
+                                     -20705249.0 / 2147483648, -2359256231.0 / 274877906944,
+                                     -4242171053.0 / 549755813888, -61534748221.0 / 8796093022208};
+    if (m >= 0.05) return (1.0 - 2.0 * mean_sn_squared(m)) / m;
+    double sum = z[12];
+    for (int k = 11; k >= 0; --k) sum = sum * m + z[k];
+    return sum;
+}
+}  // namespace
+
+NutationSlopes nutation_slopes(double A, double C, double mu, double Gz, double /*H: through the roots only*/, double r,
+                               const Nutation& n) {
+    const double u1 = n.u1, u2 = n.u2, u3 = n.u3, m = n.m, D = u3 - u1;
+    const double W = mean_sn_squared(m), Z = one_minus_twice_mean_over_m(m);
+    const double W_slope = (Z + W * W) / (2.0 * (1.0 - m));
+    const double a = 0.5 * (1.0 + m * m * W_slope), w3 = -m * m * W_slope;
+    const double apart = (Z - (2.0 - m) * W_slope) / (2.0 * D);  // ((w1 − w2)/m)/(2D)
+    const double d31 = u3 - u1, d32 = u3 - u2, d13 = u1 - u3, d23 = u2 - u3;
+    // ∂v/∂θ for g_θ(u) = c0 + c1 u + c2 u² + c3 u³ (the comment above nutation_slopes)
+    auto slope = [&](double c0, double c1, double c2, double c3) {
+        auto g = [&](double u) { return c0 + u * (c1 + u * (c2 + u * c3)); };
+        const double t3 = g(u3) / (d31 * d32);  // (u3 = u2 only at the separatrix, where v's slope is infinite)
+        const double second_difference = c2 + c3 * (u1 + u2 + u3);
+        return a * (second_difference - t3) - apart * (g(u1) / d13 + g(u2) / d23) + w3 * t3;
+    };
+    NutationSlopes s;
+    s.H = slope(-1.0 / mu, 0.0, 1.0 / mu, 0.0);
+    s.Gz = slope(Gz / (mu * A), -C * r / (mu * A), 0.0, 0.0);
+    s.r = slope(C * r / mu, -C * Gz / (mu * A), C * r * (C - A) / (mu * A), 0.0);
+    s.mu = slope(0.0, 1.0 / mu, 0.0, -1.0 / mu);
+    return s;
+}
+
 LagrangeUnperturbed::LagrangeUnperturbed(double A, double C, double mu, const Vec3& omega, const Vec3& gamma, double t0)
     : t0_(t0) {
     if (!(mu > 0.0)) throw std::invalid_argument("LagrangeUnperturbed: mu must be positive; got mu = " + format_value(mu));

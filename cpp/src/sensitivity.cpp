@@ -77,7 +77,11 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             if (c.far && !(far && std::isfinite(c.far_step) && c.far_step > 0.0))
                 throw std::invalid_argument(which + "the model moved far must be a '" + std::string(M::family) +
                                             "' model with a finite step > 0");
-            varied[j] = {plus, minus, c.step, far, c.far_step};
+            if (c.analytic >= 0 && static_cast<std::size_t>(c.analytic) >= model::system::analytic_in<M>().size())
+                throw std::invalid_argument(which + "the model gives no closed-form derivative number " +
+                                            std::to_string(c.analytic) + " (it gives " +
+                                            std::to_string(model::system::analytic_in<M>().size()) + ")");
+            varied[j] = {plus, minus, c.step, far, c.far_step, c.analytic};
             // The state the run starts from may depend on the parameter (an averaged model's slow
             // variables from the ω given): S_j(t0) = ∂y(t0)/∂p_j, by the same central difference.
             // (Each in this model's axes: a body's parameter turns the moved models' principal axes.)
@@ -90,7 +94,7 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
             throw std::invalid_argument(which + "its absolute tolerance must be finite and > 0, got " +
                                         integrate::format_number(c.atol, 17));
         atol.push_back(c.atol);
-        const bool differenced = differenced_jacobian || (c.component < 0 && !c.far);
+        const bool differenced = differenced_jacobian || (c.component < 0 && !c.far && c.analytic < 0);
         rtol.push_back(differenced ? std::max(options.rtol, floor) : options.rtol);
     }
     const model::Variational<M> system(m, std::move(varied));

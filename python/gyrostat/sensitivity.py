@@ -240,7 +240,11 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
                 far = rebuild(value + size)._core
             except (ValueError, TypeError):
                 far = None  # (a move that large breaks a rule of the model's: the central difference)
-        made.append((-1, plus._core, minus._core, step, atol / size, far, size))
+        analytic = model._core.analytic_in
+        if name in analytic:  # the model's own closed form of the rate's derivative (the moved models give the start's)
+            made.append((-1, plus._core, minus._core, step, atol / size, far, size, analytic.index(name)))
+        else:
+            made.append((-1, plus._core, minus._core, step, atol / size, far, size))
     if len(set(names)) != len(names):
         raise ValueError(f"sensitivities: a name is asked twice in {list(names)}")
     return tuple(name.replace(" ", "") for name in names), made

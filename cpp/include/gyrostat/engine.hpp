@@ -132,6 +132,10 @@ struct SensitivityColumn {
     /// the difference far above f's rounding), one moved right-hand side per stage instead of two.
     const AnyModel* far = nullptr;
     double far_step = 0.0;
+    /// Where the model gives ∂f/∂p in closed form (model::system::has_parameter_rate: the averaged
+    /// top's μ), its index in the model's analytic_in; −1: none. The moved models still give the
+    /// start's derivative and the outputs'.
+    int analytic = -1;
 };
 /// A run with its sensitivities: `result` as `solve` gives it at the output times (states in the
 /// user's frame, the outputs, statistics, status and message), `state` the sensitivities of the

@@ -102,6 +102,39 @@ public:
         dx[2] = m3 / C;
     }
 
+    using Jacobian = Eigen::Matrix3d;
+    /// ∂(dx)/∂x of the equations above, with v's slopes from nutation_slopes (lagrange_top.hpp):
+    ///   ∂/∂G_z: (f (1 − C r v_G)/A + M3* v_G,  −2μ f v_G/A,  0)
+    ///   ∂/∂H:   (−f C r v_H/A + M3* v_H,  f (2 − 2μ v_H)/A,  0)
+    ///   ∂/∂r:   (−f C (v + r v_r)/A − d3 v + M3* v_r,  −f (2 C r + 2μ v_r)/A − d3 r + M3*,  −d3/C)
+    /// one nutation solve instead of the six of central differences (the sensitivities' J·S and
+    /// CVODE's Newton matrix).
+    void jacobian(double t, const State& x, Jacobian& jac) const {
+        const double A = top_.A(), C = top_.C(), mu = top_.mu();
+        const double Gz = x[0], H = x[1], r = x[2];
+        const Nutation n = nutation(A, C, mu, Gz, H, r);
+        const NutationSlopes dv = nutation_slopes(A, C, mu, Gz, H, r, n);
+        const double v = n.v, f = -equatorial_damping(t), d3 = axial_damping(t);
+        const double m3 = -d3 * r + axial_constant_;
+        jac << f * (1.0 - C * r * dv.Gz) / A + m3 * dv.Gz, -f * C * r * dv.H / A + m3 * dv.H,
+            -f * C * (v + r * dv.r) / A - d3 * v + m3 * dv.r,
+            -2.0 * mu * f * dv.Gz / A, f * (2.0 - 2.0 * mu * dv.H) / A, -f * (2.0 * C * r + 2.0 * mu * dv.r) / A - d3 * r + m3,
+            0.0, 0.0, -d3 / C;
+    }
+
+    /// Its numbers whose ∂(dx)/∂p it gives in closed form (system::has_parameter_rate).
+    static constexpr std::array<const char*, 1> analytic_in{{"mu"}};
+    /// ∂(dx)/∂μ of the equations above (v's slope v_μ from nutation_slopes):
+    ///   (−f C r v_μ/A + M3* v_μ,  −f (2v + 2μ v_μ)/A,  0)
+    void parameter_rate(std::size_t /*k: μ, the only one*/, double t, const State& x, State& rate) const {
+        const double A = top_.A(), C = top_.C(), mu = top_.mu();
+        const double Gz = x[0], H = x[1], r = x[2];
+        const Nutation n = nutation(A, C, mu, Gz, H, r);
+        const double v_mu = nutation_slopes(A, C, mu, Gz, H, r, n).mu;
+        const double f = -equatorial_damping(t), m3 = -axial_damping(t) * r + axial_constant_;
+        rate << (-f * C * r / A + m3) * v_mu, -f * (2.0 * n.v + 2.0 * mu * v_mu) / A, 0.0;
+    }
+
     /// (G_z, H, r) must be reachable by the top (lagrange_top.hpp: check_reachable).
     void check_state(const State& x) const { check_reachable(top_.A(), top_.C(), top_.mu(), x[0], x[1], x[2]); }
 

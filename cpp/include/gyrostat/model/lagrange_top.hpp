@@ -38,6 +38,25 @@ struct Nutation {
 /// u1 u2 = s3/u3 (u3 ≥ 1). Throws std::invalid_argument for non-finite input or no root.
 Nutation nutation(double A, double C, double mu, double Gz, double H, double r);
 
+/// The derivatives of v = ⟨cos θ⟩ (Nutation) with respect to G_z, H, r and μ, at fixed A and C.
+///
+/// Each root moves as ∂u_i/∂θ = g_θ(u_i)/∏_{j≠i}(u_i − u_j), g_θ = −(∂f/∂θ)/(2μA) a polynomial in u:
+///   g_H = (u² − 1)/μ,  g_Gz = (G_z − C r u)/(μA),  g_r = (A C r − C G_z u + C r (C − A) u²)/(μA),
+///   g_μ = (u − u³)/μ.
+/// With v = u1 + (u2 − u1) W(m), W = (K − E)/(m K), m = (u2 − u1)/D, D = u3 − u1, the weights
+/// w_i = ∂v/∂u_i are w1 = 1 − W − m(1 − m)W', w2 = W + m W', w3 = −m² W', where
+/// W' = (Z + W²)/(2(1 − m)) and Z = (1 − 2W)/m (its Taylor series below m = 0.05). As u2 → u1
+/// (regular precession, m → 0) ∂u1/∂θ and ∂u2/∂θ grow as 1/(u2 − u1) with opposite signs; written
+/// with a = (w1 + w2)/2 = (1 + m² W')/2 and (w1 − w2)/m = Z − (2 − m)W', the sum
+///   ∂v/∂θ = a (g[u1, u2, u3] − t3) − (Z − (2 − m)W')/(2D) (g(u1)/(u1 − u3) + g(u2)/(u2 − u3)) + w3 t3,
+///   t3 = g(u3)/((u3 − u1)(u3 − u2)),  g[u1, u2, u3] = c2 + c3 (u1 + u2 + u3) (g's second divided difference),
+/// has no division by u2 − u1 and is exact at m = 0. At the separatrix (m → 1) W' grows as v's
+/// slope does (log-singular). Checked against mpmath in tests/test_lagrange_sensitivity_slopes.py.
+struct NutationSlopes {
+    double Gz = 0.0, H = 0.0, r = 0.0, mu = 0.0;
+};
+NutationSlopes nutation_slopes(double A, double C, double mu, double Gz, double H, double r, const Nutation& n);
+
 /// Throws std::invalid_argument naming (G_z, H, r) when no motion of the top has them: when
 /// f(u) < 0 for every u = cos θ in [−1, 1] (then p² + q² < 0).
 void check_reachable(double A, double C, double mu, double Gz, double H, double r);

@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "gyrostat/attitude.hpp"
 
@@ -167,6 +168,28 @@ template <class S>
 struct product_columns<S, std::void_t<decltype(S::product_columns)>> {
     static constexpr std::size_t value = S::product_columns;
 };
+
+/// A model that gives ∂f/∂p of some of its own numbers in closed form (the variational equations'
+/// parameter columns then take it instead of a difference quotient between moved models): its
+/// `static constexpr std::array<const char*, K> analytic_in` (the names gyrostat.sensitivity
+/// gives them) and `void parameter_rate(std::size_t k, double t, const State& y, State& rate) const`
+/// (∂f/∂p_k at (t, y)).
+template <class S, class = void>
+struct has_parameter_rate : std::false_type {};
+template <class S>
+struct has_parameter_rate<S, std::void_t<decltype(S::analytic_in), decltype(std::declval<const S&>().parameter_rate(
+                                                                       std::size_t{}, 0.0, std::declval<const typename S::State&>(),
+                                                                       std::declval<typename S::State&>()))>>
+    : std::true_type {};
+
+/// The names of has_parameter_rate's numbers (none for a model without them).
+template <class S>
+std::vector<std::string> analytic_in() {
+    if constexpr (has_parameter_rate<S>::value)
+        return std::vector<std::string>(S::analytic_in.begin(), S::analytic_in.end());
+    else
+        return {};
+}
 
 template <class S, class = void>
 struct has_projection : std::false_type {};

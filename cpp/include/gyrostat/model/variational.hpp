@@ -51,6 +51,7 @@ struct Varied {
     double step = 0.0;
     const M* far = nullptr;
     double far_step = 0.0;
+    int analytic = -1;  ///< the model's own ∂f/∂p (system::has_parameter_rate), by its index in analytic_in; −1: none
 };
 
 /// The augmented system (y, S_1, …, S_m) of `model`, m = columns.size(), state of size
@@ -90,7 +91,13 @@ public:
                 rate = directional(t, y, s);
             }
             const Varied<M>& column = columns_[j];
-            if (column.far)
+            if (column.analytic >= 0) {
+                if constexpr (system::has_parameter_rate<M>::value) {
+                    State parameter_rate;
+                    model_.parameter_rate(static_cast<std::size_t>(column.analytic), t, y, parameter_rate);
+                    rate += parameter_rate;
+                }
+            } else if (column.far)
                 rate += (moved_rate(*column.far, t, y) - f) / column.far_step;
             else if (column.plus)
                 rate += (moved_rate(*column.plus, t, y) - moved_rate(*column.minus, t, y)) / (2.0 * column.step);
