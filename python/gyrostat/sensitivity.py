@@ -31,7 +31,7 @@ so); one given without parameters offers none.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -197,12 +197,14 @@ _NAME = re.compile(r"^[A-Za-z_][\w.\[\],]*$")
 def columns(model, names, atol: float) -> tuple[tuple[str, ...], list[tuple]]:
     """The names asked (one str or a list) and the engine's columns for them (``_core.solve_sensitivities``)."""
     names = (names,) if isinstance(names, str) else tuple(names)
-    if not all(isinstance(name, str) for name in names):
-        return _columns(model, names, atol)  # (refused there, by name)
     cache = model.__dict__.setdefault("_sensitivity_columns", {})  # the moved models, built once per model
     key = (names, atol)
-    if key in cache:
+    try:
         return cache[key]
+    except (KeyError, TypeError):  # (not made yet; or a name that is not hashable, refused below)
+        pass
+    if not all(isinstance(name, str) for name in names):
+        return _columns(model, names, atol)  # (refused there, by name)
     made = _columns(model, names, atol)
     if len(cache) < 64:
         cache[key] = made
@@ -256,17 +258,50 @@ def attach(solution, names: tuple[str, ...], state: np.ndarray, outputs: np.ndar
     columns) ∂t/∂p of event k's occurrences; ``dense``: the variational run's Result whose dense
     output keeps them between the output times (``Result.dense_whole``: the state, then each
     column's block)."""
-    solution._sensitivities = {name: (state[:, :, j], outputs[:, :, j],
-                                      None if events is None else [times[:, j] for times in events],
-                                      None if dense is None or not dense.has_dense else (dense, j))
-                               for j, name in enumerate(names)}
+    solution._sensitivities = Columns(names, state, outputs, events, dense)
     if errors is not None:
         solution._sensitivity_errors, basis = errors
         solution.notes.append(f"sensitivities' error estimate: {basis}")
+    for name in names:  # (a user's torque's parameter is named by its torque)
+        if name.startswith(("torques[", "CustomTorque")):
+            break
+    else:
+        return
     for name in _of_custom_torques(solution.model, names):
         solution.notes.append(f"sensitivity to {name}: dM/d{name.partition('.')[2]} of the user's torque is the central "
                               f"difference quotient of the torques its factory made with the parameter moved by "
                               f"±{STEP:.1e} of its size (truncation ~1e-11 relative where M is smooth in it)")
+
+
+class Columns(Mapping):
+    """A run's sensitivities by name: name → (∂y/∂p [time, component], ∂outputs/∂p [time, output],
+    per event ∂t/∂p of its occurrences or None, (the variational Result, column) for its dense
+    output or None); each entry's views made when it is read, so that attaching them to a run costs
+    nothing per name."""
+
+    __slots__ = ("_names", "_state", "_outputs", "_events", "_dense")
+
+    def __init__(self, names: tuple[str, ...], state: np.ndarray, outputs: np.ndarray, events=None, dense=None):
+        self._names, self._state, self._outputs, self._events, self._dense = names, state, outputs, events, dense
+
+    def __getitem__(self, name: str) -> tuple:
+        try:
+            j = self._names.index(name)
+        except ValueError:
+            raise KeyError(name) from None
+        dense = self._dense
+        return (self._state[:, :, j], self._outputs[:, :, j],
+                None if self._events is None else [times[:, j] for times in self._events],
+                None if dense is None or not dense.has_dense else (dense, j))
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def __contains__(self, name) -> bool:
+        return name in self._names
 
 
 def _of_custom_torques(model, names) -> list[str]:

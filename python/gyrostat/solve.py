@@ -79,9 +79,13 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
         if report is not None:
             _bars.close(report)
     solution = Solution(result, model)
+    remarked = solution.notes != []  # (as solve's: a run with nothing to check or remark is returned as it is)
     _sensitivity.attach(solution, names, state, outputs, event_times, variational, errors)
     if estimate is not None:
         attach(solution, estimate)
+    if result.success and (not check_validity or type(model).check is BASE_CHECK) and not remarked \
+            and not solution._doubts:
+        return solution
     return checked(solution, model, check_validity)
 
 
