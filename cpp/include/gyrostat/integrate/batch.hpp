@@ -83,8 +83,8 @@ inline Lanes product_error(const Lanes& a, const Lanes& b, const Lanes& p) {
 
 /// taylor_detail::fast_log2 lane by lane, to the same bits, in a form the compiler vectorises: the
 /// exponent read as a double from the bits of 2^52 + e (no integer conversion, which AVX2 lacks
-/// for 64-bit lanes). Eigen's log costs ~5× more per lane, and the step size needs ρ to a few
-/// digits only (taylor.hpp: fast_log2).
+/// for 64-bit lanes). The step size needs ρ to a few digits only (taylor.hpp: fast_log2), and
+/// Eigen's log and exp were a fifth of the batch's step (perf: bench/README.md).
 inline Lanes fast_log2(const Lanes& x) {
     constexpr double two_52 = 4503599627370496.0;
     Lanes out;

@@ -107,8 +107,8 @@ public:
     ///   ∂/∂G_z: (f (1 − C r v_G)/A + M3* v_G,  −2μ f v_G/A,  0)
     ///   ∂/∂H:   (−f C r v_H/A + M3* v_H,  f (2 − 2μ v_H)/A,  0)
     ///   ∂/∂r:   (−f C (v + r v_r)/A − d3 v + M3* v_r,  −f (2 C r + 2μ v_r)/A − d3 r + M3*,  −d3/C)
-    /// one nutation solve instead of the six of central differences (the sensitivities' J·S and
-    /// CVODE's Newton matrix).
+    /// one nutation solve where central differences along a direction take two (the sensitivities'
+    /// J·S: two per column per stage; CVODE's Newton matrix).
     void jacobian(double t, const State& x, Jacobian& jac) const {
         const double A = top_.A(), C = top_.C(), mu = top_.mu();
         const double Gz = x[0], H = x[1], r = x[2];
