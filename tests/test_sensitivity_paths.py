@@ -17,14 +17,16 @@ DATA = Path(__file__).resolve().parent / "data"
 
 
 def heyoka_errors(case, method):
-    """A run of heyoka's case (tests/data/heyoka_sensitivities.json) by ``method`` at rtol 1e-13:
-    the state's largest error, and each sensitivity's largest error relative to the size of its
-    vector at each time (rows where that vector is 0 are measured absolutely)."""
+    """A run of heyoka's case (tests/data/heyoka_sensitivities.json) by ``method`` at rtol 1e-13,
+    each sensitivity held to the tolerance (``sensitivity_error_control``: the peer comparison is
+    of the derivatives at the run's accuracy): the state's largest error, and each sensitivity's
+    largest error relative to the size of its vector at each time (rows where that vector is 0 are
+    measured absolutely)."""
     data = json.loads((DATA / "heyoka_sensitivities.json").read_text())["cases"][case]
     torques = [gyrostat.LinearDamping(matrix=data["D"])] if np.any(data["D"]) else []
     model = gyrostat.Model(gyrostat.Body(data["moments"]), torques)
     sol = gyrostat.solve(model, data["omega0"], (0.0, data["t"][-1]), t_eval=data["t"], rtol=1e-13, atol=1e-15,
-                         method=method, sensitivities=data["parameters"])
+                         method=method, sensitivities=data["parameters"], sensitivity_error_control=True)
     assert sol.method == method, sol.method
     errors = {}
     for name in data["parameters"]:
@@ -187,20 +189,21 @@ def test_dense_output_carries_them(method):
         there.sensitivity(names[0], t=1.0)
 
 
+@pytest.mark.parametrize("control", [False, True])
 @pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
-def test_sensitivity_errors_are_measured(rtol):
+def test_sensitivity_errors_are_measured(rtol, control):
     """Each sensitivity's reported error against its true error (heyoka's reference): between ½
     and 30 times it, both floored at 1e-10 (rounding and the parameters' central differences, which
-    no companion sees: the report says so and floors a parameter's there). Measured: 0.84-2.2 at rtol
-    1e-6 and 1e-8."""
+    no companion sees: the report says so and floors a parameter's there), whether the sensitivities
+    join the step-size control or not. Measured: 0.84-2.2 at rtol 1e-6 and 1e-8."""
     data = json.loads((DATA / "heyoka_sensitivities.json").read_text())["cases"]["damped"]
     model = gyrostat.Model(gyrostat.Body(data["moments"]), [gyrostat.LinearDamping(matrix=data["D"])])
     sol = gyrostat.solve(model, data["omega0"], (0.0, 20.0), t_eval=data["t"], rtol=rtol, atol=1e-2 * rtol,
-                         sensitivities=data["parameters"])
+                         sensitivities=data["parameters"], sensitivity_error_control=control)
     assert any(note.startswith("sensitivities' error estimate") for note in sol.notes)
-    # the state's own estimate: the variational run is the answer (more accurate than a plain run at this
-    # rtol, its steps held by the sensitivities' error too), measured against a tighter variational run
-    # (a plain companion read 3700-7300 times the true error here): measured 0.99-1.56
+    # the state's own estimate: the variational run is the answer, measured against a tighter variational
+    # run (with control, more accurate than a plain run at this rtol, its steps held by the sensitivities'
+    # error too: a plain companion read 3700-7300 times the true error here): measured 0.99-1.56
     true_state = np.max(np.linalg.norm(sol.y - np.array(data["y"]), axis=1)) / np.max(np.linalg.norm(data["y"], axis=1))
     assert 0.5 <= max(sol.error_estimate, 1e-10) / max(true_state, 1e-10) <= 30, (sol.error_estimate, true_state)
     for name in data["parameters"]:
@@ -236,19 +239,45 @@ def _family_cases():
     ]
 
 
+@pytest.mark.parametrize("control", [False, True])
 @pytest.mark.parametrize("case", range(7))
-def test_every_family_through_solve_ensemble(case):
+def test_every_family_through_solve_ensemble(case, control):
     """Each family's ensemble member equals its single run bit for bit (the same code on the same
-    data), its sensitivities' errors measured (finite, below 1e-6 at rtol 1e-9: ~100 rtol at most)."""
+    data), its sensitivities' errors measured (finite, below 1e-6 at rtol 1e-9 and atol 1e-13: ~100
+    rtol at most, with or without the sensitivities in the step-size control; at the default atol
+    1e-10 the moving mass's displacements of ~1e-4 are held by atol, and its damping's derivative read
+    2.6e-6 with the state's steps alone)."""
     model, y0, names = _family_cases()[case]
     y0s = np.array([y0, np.asarray(y0) * 1.01])
+    given = dict(n_out=4, rtol=1e-9, atol=1e-13, sensitivities=names, sensitivity_error_control=control)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", gyrostat.ValidityWarning)
-        members = gyrostat.solve_ensemble(model, y0s, (0.0, 5.0), n_out=4, rtol=1e-9, sensitivities=names)
-        single = gyrostat.solve(model, y0s[1], (0.0, 5.0), n_out=4, rtol=1e-9, sensitivities=names)
+        members = gyrostat.solve_ensemble(model, y0s, (0.0, 5.0), **given)
+        single = gyrostat.solve(model, y0s[1], (0.0, 5.0), **given)
     for name in names:
         assert np.array_equal(members[1].sensitivity(name), single.sensitivity(name)), name
         assert 0 < members[1].sensitivity_errors[name] < 1e-6, (name, members[1].sensitivity_errors[name])
+
+
+@pytest.mark.parametrize("case", range(7))
+def test_sensitivities_leave_the_answer_as_it_was(case):
+    """By default the steps are chosen on the state alone (``sensitivity_error_control=False``,
+    CVODES's errconS default): a run with sensitivities takes the plain run's steps, and its state
+    agrees with the plain run's to rounding (1e-12 of the state's size over these short runs: the two
+    integrators order their sums differently). With the control, the sensitivities' errors hold the
+    steps too: as many steps or more."""
+    model, y0, names = _family_cases()[case]
+    given = dict(n_out=6, rtol=1e-9, error_estimate=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrostat.ValidityWarning)
+        plain = gyrostat.solve(model, y0, (0.0, 5.0), **given)
+        derived = gyrostat.solve(model, y0, (0.0, 5.0), sensitivities=names, **given)
+        controlled = gyrostat.solve(model, y0, (0.0, 5.0), sensitivities=names, sensitivity_error_control=True,
+                                    **given)
+    assert derived.method == plain.method == "dop853", (derived.method, plain.method)
+    assert derived.stats["steps"] == plain.stats["steps"], (derived.stats, plain.stats)
+    assert np.max(np.abs(derived.y - plain.y)) <= 1e-12 * np.max(np.abs(plain.y)), np.max(np.abs(derived.y - plain.y))
+    assert controlled.stats["steps"] >= plain.stats["steps"], (controlled.stats, plain.stats)
 
 
 @pytest.mark.parametrize("scene, name", [("p001_explicit_moving_mass", "damping"),

@@ -238,7 +238,7 @@ void expose_torque(py::module_& m) {
            "\"``).\ndescription : str\n    What it is, in one line.\nparameters : tuple of dict\n    Its declaration: one dict "
            "per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the "
            "scene schema and the docs.\naffine_in : tuple of str\n    The stored parameters the torque is affine in "
-           "(sensitivities take their derivative by a one-sided difference, exact to rounding).\nneeds_attitude : bool\n    Whether it depends on the attitude (then only "
+           "(sensitivities take their derivative by a one-sided difference, exact to rounding).\ninverse_in : tuple of str\n    The stored parameters the torque is inversely proportional to (the same difference, scaled).\nneeds_attitude : bool\n    Whether it depends on the attitude (then only "
            "models with the quaternion take it).\nhas_averaged : bool\n    Whether it has a contribution to the "
            "averaged (a, r) system.\n";
     doc += "\nExamples\n--------\n" + example + ">>> torque\n" + torque_repr(instance) + "\n>>> torque.kind, [p[\"unit\"] for p in torque.parameters]\n" +
@@ -317,6 +317,7 @@ void expose_torque(py::module_& m) {
     cls.attr("description") = std::string(Torque::description);
     cls.attr("parameters") = py::tuple(parameters);
     cls.attr("affine_in") = py::tuple(py::cast(affine_in<Torque>()));
+    cls.attr("inverse_in") = py::tuple(py::cast(inverse_in<Torque>()));
     cls.attr("needs_attitude") = needs_attitude<Torque>::value;
     cls.attr("has_averaged") = has_averaged<Torque>::value;
     for (const auto& p : Torque::parameters) {

@@ -470,6 +470,7 @@ Examples
     cls.attr("description") = std::string(Custom::description);
     cls.attr("parameters") = py::tuple();
     cls.attr("affine_in") = py::tuple();
+    cls.attr("inverse_in") = py::tuple();
     cls.attr("needs_attitude") = false;
     cls.attr("has_averaged") = false;
 }

@@ -254,6 +254,7 @@ Examples
         .def_readwrite("events", &Options::events, "The engine's events of a run (made by :func:`gyrostat.solve` from :class:`gyrostat.events.Event`).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().events\n[]\n")
         .def_readwrite("dense_output", &Options::dense_output, "Keep each step's continuous extension, for ``solution(t)``.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().dense_output\nFalse\n")
         .def_readwrite("only_measured_outputs", &Options::only_measured_outputs, "Record only the outputs a run's error is measured on (:func:`gyrostat.accuracy.quantities`), NaN in the others: what the accuracy contract's probes and companions record.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().only_measured_outputs\nFalse\n")
+        .def_readwrite("sensitivity_error_control", &Options::sensitivity_error_control, "A run with sensitivities: whether each sensitivity's error joins the state's in the step-size control (CVODES's errconS). False: the plain run's steps, the sensitivities' errors measured and reported but not held; True: held to the tolerances too, at the cost of more steps (dop853 and taylor; cvode_bdf holds them always).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().sensitivity_error_control\nFalse\n")
         .def_readwrite("step", &Options::step, "Fixed step of method ``splitting``, in s (0: none given).\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().step\n0.0\n")
         .def_readwrite("splitting_order", &Options::splitting_order, "Order of method ``splitting``: 2, 4 or 6.\n\nExamples\n--------\n>>> import gyrostat\n>>> gyrostat.Options().splitting_order\n4\n")
         .def(
@@ -264,6 +265,7 @@ Examples
                 d["n_out"] = o.n_out, d["every_step"] = o.every_step, d["max_steps"] = o.max_steps;
                 d["first_step"] = o.first_step, d["max_step"] = o.max_step, d["dense_output"] = o.dense_output;
                 d["step"] = o.step, d["splitting_order"] = o.splitting_order;
+                d["sensitivity_error_control"] = o.sensitivity_error_control;
                 return d;
             },
             "Every scalar option by name (not t_eval and events): what report.json records of a run."
@@ -285,7 +287,8 @@ Examples
                    ", max_steps=" + std::to_string(o.max_steps) + ", first_step=" + format_value(o.first_step) +
                    ", max_step=" + format_value(o.max_step) + ", events=<" + std::to_string(o.events.size()) +
                    ">, dense_output=" + (o.dense_output ? "True" : "False") + ", step=" + format_value(o.step) +
-                   ", splitting_order=" + std::to_string(o.splitting_order) + ")";
+                   ", splitting_order=" + std::to_string(o.splitting_order) +
+                   ", sensitivity_error_control=" + (o.sensitivity_error_control ? "True" : "False") + ")";
         });
 
     py::class_<integrate::Stats>(m, "Stats")

@@ -41,7 +41,7 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     // ∂f/∂y·S of a model without a Jacobian) has its relative error controlled to at least the
     // quotient's own accuracy: below it the steps would chase the quotient's rounding noise.
     const double floor = model::kDifferenceAccuracy;
-    constexpr bool differenced_jacobian = !model::system::has_jacobian<M>::value && !model::system::has_jacobian_product<M>::value;
+    constexpr bool differenced_jacobian = !model::system::has_jacobian<M>::value && !model::system::has_rate_with_products<M>::value;
     Eigen::VectorXd start = Eigen::VectorXd::Zero(n * (1 + width));
     start.head<n>() = model::frame::initial_state(m, given);
     for (std::size_t j = 0; j < columns.size(); ++j) {
@@ -145,8 +145,10 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
                                         "dop853 or cvode_bdf");
         }
     } else {
+        constexpr auto quadratures = model::system::quadratures<M>();
         run = integrate::variational_dop853(rate, [&](Eigen::VectorXd& y) { return system.project(y); }, n, t0, start,
-                                            t1, times, atol, rtol, options, control, dense.get());
+                                            t1, times, atol, rtol, options, control, dense.get(),
+                                            std::vector<int>(quadratures.begin(), quadratures.end()));
     }
 
     SensitivityRun out;
@@ -168,7 +170,10 @@ SensitivityRun solve_variational(const M& m, const std::vector<SensitivityColumn
     out.outputs.reserve(rows * n_out * columns.size());
     for (std::size_t k = 0; k < rows; ++k) {
         const Eigen::VectorXd& Y = run.state[k];
-        const typename M::State y = Y.head<n>();
+        typename M::State y = Y.head<n>();
+        // a recorded state on its manifold (a unit quaternion), as the plain run's recorder keeps it
+        // (integrate/recorder.hpp): an output inside a step is the step's polynomial, off it by ~rtol
+        model::system::project(m, y);
         double outputs[n_out > 0 ? n_out : 1], plus[n_out > 0 ? n_out : 1], minus[n_out > 0 ? n_out : 1];
         if constexpr (n_out > 0) model::system::outputs(m, run.t[k], y, outputs);
         typename M::State user = y;

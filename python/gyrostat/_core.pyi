@@ -316,6 +316,8 @@ class ConstantTorque:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -333,6 +335,7 @@ class ConstantTorque:
     affine_in: typing.ClassVar[tuple] = ('moment')
     description: typing.ClassVar[str] = 'a constant torque in body axes'
     has_averaged: typing.ClassVar[bool] = True
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'constant'
     needs_attitude: typing.ClassVar[bool] = False
     parameters: typing.ClassVar[tuple] = ({'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M in body axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
@@ -451,6 +454,8 @@ class LinearDamping:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -468,6 +473,7 @@ class LinearDamping:
     affine_in: typing.ClassVar[tuple] = ('matrix')
     description: typing.ClassVar[str] = 'M = -D omega'
     has_averaged: typing.ClassVar[bool] = True
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'linear_damping'
     needs_attitude: typing.ClassVar[bool] = False
     parameters: typing.ClassVar[tuple] = ({'name': 'matrix', 'label': 'matrix D (column-major)', 'shape': 'matrix3', 'unit': 'N m s', 'description': 'D (M = -D omega)', 'constraint': 'finite', 'choice': 1, 'stored': True, 'default': None}, {'name': 'diagonal', 'label': 'diagonal of D', 'shape': 'vector3', 'unit': 'N m s', 'description': 'the diagonal of D', 'constraint': 'finite', 'choice': 1, 'stored': False, 'default': None})
@@ -586,6 +592,8 @@ class ResistiveMedium:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -603,6 +611,7 @@ class ResistiveMedium:
     affine_in: typing.ClassVar[tuple] = ('coefficients')
     description: typing.ClassVar[str] = 'a resistive medium whose resistance varies with time'
     has_averaged: typing.ClassVar[bool] = True
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'resistive_medium'
     needs_attitude: typing.ClassVar[bool] = False
     parameters: typing.ClassVar[tuple] = ({'name': 'coefficients', 'label': 'coefficient', 'shape': 'matrices', 'unit': 'N m s^(k+1)', 'description': 'D_0, D_1, ...: D(t) = sum D_k t^k (M = -D(t) omega)', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
@@ -751,6 +760,8 @@ class ViscousCavity:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -768,6 +779,7 @@ class ViscousCavity:
     affine_in: typing.ClassVar[tuple] = ('density', 'p0')
     description: typing.ClassVar[str] = 'a cavity filled with a highly viscous fluid'
     has_averaged: typing.ClassVar[bool] = True
+    inverse_in: typing.ClassVar[tuple] = ('viscosity')
     kind: typing.ClassVar[str] = 'viscous_cavity'
     needs_attitude: typing.ClassVar[bool] = False
     parameters: typing.ClassVar[tuple] = ({'name': 'density', 'label': 'density ρ', 'shape': 'scalar', 'unit': 'kg/m^3', 'description': 'rho', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'viscosity', 'label': 'kinematic viscosity ν', 'shape': 'scalar', 'unit': 'm^2/s', 'description': 'kinematic viscosity nu', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'p0', 'label': 'cavity coefficient P0', 'shape': 'scalar', 'unit': 'm^5', 'description': 'P0 of the cavity tensor P = P0 I', 'constraint': 'positive', 'choice': 1, 'stored': True, 'default': None}, {'name': 'radius', 'label': 'cavity radius b', 'shape': 'scalar', 'unit': 'm', 'description': 'radius of a spherical cavity', 'constraint': 'positive', 'choice': 1, 'stored': False, 'default': None})
@@ -956,6 +968,8 @@ class MovingMassDamper:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -973,6 +987,7 @@ class MovingMassDamper:
     affine_in: typing.ClassVar[tuple] = tuple()
     description: typing.ClassVar[str] = "Chernousko's quasi-static moving-mass damper"
     has_averaged: typing.ClassVar[bool] = True
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'moving_mass_damper'
     needs_attitude: typing.ClassVar[bool] = False
     parameters: typing.ClassVar[tuple] = ({'name': 'mass', 'label': 'mass m', 'shape': 'scalar', 'unit': 'kg', 'description': 'mass m', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'arm', 'label': 'arm rho', 'shape': 'scalar', 'unit': 'm', 'description': 'distance rho of the mass on the z axis', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None}, {'name': 'frequency', 'label': 'frequency Omega', 'shape': 'scalar', 'unit': 'rad/s', 'description': 'Omega = sqrt(c/m)', 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'damping', 'label': 'damping lambda', 'shape': 'scalar', 'unit': '1/s', 'description': 'lambda = delta/m', 'constraint': 'non_negative', 'choice': 0, 'stored': True, 'default': None})
@@ -1146,6 +1161,8 @@ class GravityGradient:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1163,6 +1180,7 @@ class GravityGradient:
     affine_in: typing.ClassVar[tuple] = tuple()
     description: typing.ClassVar[str] = 'the gravity-gradient torque on a circular orbit (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'gravity_gradient'
     needs_attitude: typing.ClassVar[bool] = True
     parameters: typing.ClassVar[tuple] = ({'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': "the model's orbit"}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes (needs orbit_rate)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
@@ -1307,6 +1325,8 @@ class MagneticTorque:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1324,6 +1344,7 @@ class MagneticTorque:
     affine_in: typing.ClassVar[tuple] = ('dipole', 'field')
     description: typing.ClassVar[str] = 'a magnetic dipole fixed in the body in a field constant in inertial space (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'magnetic'
     needs_attitude: typing.ClassVar[bool] = True
     parameters: typing.ClassVar[tuple] = ({'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field', 'label': 'field B', 'shape': 'vector3', 'unit': 'T', 'description': 'the magnetic field B in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
@@ -1433,6 +1454,8 @@ class DipoleFieldTorque:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1450,6 +1473,7 @@ class DipoleFieldTorque:
     affine_in: typing.ClassVar[tuple] = ('dipole', 'field_strength')
     description: typing.ClassVar[str] = "a magnetic dipole fixed in the body on a circular orbit in a planet's tilted dipole field (needs the attitude)"
     has_averaged: typing.ClassVar[bool] = False
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'dipole_field'
     needs_attitude: typing.ClassVar[bool] = True
     parameters: typing.ClassVar[tuple] = ({'name': 'dipole', 'label': 'dipole m', 'shape': 'vector3', 'unit': 'A m^2', 'description': "the body's magnetic dipole moment m in body axes", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None}, {'name': 'field_strength', 'label': 'field strength B0', 'shape': 'scalar', 'unit': 'T', 'description': "B0 = mu0 |m_planet| / (4 pi r^3), the field at the magnetic equator at the orbit's radius", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': None}, {'name': 'orbit_rate', 'label': 'orbit rate n', 'shape': 'scalar', 'unit': 'rad/s', 'description': "the orbit's mean motion n = sqrt(mu / r^3); leave out the three orbit parameters to use the model's orbit", 'constraint': 'positive', 'choice': 0, 'stored': True, 'default': "the model's orbit"}, {'name': 'dipole_axis', 'label': 'dipole axis d', 'shape': 'vector3', 'unit': '1', 'description': "the direction of the planet's dipole moment in inertial axes (tilted from -z for a tilted dipole)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, -1]'}, {'name': 'orbit_normal', 'label': 'orbit normal N', 'shape': 'vector3', 'unit': '1', 'description': "the orbit plane's normal in inertial axes (needs orbit_rate)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '[0, 0, 1]'}, {'name': 'phase', 'label': 'orbit phase', 'shape': 'scalar', 'unit': 'rad', 'description': "the body's angle on the orbit at t = 0 from e1 = z x N / |z x N| (needs orbit_rate; docs/orbit_frame.md)", 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': '0'})
@@ -1617,6 +1641,8 @@ class InertialTorque:
         Its declaration: one dict per parameter (name, label, shape, unit, description, constraint, choice, stored, default), for the scene schema and the docs.
     affine_in : tuple of str
         The stored parameters the torque is affine in (sensitivities take their derivative by a one-sided difference, exact to rounding).
+    inverse_in : tuple of str
+        The stored parameters the torque is inversely proportional to (the same difference, scaled).
     needs_attitude : bool
         Whether it depends on the attitude (then only models with the quaternion take it).
     has_averaged : bool
@@ -1634,6 +1660,7 @@ class InertialTorque:
     affine_in: typing.ClassVar[tuple] = ('moment')
     description: typing.ClassVar[str] = 'a constant torque fixed in inertial space (needs the attitude)'
     has_averaged: typing.ClassVar[bool] = False
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'inertial'
     needs_attitude: typing.ClassVar[bool] = True
     parameters: typing.ClassVar[tuple] = ({'name': 'moment', 'label': 'moment', 'shape': 'vector3', 'unit': 'N m', 'description': 'M_I in inertial axes', 'constraint': 'finite', 'choice': 0, 'stored': True, 'default': None})
@@ -1773,6 +1800,7 @@ class CustomTorque:
     affine_in: typing.ClassVar[tuple] = tuple()
     description: typing.ClassVar[str] = 'a torque the user writes: M = f(t, omega) or f(t, omega, quaternion) in body axes, a Python callable or a compiled function'
     has_averaged: typing.ClassVar[bool] = False
+    inverse_in: typing.ClassVar[tuple] = tuple()
     kind: typing.ClassVar[str] = 'custom'
     needs_attitude: typing.ClassVar[bool] = False
     parameters: typing.ClassVar[tuple] = tuple()
@@ -2282,6 +2310,20 @@ class Options:
         """
     @rtol.setter
     def rtol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sensitivity_error_control(self) -> bool:
+        """
+        A run with sensitivities: whether each sensitivity's error joins the state's in the step-size control (CVODES's errconS). False: the plain run's steps, the sensitivities' errors measured and reported but not held; True: held to the tolerances too, at the cost of more steps (dop853 and taylor; cvode_bdf holds them always).
+        
+        Examples
+        --------
+        >>> import gyrostat
+        >>> gyrostat.Options().sensitivity_error_control
+        False
+        """
+    @sensitivity_error_control.setter
+    def sensitivity_error_control(self, arg0: bool) -> None:
         ...
     @property
     def splitting_order(self) -> int:

@@ -25,8 +25,8 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
                    method: str | None = None, rtol: float | None = None, atol: float | None = None, t_eval=None,
                    n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
                    first_step: float | None = None, max_step: float | None = None, step: float | None = None,
-                   splitting_order: int | None = None, options: Options | None = None,
-                   events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
+                   splitting_order: int | None = None, sensitivity_error_control: bool | None = None,
+                   options: Options | None = None, events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
                    check_validity: bool = True, batch: bool = True, accuracy: float | None = None,
                    error_estimate: bool | str = True, sensitivities: str | list[str] | None = None) -> list[Solution]:
     """Solves N trajectories in one call on a pool of C++ threads (GIL released).
@@ -89,6 +89,9 @@ def solve_ensemble(models: ModelBase | Sequence[ModelBase], y0s, t_span, *, thre
         Fixed step of ``method="splitting"``, in s.
     splitting_order : {2, 4, 6}, optional
         Order of ``method="splitting"``.
+    sensitivity_error_control : bool, optional
+        As in :func:`solve`: whether the sensitivities' errors join the state's in the step-size
+        control (default False: the plain runs' steps).
     options : gyrostat.Options, optional
         All of these at once; keywords override it.
     events : Event, callable or list of them, optional
@@ -149,7 +152,8 @@ def _largest(y0s) -> float:
 
 def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol=None, atol=None, t_eval=None,
                       n_out=None, every_step=None, max_steps=None, first_step=None, max_step=None, step=None,
-                      splitting_order=None, options=None, events=None, dense_output=False, progress=None,
+                      splitting_order=None, sensitivity_error_control=None, options=None, events=None,
+                      dense_output=False, progress=None,
                       batch=True, accuracy=None, error_estimate=False, sensitivities=None) -> tuple[list, list, list]:
     """:func:`solve_ensemble` up to the engine's results, without a :class:`Solution` per member:
     for callers that summarise many members at once (:func:`gyrostat.sweeps.solve_chunk`).
@@ -157,7 +161,8 @@ def ensemble_results(models, y0s, t_span, *, threads: int = 0, method=None, rtol
     Parameters
     ----------
     models, y0s, t_span, threads, method, rtol, atol, t_eval, n_out, every_step, max_steps, first_step, max_step, \
-step, splitting_order, options, events, dense_output, progress, batch, accuracy, error_estimate, sensitivities
+step, splitting_order, sensitivity_error_control, options, events, dense_output, progress, batch, accuracy, \
+error_estimate, sensitivities
         As in :func:`solve_ensemble` (which checks them the same way); ``error_estimate`` defaults
         to False here. With ``sensitivities``, the results are a
         :class:`gyrostat.sensitivity.MemberResults` (each member's derivatives beside its Result).

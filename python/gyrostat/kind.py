@@ -262,6 +262,10 @@ SENSITIVITIES = Field(ListOf(str, min_len=1), default=None,
                           "components by name and parameters ('moments[0]', 'ViscousCavity.viscosity', "
                           "'LinearDamping.matrix[0,1]', ...); written beside the state as d_<component>__d_<name> "
                           "(method 'auto' then runs dop853, the one the variational equations take)")
+SENSITIVITY_ERROR_CONTROL = Field(bool, default=_DEFAULT.sensitivity_error_control,
+                                  doc="with sensitivities: whether their errors join the state's in the step-size "
+                                      "control (false: the plain run's steps, each sensitivity's error measured and "
+                                      "reported; true: held to rtol and atol too, at the cost of more steps)")
 PHASE = Field(float, default=0.0, unit="rad", check=finite,
               doc="model = 'auto': the fast phase at which a switch up the ladder lifts the slow variables")
 
@@ -297,7 +301,8 @@ def integration_table(model: Field | None = None, *, rtol: Field = RTOL, atol: F
     fields["accuracy"] = ACCURACY
     if model is not None:
         fields["phase"] = PHASE
-    fields.update(method=METHOD, rtol=rtol, atol=atol, **own, n_out=n_out, sensitivities=SENSITIVITIES)
+    fields.update(method=METHOD, rtol=rtol, atol=atol, **own, n_out=n_out, sensitivities=SENSITIVITIES,
+                  sensitivity_error_control=SENSITIVITY_ERROR_CONTROL)
     if max_steps:
         fields["max_steps"] = MAX_STEPS
     if splitting:
@@ -378,6 +383,7 @@ def integration(doc: dict, kind: Kind, **extra) -> dict:
         options.update(step=integ.get("step"), splitting_order=integ.get("splitting_order", _DEFAULT.splitting_order))
     if integ.get("sensitivities"):
         options["sensitivities"] = list(integ["sensitivities"])
+        options["sensitivity_error_control"] = integ["sensitivity_error_control"]
         if options["method"] == "auto":
             options["method"] = "dop853"
     if integ.get("accuracy") is not None:

@@ -35,12 +35,13 @@ whatever the method."""
 Options = _core.Options
 """Every integrator option with its default, in one place (the C++ engine's ``Options``):
 ``method``, ``rtol``, ``atol``, ``t_eval``, ``n_out``, ``every_step``, ``max_steps``,
-``first_step``, ``max_step``, ``step`` and ``splitting_order`` (method ``splitting``).
-``repr(gyrostat.Options())`` shows the defaults."""
+``first_step``, ``max_step``, ``step`` and ``splitting_order`` (method ``splitting``), and
+``sensitivity_error_control`` (a run with sensitivities). ``repr(gyrostat.Options())`` shows the
+defaults."""
 
 OPTIONS: dict[str, type] = {"method": str, "rtol": float, "atol": float, "t_eval": np.ndarray, "n_out": int,
                             "every_step": bool, "max_steps": int, "first_step": float, "max_step": float,
-                            "step": float, "splitting_order": int}
+                            "step": float, "splitting_order": int, "sensitivity_error_control": bool}
 """The integration options, each with the type of its value: the one list that :func:`make_options`,
 :func:`options_of`, :func:`check_run` and the accuracy contract's companions read (the keywords of
 :func:`gyrostat.solve`, :func:`gyrostat.solve_ensemble` and ``ensemble_results`` are checked

@@ -63,9 +63,10 @@ def _moved(value, index: tuple, new: float):
 _STORED: dict[type, list[str]] = {}  # a torque type's stored parameters, read once from its declaration
 
 
-def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable, bool]]:
+def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable, int]]:
     """A torque's stored parameters (or the entry named ``only``, e.g. ``matrix[2,2]``): suffix →
-    (value, scale, rebuild(new value) → torque, whether M is affine in it: the torque's ``affine_in``)."""
+    (value, scale, rebuild(new value) → torque, the power k of M ∝ p^k it declares: 1 for its
+    ``affine_in``, −1 for its ``inverse_in``, 0 for neither)."""
     stored = _STORED.get(type(torque))
     if stored is None:
         stored = _STORED[type(torque)] = [p["name"] for p in torque.parameters if p["stored"]]
@@ -84,11 +85,12 @@ def _torque_parameters(torque, only: str | None = None) -> dict[str, tuple[float
                 arguments[name] = _moved(value, index, new)
                 return type(torque)(**arguments)
             made[f"{name}{suffix}"] = (float(np.asarray(value, dtype=float)[index]), scale, rebuild,
-                                       name in type(torque).affine_in)
+                                       1 if name in type(torque).affine_in else -1 if name in type(torque).inverse_in
+                                       else 0)
     return made
 
 
-def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable, bool]]:
+def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float, float, Callable, int]]:
     """A ``CustomTorque``'s parameters (the keyword arguments its factory was called with that are
     numbers), as :func:`_torque_parameters` gives a declared torque's: moved by calling the factory
     again."""
@@ -100,11 +102,11 @@ def _custom_parameters(torque, only: str | None = None) -> dict[str, tuple[float
         def rebuild(new, name=name):
             return type(torque)(torque.factory, torque.jacobian_factory, attitude=torque.attitude, name=torque.name,
                                 parameters={**arguments, name: new})
-        made[name] = (float(arguments[name]), abs(float(arguments[name])), rebuild, False)
+        made[name] = (float(arguments[name]), abs(float(arguments[name])), rebuild, 0)
     return made
 
 
-def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, Callable, bool]]:
+def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, Callable, int]]:
     """A body's parameters: by its principal moments, ``moments[k]`` and ``rotor[k]``; by its
     inertia tensor, ``inertia[i,j]`` (i ≤ j; the symmetric pair moves together, and the principal
     axes turn with it) and ``rotor[k]`` (the user's axes)."""
@@ -118,7 +120,7 @@ def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, C
                     kept = {"moments": moments.copy(), "rotor": rotor.copy()}
                     kept[vector][k] = new
                     return rebuilt(body=_core.Body(moments=kept["moments"], rotor=kept["rotor"]))
-                made[f"{vector}[{k}]"] = (float(values[k]), float(np.max(np.abs(values))), rebuild, False)
+                made[f"{vector}[{k}]"] = (float(values[k]), float(np.max(np.abs(values))), rebuild, 0)
         return made
     for i in range(3):
         for j in range(i, 3):
@@ -126,26 +128,26 @@ def _body_parameters(body, rebuilt: Callable) -> dict[str, tuple[float, float, C
                 changed = tensor.copy()
                 changed[i, j] = changed[j, i] = new
                 return rebuilt(body=_core.Body(inertia=changed, rotor=rotor))
-            made[f"inertia[{i},{j}]"] = (float(tensor[i, j]), float(np.max(np.abs(tensor))), rebuild, False)
+            made[f"inertia[{i},{j}]"] = (float(tensor[i, j]), float(np.max(np.abs(tensor))), rebuild, 0)
     for k in range(3):
         def rebuild(new, k=k):
             changed = rotor.copy()
             changed[k] = new
             return rebuilt(body=body.with_rotor(changed))  # (the same axes: a tensor given again turns them by 1e-16)
-        made[f"rotor[{k}]"] = (float(rotor[k]), float(np.max(np.abs(rotor))), rebuild, False)
+        made[f"rotor[{k}]"] = (float(rotor[k]), float(np.max(np.abs(rotor))), rebuild, 0)
     return made
 
 
-def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, Callable, bool]]:
+def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, Callable, int]]:
     """Every parameter a model offers (or those of the one named ``only``, made alone): name →
-    (value, its scale, rebuild(new value) → the model with that parameter changed, whether the
-    right-hand side is affine in it: its torque declares so). Empty for a model that cannot be
-    rebuilt (a closed form)."""
+    (value, its scale, rebuild(new value) → the model with that parameter changed, the power k of
+    the right-hand side's torque term M ∝ p^k its torque or model declares: 1 affine, −1 inversely
+    proportional, 0 neither). Empty for a model that cannot be rebuilt (a closed form)."""
     arguments = getattr(model, "_arguments", None)
     if arguments is None:
         return {}
     given = arguments()
-    made: dict[str, tuple[float, float, Callable, bool]] = {}
+    made: dict[str, tuple[float, float, Callable, int]] = {}
 
     def rebuilt(**changes):
         return type(model)(**{**given, **changes})
@@ -160,17 +162,18 @@ def parameters(model, only: str | None = None) -> dict[str, tuple[float, float, 
         if only is not None and selector not in (f"torques[{n}]", kinds[n]):
             continue
         own = _custom_parameters if kinds[n] == "CustomTorque" else _torque_parameters
-        for suffix, (value, scale, rebuild_torque, affine) in own(torque, wanted_parameter or None).items():
+        for suffix, (value, scale, rebuild_torque, power) in own(torque, wanted_parameter or None).items():
             def rebuild(new, n=n, rebuild_torque=rebuild_torque):
                 changed = list(torques)
                 changed[n] = rebuild_torque(new)
                 return rebuilt(torques=changed)
-            made[f"torques[{n}].{suffix}"] = (value, scale, rebuild, affine)
+            made[f"torques[{n}].{suffix}"] = (value, scale, rebuild, power)
             if kinds.count(kinds[n]) == 1:
-                made[f"{kinds[n]}.{suffix}"] = (value, scale, rebuild, affine)
+                made[f"{kinds[n]}.{suffix}"] = (value, scale, rebuild, power)
     for name in getattr(model, "_numbers", ()) if only is None else [n for n in getattr(model, "_numbers", ()) if n == only]:
         value = float(given[name])
-        made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}), name in model._core.affine_in)
+        made[name] = (value, abs(value), lambda new, name=name: rebuilt(**{name: new}),
+                      int(name in model._core.affine_in))
     return made
 
 
@@ -229,24 +232,29 @@ def _columns(model, names: tuple, atol: float) -> tuple[tuple[str, ...], list[tu
             raise ValueError(f"sensitivities: no parameter or state component {name!r} in this "
                              f"{type(model).__name__}; state: {', '.join(states)}; parameters: "
                              + (", ".join(offered) if offered else "none"))
-        value, scale, rebuild, affine = offered[name]
+        value, scale, rebuild, power = offered[name]
         size = max(abs(value), scale) or 1.0
         step = STEP * size
         try:
             plus, minus = rebuild(value + step), rebuild(value - step)
         except (ValueError, TypeError) as error:
             raise ValueError(f"sensitivities: {name} = {value!r} cannot be moved by ±{step:.3g}: {error}") from None
-        far = None
-        if affine:  # the rate's exact one-sided difference, moved by the parameter's own size
+        # the rate's one-sided difference, exact to rounding, to the model moved by the parameter's own
+        # size: f(p + |p|) − f(p) = far_step · ∂f/∂p, far_step = |p| where f is affine in p, and p/2
+        # where M ∝ 1/p (the move doubles p: (2^k − 1) p / k with k = −1)
+        far, far_step = None, size
+        inverse = power == -1 and value > 0 and size == value
+        if power == 1 or inverse:
+            far_step = size if power == 1 else (2.0 ** power - 1.0) * value / power
             try:
                 far = rebuild(value + size)._core
             except (ValueError, TypeError):
                 far = None  # (a move that large breaks a rule of the model's: the central difference)
         analytic = model._core.analytic_in
         if name in analytic:  # the model's own closed form of the rate's derivative (the moved models give the start's)
-            made.append((-1, plus._core, minus._core, step, atol / size, far, size, analytic.index(name)))
+            made.append((-1, plus._core, minus._core, step, atol / size, far, far_step, analytic.index(name)))
         else:
-            made.append((-1, plus._core, minus._core, step, atol / size, far, size))
+            made.append((-1, plus._core, minus._core, step, atol / size, far, far_step))
     if len(set(names)) != len(names):
         raise ValueError(f"sensitivities: a name is asked twice in {list(names)}")
     return tuple(name.replace(" ", "") for name in names), made

@@ -92,8 +92,8 @@ def _with_sensitivities(model, core, y0, t0, t1, opts, names, events, asked, mod
 def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = None, atol: float | None = None,
           t_eval=None, n_out: int | None = None, every_step: bool | None = None, max_steps: int | None = None,
           first_step: float | None = None, max_step: float | None = None, step: float | None = None,
-          splitting_order: int | None = None, options: Options | None = None,
-          events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
+          splitting_order: int | None = None, sensitivity_error_control: bool | None = None,
+          options: Options | None = None, events=None, dense_output: bool = False, progress: bool | Callable[[float], object] | None = None,
           check_validity: bool = True, accuracy: float | None = None,
           error_estimate: bool | str = True, compare: Callable | None = None,
           sensitivities: str | list[str] | None = None) -> Solution:
@@ -150,6 +150,13 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     splitting_order : {2, 4, 6}, optional
         ``method="splitting"``: the order of the composition (2: Strang, 4 (default), 6:
         Yoshida's triple jumps).
+    sensitivity_error_control : bool, optional
+        With ``sensitivities``: whether their errors join the state's in the step-size control
+        (CVODES's ``errconS``). False (default, CVODES's too): the steps are the plain run's, so the
+        derivatives leave the answer as it was; each one's error is measured and reported
+        (``solution.sensitivity_errors``), not held to rtol. True: held to rtol and atol too, at the
+        cost of the steps they take (1-1.6x the plain run's on ``bench/sensitivity_cost.py``'s
+        cases). dop853 and taylor; cvode_bdf holds them always.
     options : gyrostat.Options, optional
         All the options above at once (None keeps the defaults of :class:`gyrostat.Options`,
         the one place where defaults live); keywords given as well override it.
@@ -191,8 +198,8 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
         ``"LinearDamping.matrix[0,0]"``, ``"ViscousCavity.viscosity"``, …:
         :func:`gyrostat.sensitivity.parameter_names`), read with ``solution.sensitivity(name)``.
         Integrated by dop853 (or ``method="cvode_bdf"`` for a stiff model, ``method="taylor"``
-        for a gyrostat under constant and linear torques) on the variational equations at the
-        rtol and atol given (each sensitivity's error controlled with the state's); with
+        for a gyrostat under constant and linear torques) on the variational equations, with the
+        plain run's steps (``sensitivity_error_control``: or held to rtol and atol too); with
         ``events``, ``solution.sensitivity(name, event=k)`` gives the event times' derivatives.
         Not with ``accuracy`` or another method (a ValueError says so).
     check_validity : bool, optional
@@ -230,7 +237,7 @@ def solve(model, y0, t_span, *, method: str | None = None, rtol: float | None = 
     # (a list of output times as a tuple: it keys options_of's cache as it is)
     listed = type(t_eval) is list
     values = (method, rtol, atol, tuple(t_eval) if listed else t_eval, n_out, every_step, max_steps, first_step, max_step,
-              step, splitting_order)
+              step, splitting_order, sensitivity_error_control)
     try:
         core = model._core
     except AttributeError:

@@ -127,9 +127,11 @@ struct SensitivityColumn {
     /// size: CVODES's p̄ scaling; the run's atol for an initial component).
     double atol = 0.0;
     /// Where the right-hand side is affine in the parameter (its torque or model declares so:
-    /// affine_in, torque/set.hpp), the model with it moved by far_step, the parameter's own size:
-    /// ∂f/∂p = (f(p + far_step) − f(p))/far_step, exact up to rounding (that large a move keeps
-    /// the difference far above f's rounding), one moved right-hand side per stage instead of two.
+    /// affine_in, torque/set.hpp), or its torque inversely proportional to it (inverse_in), the
+    /// model `far` with it moved by its own size, and ∂f/∂p = (f_far − f)/far_step: far_step the
+    /// move where affine, p/2 where M ∝ 1/p (the move doubles p), exact up to rounding (that large
+    /// a move keeps the difference far above f's rounding), one moved right-hand side per stage
+    /// instead of two.
     const AnyModel* far = nullptr;
     double far_step = 0.0;
     /// Where the model gives ∂f/∂p in closed form (model::system::has_parameter_rate: the averaged

@@ -80,6 +80,14 @@ struct Options {
     /// (measure.cpp) and the accuracy contract's probes (python/gyrostat/contract.py), which
     /// compare no more.
     bool only_measured_outputs = false;
+    /// A run with sensitivities (model/variational.hpp): whether each sensitivity's error joins the
+    /// state's in the step-size control (CVODES's errconS). False (CVODES's default): the steps are
+    /// the state's alone, those of the plain run, whose answer the sensitivities then leave as it
+    /// was; their own error is measured and reported (gyrostat.sensitivity), not held. True: every
+    /// sensitivity held to the tolerances too, at the cost of the steps it takes (1–1.6× the plain
+    /// run's on bench/sensitivity_cost.py's cases). DOP853 and the Taylor method; CVODE's BDF holds
+    /// them always (integrate/variational_bdf.hpp).
+    bool sensitivity_error_control = false;
 };
 
 enum class Status {

@@ -2,15 +2,17 @@
 // (model/variational.hpp), y and its sensitivities S = ∂y/∂p integrated together. The tableau,
 // the step-size controller and the 7th-order dense output are dop853.hpp's (same constants, same
 // monomials); what differs is the state's storage (one dynamic vector, allocated once) and the
-// error norm, taken on each block (y, then every sensitivity column) and the largest kept, so
-// that many sensitivities do not dilute the control of the state (CVODES's errconS = true, with
-// each column's own absolute tolerance: see `scale` below).
+// error norm: on y alone by default, so that the steps are the plain run's (CVODES's errconS =
+// false); with Options::sensitivity_error_control, on each block (y, then every sensitivity
+// column) and the largest kept, so that many sensitivities do not dilute the control of the state
+// (CVODES's errconS = true, with each column's own absolute tolerance: see `scale` below).
 #pragma once
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,15 +45,20 @@ inline std::string interrupted_message(double t) {
 /// (the model's manifold, on y) and says whether the model has one. With a `dense` output, every
 /// step's continuous extension goes into it (the whole augmented state). Fails as dop853 does
 /// (max_steps, a step below the resolution of t, a non-finite state) with the partial record and
-/// a message.
+/// a message. `quadratures`: the model's (model/system.hpp), left out of the error test in every
+/// block as dop853.hpp leaves them out of the plain run's.
 template <class Rhs, class Project>
 VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen::Index block, double t0,
                                   Eigen::VectorXd y, double t1, const std::vector<double>& times,
                                   const std::vector<double>& atol, const std::vector<double>& rtol,
-                                  const Options& options, const Control* control, DenseOutput* dense = nullptr) {
+                                  const Options& options, const Control* control, DenseOutput* dense = nullptr,
+                                  const std::vector<int>& quadratures = {}) {
     namespace tab = dop853_tableau;
     using namespace dop853_detail;
-    const Eigen::Index size = y.size(), blocks = size / block;
+    const Eigen::Index size = y.size(), blocks = options.sensitivity_error_control ? size / block : 1;
+    const Eigen::Index controlled = blocks * block;  // the components the steps are chosen on
+    // the components each block's norm counts (as dop853.hpp's `controlled`: its quadratures left out)
+    const double counted = static_cast<double>(std::max<Eigen::Index>(1, block - static_cast<Eigen::Index>(quadratures.size())));
     const double direction = t1 >= t0 ? 1.0 : -1.0, span = std::abs(t1 - t0);
     VariationalRun run;
     std::size_t next = 0;  // the next output time
@@ -66,7 +73,7 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
         return run;
     };
     // The error of a step: DOP853's combination of its 5th- and 3rd-order estimates on each
-    // block, the largest.
+    // controlled block, the largest.
     auto error_norm = [&](const Eigen::VectorXd& e5, const Eigen::VectorXd& e3, const Eigen::VectorXd& scale, double h) {
         double worst = 0.0;
         for (Eigen::Index b = 0; b < blocks; ++b) {
@@ -76,7 +83,7 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
                 if (e3[i] != 0.0) s3 += (e3[i] / scale[i]) * (e3[i] / scale[i]);
             }
             if (s5 != 0.0 || s3 != 0.0)
-                worst = std::max(worst, h * s5 / std::sqrt((s5 + 0.01 * s3) * static_cast<double>(block)));
+                worst = std::max(worst, h * s5 / std::sqrt((s5 + 0.01 * s3) * counted));
         }
         return worst;
     };
@@ -86,6 +93,8 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
         absolute[i] = atol[static_cast<std::size_t>(i / block)];
         relative[i] = rtol[static_cast<std::size_t>(i / block)];
     }
+    for (Eigen::Index b = 0; b < size / block; ++b)  // a quadrature's scale infinite: v / ∞ = 0
+        for (const int q : quadratures) absolute[b * block + q] = std::numeric_limits<double>::infinity();
     auto scale_of = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) -> const Eigen::VectorXd& {
         scale = absolute + relative.cwiseProduct(a.cwiseAbs().cwiseMax(b.cwiseAbs()));
         return scale;
@@ -108,22 +117,24 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
     if (!y.allFinite() || !f.allFinite())
         return fail(Status::NonFiniteState, "the right-hand side is not finite at the initial state (t = " + format_number(t0) + ")");
 
-    // The first step (Hairer's rule, as dop853.hpp's, on the whole state).
+    // The first step (Hairer's rule with dop853.hpp's slow-system scale, on the controlled components).
     double h_abs = options.first_step;
     if (h_abs == 0.0) {
         const Eigen::VectorXd& first_scale = scale_of(y, y);
         auto rms_over = [&](const Eigen::VectorXd& v) {  // weighted as dop853.hpp's: 0/0 = 0
             double squares = 0.0;
-            for (Eigen::Index i = 0; i < size; ++i)
+            for (Eigen::Index i = 0; i < controlled; ++i)
                 if (v[i] != 0.0) squares += (v[i] / first_scale[i]) * (v[i] / first_scale[i]);
-            return std::sqrt(squares / static_cast<double>(size));
+            return std::sqrt(squares / (counted * static_cast<double>(blocks)));
         };
         const double d0 = rms_over(y), d1 = rms_over(f);
         const double h0 = std::min(d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1, span);
         rhs(t + h0 * direction, y + h0 * direction * f, f_new);
         ++run.stats.rhs_evals;
         const double d2 = rms_over(f_new - f) / h0;
-        const double h1 = d1 <= 1e-15 && d2 <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / std::max(d1, d2), 1.0 / 8.0);
+        double h1 = d1 <= 1e-15 && d2 <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / std::max(d1, d2), 1.0 / 8.0);
+        const double tau = d0 / d1;  // a slow system's own time scale (dop853.hpp's initial_step)
+        if (tau > 10.0 && std::isfinite(tau)) h1 = std::max(h1, tau * std::pow(0.01 / std::max(d0, tau * tau * d2), 1.0 / 8.0));
         h_abs = std::min({100 * h0, h1, span});
         if (!std::isfinite(h_abs) || h_abs <= 0.0) h_abs = std::min(1e-6, span);
     }

@@ -4,8 +4,11 @@
 // on every block: CVODES's simultaneous corrector makes the same approximation, the blocks below
 // the diagonal left out; Newton still converges, and the error test is on the whole state), from
 // the model's analytic Jacobian, or CVODE's difference quotients where the model has none. Each
-// block's absolute tolerance as in variational.hpp (CVodeSVtolerances). Outputs from CVODE's own
-// interpolant (CVodeGetDky) inside each step.
+// block's absolute tolerance as in variational.hpp (CVodeSVtolerances). The error test covers
+// every block whatever Options::sensitivity_error_control says: CVODE's one weighted norm serves
+// its error test and Newton's convergence test alike, and a block left out of it would leave
+// Newton's iterates on the sensitivities unchecked. Outputs from CVODE's own interpolant
+// (CVodeGetDky) inside each step.
 #pragma once
 
 #include <cvode/cvode.h>

@@ -31,7 +31,8 @@
 // A step costs the plain recursion plus ~(6 + 24)(n + 1) multiply-adds per order n and column (ω;
 // q), and P once: ~3 (n + 1).
 //
-// The step. Jorba & Zou's rule (taylor.hpp) on every block b of Y (y, then each S_j), each with
+// The step. Jorba & Zou's rule (taylor.hpp) on y's block alone (the plain run's order and steps),
+// or, with Options::sensitivity_error_control, on every block b of Y (y, then each S_j), each with
 // its own tolerance as the DOP853 path's error norm (atol[b]; rtol shared): block b is in relative
 // mode when rtol·‖Y_b‖∞ > atol[b] (ε_b = rtol, scale ‖Y_b‖∞), else absolute (ε_b = atol[b], scale 1);
 // the order is taylor.hpp's for the smallest ε_b (order_for), and the step the least over the
@@ -133,7 +134,8 @@ public:
         const Eigen::VectorXd& y = yv[0];
         bool changed = false;
         double least = std::numeric_limits<double>::infinity();
-        for (int b = 0; b < blocks_; ++b) {
+        controlled_ = options.sensitivity_error_control ? blocks_ : 1;
+        for (int b = 0; b < controlled_; ++b) {
             const double norm = y.segment(b * dim, dim).cwiseAbs().maxCoeff();
             const double atol = atol_[static_cast<std::size_t>(b)];
             const bool relative = options.rtol * norm > atol;
@@ -145,7 +147,8 @@ public:
         }
         if (changed) {  // only when a block's mode switches
             order_ = taylor_detail::order_for(least, max_taylor_order);
-            for (std::size_t b = 0; b < safety_.size(); ++b) safety_[b] = taylor_detail::safety_for(block_eps_[b], order_);
+            for (std::size_t b = 0; b < static_cast<std::size_t>(controlled_); ++b)
+                safety_[b] = taylor_detail::safety_for(block_eps_[b], order_);
             compensated_ = least < taylor_detail::compensate_below;
             if (!compensated_) low_.setZero();  // (no stale low part if compensation resumes)
         }
@@ -184,7 +187,7 @@ public:
     double step_size(const Coefficient*) const {
         constexpr int stride = Order + 1;
         double h = std::numeric_limits<double>::infinity();
-        for (int b = 0; b < blocks_; ++b) {
+        for (int b = 0; b < controlled_; ++b) {
             double low = 0.0, high = 0.0;
             for (int i = b * dim; i < (b + 1) * dim; ++i) {
                 low = std::max(low, std::abs(buffer_[static_cast<std::size_t>(i * stride + Order - 1)]));
@@ -266,7 +269,8 @@ private:
     model::AffineEulerRate rate_;                   // f's coefficients
     std::vector<model::AffineEulerRate> parameters_;  // ∂f/∂p_j's (a column of the initial state: unused)
     bool any_varied_ = false;                       // some column is a parameter's
-    int blocks_ = 1, size_ = dim, stride_ = 1;      // (stride_: the last coefficients' order + 1)
+    int blocks_ = 1, size_ = dim, stride_ = 1;
+    int controlled_ = 1;  // the blocks order and step are chosen on: y's alone, or every one (Options::sensitivity_error_control)      // (stride_: the last coefficients' order + 1)
     std::vector<double> buffer_, scaled_;           // the coefficients (component by component); for the dense output
     Eigen::VectorXd low_, y_before_, value_;        // Y's rounding error (compensated); Y before the step; an output
     std::vector<double> block_eps_, safety_, scale_;

@@ -91,27 +91,38 @@ public:
         }
     }
 
-    /// ∂f/∂y · s without the whole Jacobian (the variational equations of a few sensitivities,
-    /// model/variational.hpp), from the same derivatives:
+    /// f and ∂f/∂y · s_j for every column s_j at once (system::has_rate_with_products: the
+    /// variational equations, model/variational.hpp): the torques, their ∂M/∂ω and the attitude
+    /// torques' ∂M/∂q once, then each column's product from the same derivatives,
     ///   ∂ω̇ · s = J⁻¹ (ΣM_ω s_ω + ΣM_q s_q − s_ω × (Jω + k) − ω × (J s_ω)),
-    ///   ∂q̇ · s = ½ (s_q ⊗ (0, ω) + q ⊗ (0, s_ω))      (q̇ is bilinear in q and ω).
-    /// (Each product evaluates the torques' ∂M/∂ω again: from two columns on the whole Jacobian is
-    /// cheaper; bench/sensitivity_cost.py, the cavity with the attitude 1.93 against 1.84.)
-    static constexpr std::size_t product_columns = 1;
-    void jacobian_product(double t, const State& y, const State& s, State& product) const {
-        const Vec3 omega = y.template head<3>(), s_omega = s.template head<3>();
+    ///   ∂q̇ · s = ½ (s_q ⊗ (0, ω) + q ⊗ (0, s_ω))      (q̇ is bilinear in q and ω),
+    /// without the whole 7×7 Jacobian; f by rhs's own operations.
+    bool rate_with_products(double t, const State& y, const double* columns, std::size_t count, State& f,
+                            double* products) const {
+        const Vec3 omega = y.template head<3>();
         const Vec3 momentum = body_.moments().cwiseProduct(omega) + body_.rotor();
         Eigen::Vector4d q;
-        Vec3 d_torque = torques_.jacobian(t, omega, body_.moments(), system::attitude_of<Gyrostat>(y, q)) * s_omega;
-        if constexpr (WithAttitude) {
-            Eigen::Matrix<double, 3, 4> d_attitude = Eigen::Matrix<double, 3, 4>::Zero();
-            if (torques_.add_attitude_jacobian(t, omega, body_.moments(), q, d_attitude))
-                d_torque += d_attitude * s.template segment<4>(3);
+        const auto* attitude = system::attitude_of<Gyrostat>(y, q);
+        const Vec3 torque = torques_.total(t, omega, body_.moments(), attitude);
+        f.template head<3>() = body_.inverse_moments().cwiseProduct(torque - omega.cross(momentum));
+        if constexpr (WithAttitude) f.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
+        const Mat3 d_torque = torques_.jacobian(t, omega, body_.moments(), attitude);
+        [[maybe_unused]] Eigen::Matrix<double, 3, 4> d_attitude = Eigen::Matrix<double, 3, 4>::Zero();
+        [[maybe_unused]] bool reads_attitude = false;
+        if constexpr (WithAttitude) reads_attitude = torques_.add_attitude_jacobian(t, omega, body_.moments(), q, d_attitude);
+        for (std::size_t j = 0; j < count; ++j) {
+            const Eigen::Map<const State> s(columns + j * dim);
+            Eigen::Map<State> product(products + j * dim);
+            const Vec3 s_omega = s.template head<3>();
+            Vec3 d_moment = d_torque * s_omega;
+            if constexpr (WithAttitude)
+                if (reads_attitude) d_moment += d_attitude * s.template segment<4>(3);
+            product.template head<3>() = body_.inverse_moments().cwiseProduct(
+                d_moment - s_omega.cross(momentum) - omega.cross(body_.moments().cwiseProduct(s_omega)));
+            if constexpr (WithAttitude)
+                product.template segment<4>(3) = quaternion_rate(s.template segment<4>(3), omega) + quaternion_rate(q, s_omega);
         }
-        product.template head<3>() = body_.inverse_moments().cwiseProduct(
-            d_torque - s_omega.cross(momentum) - omega.cross(body_.moments().cwiseProduct(s_omega)));
-        if constexpr (WithAttitude)
-            product.template segment<4>(3) = quaternion_rate(s.template segment<4>(3), omega) + quaternion_rate(q, s_omega);
+        return true;
     }
 
     /// Taylor coefficients y[0..order] of the solution through y(t): y(t + h) = Σ y[n] hⁿ, from

@@ -116,8 +116,9 @@ public:
     static constexpr const char* family = "lagrange_top";
     static constexpr auto states = rate_states<true>();
     static constexpr bool carries_attitude = true;
-    /// Its own numbers (as gyrostat.sensitivity names them) the right-hand side is affine in.
-    static constexpr std::array<const char*, 1> affine_in{{"mu"}};
+    /// Its own numbers (as gyrostat.sensitivity names them) whose ∂f/∂p it gives in closed form
+    /// (system::has_parameter_rate, parameter_rate below): μ.
+    static constexpr std::array<const char*, 1> analytic_in{{"mu"}};
 
     LagrangeTop(Body body, double mu, TorqueSet torques) : body_(std::move(body)), torques_(torques.in_principal_axes(body)), mu_(mu) {
         const Vec3& J = body_.moments();
@@ -156,6 +157,15 @@ public:
         dy[1] = ((C_ - A_) * p * r - mu_ * g[0] + M[1]) / A_;
         dy[2] = M[2] / C_;
         dy.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), Vec3(p, q, r));
+    }
+
+    /// ∂f/∂μ (k = 0, the one number of analytic_in): gravity's moment over μ, (γ2, −γ1, 0)/A in the
+    /// Euler rows; the quaternion's rows do not hold μ.
+    void parameter_rate(std::size_t /*k*/, double /*t*/, const State& y, State& rate) const {
+        const Vec3 g = vertical_in_body(y[3], y[4], y[5], y[6]);
+        rate.setZero();
+        rate[0] = g[1] / A_;
+        rate[1] = -g[0] / A_;
     }
 
     /// ∂f/∂y of the equations above: the Euler rows through (A − C) q r / A, the gravity torque

@@ -46,8 +46,9 @@ public:
     /// ω, u and v are vectors in body axes (model/frame.hpp); on a body given by its inertia
     /// tensor the mass moves about its attachment on the third principal axis.
     static constexpr std::array<int, 3> body_vectors{{0, 3, 6}};
-    /// Its own numbers (as gyrostat.sensitivity names them) the right-hand side is affine in: λ.
-    static constexpr std::array<const char*, 1> affine_in{{"damping"}};
+    /// Its own numbers (as gyrostat.sensitivity names them) whose ∂f/∂p it gives in closed form
+    /// (system::has_parameter_rate, parameter_rate below): λ.
+    static constexpr std::array<const char*, 1> analytic_in{{"damping"}};
 
     MovingMass(Body system_body, double mass, double arm, double frequency, double damping, TorqueSet external)
         : body_(std::move(system_body)), torques_(external.in_principal_axes(system_body)), mu_(mass), rho_(arm),
@@ -90,40 +91,36 @@ public:
         using D = Dual<dim>;
         std::array<D, dim> x, f;
         for (int i = 0; i < dim; ++i) x[i] = D::variable(y[i], i);
-        std::array<D, 3> M{D(0.0), D(0.0), D(0.0)};
-        if (!torques_.empty()) {
-            const Vec3 m = torques_.total(t, y.head<3>(), body_.moments());
-            const Mat3 dm = torques_.jacobian(t, y.head<3>(), body_.moments());
-            for (int i = 0; i < 3; ++i) {
-                M[i] = D(m[i]);
-                for (int k = 0; k < 3; ++k) M[i].d[k] = dm(i, k);
-            }
-        }
-        evaluate(x, M, f);
+        Eigen::Matrix<double, 3, dim> along = Eigen::Matrix<double, 3, dim>::Zero();  // ω's part of each variable
+        along.template leftCols<3>().setIdentity();
+        evaluate(x, torque_along<dim>(t, y, along), f);
         for (int i = 0; i < dim; ++i)
             for (int k = 0; k < dim; ++k) jac(i, k) = f[i].d[k];
     }
 
-    /// ∂f/∂y · s alone: the equations on one directional dual number y + ε s (a ninth of the
-    /// Jacobian's derivative work, for the variational equations' few columns).
-    void jacobian_product(double t, const State& y, const State& s, State& product) const {
-        using D = Dual<1>;
-        std::array<D, dim> x, f;
-        for (int i = 0; i < dim; ++i) {
-            x[i] = D(y[i]);
-            x[i].d[0] = s[i];
+    /// f and ∂f/∂y · s_j for up to four columns s_j at once (system::has_rate_with_products): the
+    /// equations on dual numbers with one direction per column, whose values are f (the same
+    /// operations as rhs's on doubles), where one directional evaluation per column would compute
+    /// f's shared parts again each time. False for more columns (the whole Jacobian serves them).
+    bool rate_with_products(double t, const State& y, const double* columns, std::size_t count, State& f,
+                            double* products) const {
+        switch (count) {
+            case 1: rate_with_products_of<1>(t, y, columns, f, products); return true;
+            case 2: rate_with_products_of<2>(t, y, columns, f, products); return true;
+            case 3: rate_with_products_of<3>(t, y, columns, f, products); return true;
+            case 4: rate_with_products_of<4>(t, y, columns, f, products); return true;
+            default: return false;
         }
-        std::array<D, 3> M{D(0.0), D(0.0), D(0.0)};
-        if (!torques_.empty()) {
-            const Vec3 m = torques_.total(t, y.head<3>(), body_.moments());
-            const Vec3 dm = torques_.jacobian(t, y.head<3>(), body_.moments()) * s.head<3>();
-            for (int i = 0; i < 3; ++i) {
-                M[i] = D(m[i]);
-                M[i].d[0] = dm[i];
-            }
-        }
-        evaluate(x, M, f);
-        for (int i = 0; i < dim; ++i) product[i] = f[i].d[0];
+    }
+
+    /// ∂f/∂λ (k = 0, the one number of analytic_in). λ enters through R alone, ∂R/∂λ = −v, and f
+    /// is affine in R:
+    ///   J_B ∂ω̇/∂λ = −μ d × ∂R = μ d × v,   ∂u̇/∂λ = 0,   ∂v̇/∂λ = ∂R − ∂ω̇/∂λ × d = −v − ∂ω̇/∂λ × d.
+    void parameter_rate(std::size_t /*k*/, double /*t*/, const State& y, State& rate) const {
+        const Vec3 u = y.segment<3>(3), v = y.tail<3>();
+        const Vec3 d = Vec3(0.0, 0.0, rho_) + u;
+        const Vec3 spin_rate = (mu_ * d.cross(v)).cwiseQuotient(carrier_);
+        rate << spin_rate, Vec3::Zero(), -v - spin_rate.cross(d);
     }
 
     /// The equations above for any scalar T (double, or Dual for the Jacobian); M the external torque.
@@ -180,6 +177,38 @@ public:
     State quasi_static_state(const Vec3& omega) const;
 
 private:
+    /// The external torque on dual numbers with N directions: M, and its derivative along each
+    /// direction from the torques' ∂M/∂ω and the direction's ω part (a column of `along`).
+    template <int N>
+    std::array<Dual<N>, 3> torque_along(double t, const State& y, const Eigen::Matrix<double, 3, N>& along) const {
+        std::array<Dual<N>, 3> M{Dual<N>(0.0), Dual<N>(0.0), Dual<N>(0.0)};
+        if (torques_.empty()) return M;
+        const Vec3 m = torques_.total(t, y.head<3>(), body_.moments());
+        const Eigen::Matrix<double, 3, N> dm = torques_.jacobian(t, y.head<3>(), body_.moments()) * along;
+        for (int i = 0; i < 3; ++i) {
+            M[i] = Dual<N>(m[i]);
+            for (int j = 0; j < N; ++j) M[i].d[j] = dm(i, j);
+        }
+        return M;
+    }
+
+    template <int N>
+    void rate_with_products_of(double t, const State& y, const double* columns, State& f, double* products) const {
+        using D = Dual<N>;
+        std::array<D, dim> x, rate;
+        Eigen::Matrix<double, 3, N> along;  // ω's part of each column
+        for (int i = 0; i < dim; ++i) {
+            x[i] = D(y[i]);
+            for (int j = 0; j < N; ++j) x[i].d[j] = columns[j * dim + i];
+        }
+        for (int j = 0; j < N; ++j) along.col(j) = Vec3(columns[j * dim], columns[j * dim + 1], columns[j * dim + 2]);
+        evaluate(x, torque_along<N>(t, y, along), rate);
+        for (int i = 0; i < dim; ++i) {
+            f[i] = rate[i].v;
+            for (int j = 0; j < N; ++j) products[j * dim + i] = rate[i].d[j];
+        }
+    }
+
     State quasi_static_state_in_principal_axes(const Vec3& omega) const;
 
     Body body_;

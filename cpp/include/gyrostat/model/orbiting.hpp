@@ -54,6 +54,11 @@ public:
     void rhs(double t, const State& y, State& dy) const { inner_.rhs(t, y, dy); }
     /// The gyrostat's Jacobian.
     void jacobian(double t, const State& y, Jacobian& jac) const { inner_.jacobian(t, y, jac); }
+    /// The gyrostat's f and products with the variational equations' columns (system::has_rate_with_products).
+    bool rate_with_products(double t, const State& y, const double* columns, std::size_t count, State& f,
+                            double* products) const {
+        return inner_.rate_with_products(t, y, columns, count, f, products);
+    }
     static constexpr int max_taylor_order = Inner::max_taylor_order;
     template <int order>
     void taylor_coefficients(double t, const State& y, State* coefficients) const {

@@ -147,27 +147,19 @@ struct has_jacobian<S, std::void_t<decltype(std::declval<const S&>().jacobian(
                            0.0, std::declval<const typename S::State&>(), std::declval<Jacobian<S>&>()))>>
     : std::true_type {};
 
-/// A model that gives ∂f/∂y · s without forming the whole Jacobian (`void jacobian_product(double
-/// t, const State& y, const State& s, State& product) const`: one directional dual number where
-/// the Jacobian is made of dual numbers), for the variational equations' few columns.
+/// A model that gives f and its products with several columns in one evaluation (`void
+/// rate_with_products(double t, const State& y, const double* columns, std::size_t count, State& f,
+/// double* products) const`, columns and products `count` blocks of dim; false where it does not
+/// cover that many columns): what f and the products share evaluated once (the gyrostat's torques
+/// and their derivatives; the moving mass's dual numbers with a direction per column, whose values
+/// are f), without forming the whole Jacobian.
 template <class S, class = void>
-struct has_jacobian_product : std::false_type {};
+struct has_rate_with_products : std::false_type {};
 template <class S>
-struct has_jacobian_product<S, std::void_t<decltype(std::declval<const S&>().jacobian_product(
-                                   0.0, std::declval<const typename S::State&>(), std::declval<const typename S::State&>(),
-                                   std::declval<typename S::State&>()))>> : std::true_type {};
-
-/// The most columns for which the variational equations take a model's jacobian_product rather
-/// than its whole Jacobian: its `static constexpr std::size_t product_columns` where it declares one
-/// (a product that evaluates shared parts again per column), else fewer than dim / 2.
-template <class S, class = void>
-struct product_columns {
-    static constexpr std::size_t value = (static_cast<std::size_t>(S::dim) - 1) / 2;
-};
-template <class S>
-struct product_columns<S, std::void_t<decltype(S::product_columns)>> {
-    static constexpr std::size_t value = S::product_columns;
-};
+struct has_rate_with_products<S, std::void_t<decltype(std::declval<const S&>().rate_with_products(
+                                     0.0, std::declval<const typename S::State&>(), std::declval<const double*>(),
+                                     std::size_t{}, std::declval<typename S::State&>(), std::declval<double*>()))>>
+    : std::true_type {};
 
 /// A model that gives ∂f/∂p of some of its own numbers in closed form (the variational equations'
 /// parameter columns then take it instead of a difference quotient between moved models): its

@@ -6,9 +6,10 @@
 //   S_j' = ∂f/∂y (t, y; p) · S_j + ∂f/∂p_j (t, y; p),      S_j(t0) = ∂y(t0)/∂p_j,
 //
 // (Hairer, Nørsett & Wanner, Solving ODEs I, §I.14). The terms:
-// * ∂f/∂y · S_j: the model's analytic Jacobian where it gives one (every full model; its product
-//   with each column alone where the model gives that and the columns are few (system.hpp:
-//   product_columns): the moving mass's directional dual numbers, the gyrostat's one column), else the
+// * ∂f/∂y · S_j: the model's analytic Jacobian where it gives one (every full model; f and the
+//   products with all the columns in one evaluation where the model gives them so (system.hpp:
+//   rate_with_products): the gyrostat's torques and their derivatives once, the moving mass's dual
+//   numbers with a direction per column), else the
 //   directional central difference (f(y + δ S_j) − f(y − δ S_j)) / 2δ with δ‖S_j‖ = ε^{1/3} ‖y‖
 //   (truncation and rounding both ~ε^{2/3} ≈ 4e-11 relative: the averaged models);
 // * ∂f/∂p_j: (f(t, y; p_j + h_j) − f(t, y; p_j − h_j)) / 2h_j on the two models the caller built
@@ -70,21 +71,22 @@ public:
         dY.resize(Y.size());
         const State y = Y.template head<dim>();
         State f;
-        model_.rhs(t, y, f);
+        // f and every column's product in one evaluation where the model gives them so
+        // (system::has_rate_with_products), else f alone and then the whole Jacobian once.
+        bool together = false;
+        if constexpr (system::has_rate_with_products<M>::value)
+            together = !columns_.empty() && model_.rate_with_products(t, y, Y.data() + dim, columns_.size(), f, dY.data() + dim);
+        if (!together) model_.rhs(t, y, f);
         dY.template head<dim>() = f;
-        // The whole Jacobian once, or its product with each column where that is cheaper (a few
-        // columns of a model that gives the product alone).
         [[maybe_unused]] system::Jacobian<M> jacobian;
-        [[maybe_unused]] bool by_products = false;
-        if constexpr (system::has_jacobian_product<M>::value) by_products = columns_.size() <= system::product_columns<M>::value;
         if constexpr (system::has_jacobian<M>::value)
-            if (!by_products) model_.jacobian(t, y, jacobian);
+            if (!together) model_.jacobian(t, y, jacobian);
         for (std::size_t j = 0; j < columns_.size(); ++j) {
             const Eigen::Index at = dim * static_cast<Eigen::Index>(1 + j);
             const State s = Y.template segment<dim>(at);
             State rate;
-            if (by_products) {
-                if constexpr (system::has_jacobian_product<M>::value) model_.jacobian_product(t, y, s, rate);
+            if (together) {
+                rate = dY.template segment<dim>(at);
             } else if constexpr (system::has_jacobian<M>::value) {
                 rate.noalias() = jacobian * s;
             } else {

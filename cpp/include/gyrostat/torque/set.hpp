@@ -67,7 +67,10 @@ namespace gyrostat {
 ///   std::vector<Assumption> assumptions(const Motion&)   its validity numbers;
 ///   static constexpr bool keeps_momentum_norm = true     Jω·M ≡ 0;
 ///   static constexpr std::array<const char*, n> affine_in   the stored parameters M is affine in
-///                                                  (the sensitivities' one-sided difference).
+///                                                  (the sensitivities' one-sided difference);
+///   static constexpr std::array<const char*, n> inverse_in  those M is inversely proportional to
+///                                                  (as 1/p: the same difference between p and 2p
+///                                                  is −p/2 times ∂M/∂p, exact to rounding as well).
 using AnyTorque = std::variant<torque::Constant, torque::LinearDamping, torque::ResistiveMedium,
                                torque::ViscousCavity, torque::MovingMassDamper, torque::GravityGradient,
                                torque::MagneticTorque, torque::DipoleFieldTorque, torque::InertialTorque,
@@ -87,6 +90,19 @@ template <class T>
 std::vector<std::string> affine_in() {
     if constexpr (declares_affine_in<T>::value)
         return std::vector<std::string>(T::affine_in.begin(), T::affine_in.end());
+    else
+        return {};
+}
+
+/// The stored parameters a torque declares M inversely proportional to (`inverse_in`; none without it).
+template <class T, class = void>
+struct declares_inverse_in : std::false_type {};
+template <class T>
+struct declares_inverse_in<T, std::void_t<decltype(T::inverse_in)>> : std::true_type {};
+template <class T>
+std::vector<std::string> inverse_in() {
+    if constexpr (declares_inverse_in<T>::value)
+        return std::vector<std::string>(T::inverse_in.begin(), T::inverse_in.end());
     else
         return {};
 }

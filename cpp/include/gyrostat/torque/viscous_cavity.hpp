@@ -38,6 +38,8 @@ struct ViscousCavity {
     }};
     /// M is affine in these (a sensitivity's ∂f/∂p is then a one-sided difference, exact).
     static constexpr std::array<const char*, 2> affine_in{{"density", "p0"}};
+    /// M ∝ 1/ν (κ = ρ P0/ν): a sensitivity's ∂f/∂ν is a one-sided difference too, scaled (torque/set.hpp).
+    static constexpr std::array<const char*, 1> inverse_in{{"viscosity"}};
 
     double density = 0.0;    ///< ρ
     double viscosity = 0.0;  ///< ν (kinematic)
