@@ -198,6 +198,49 @@ public:
         quaternion_rate_jacobian(jac, 3, y.template segment<4>(3), Vec3(p, q, r));
     }
 
+    /// f and ∂f/∂y · s_j for every column s_j at once (system::has_rate_with_products: the
+    /// variational equations, model/variational.hpp), from the Jacobian's terms above without
+    /// forming it: the torques, their ∂M/∂ω and the attitude torques' ∂M/∂Q once, then
+    ///   A ∂ṗ · s = ΣM_ω s_ω + ΣM_Q s_Q + (A − C)(r s_q + q s_r) + 2μ (x s_w + w s_x + z s_y + y s_z),
+    ///   A ∂q̇ · s = … + (C − A)(r s_p + p s_r) + 2μ (y s_w − z s_x + w s_y − x s_z),
+    ///   C ∂ṙ · s = ΣM_ω s_ω + ΣM_Q s_Q,     ∂Q̇ · s = ½ (s_Q ⊗ (0, ω) + Q ⊗ (0, s_ω));  f by rhs's own operations.
+    bool rate_with_products(double t, const State& y, const double* columns, std::size_t count, State& f,
+                            double* products) const {
+        const double p = y[0], q = y[1], r = y[2];
+        const double w = y[3], x = y[4], yy = y[5], z = y[6];
+        const Vec3 omega(p, q, r);
+        const Vec3 g = vertical_in_body(w, x, yy, z);
+        const Eigen::Vector4d attitude(w, x, yy, z);
+        const Vec3 M = torques_.empty() ? Vec3::Zero() : torques_.total(t, omega, body_.moments(), &attitude);
+        f[0] = ((A_ - C_) * q * r + mu_ * g[1] + M[0]) / A_;
+        f[1] = ((C_ - A_) * p * r - mu_ * g[0] + M[1]) / A_;
+        f[2] = M[2] / C_;
+        f.template segment<4>(3) = quaternion_rate(attitude, omega);
+        Mat3 dM = Mat3::Zero();
+        Eigen::Matrix<double, 3, 4> dM_dQ = Eigen::Matrix<double, 3, 4>::Zero();
+        bool reads_attitude = false;
+        if (!torques_.empty()) {
+            dM = torques_.jacobian(t, omega, body_.moments(), &attitude);
+            reads_attitude = torques_.add_attitude_jacobian(t, omega, body_.moments(), attitude, dM_dQ);
+        }
+        for (std::size_t j = 0; j < count; ++j) {
+            const Eigen::Map<const State> s(columns + j * dim);
+            Eigen::Map<State> product(products + j * dim);
+            const Vec3 s_omega = s.template head<3>();
+            const Eigen::Vector4d s_attitude = s.template segment<4>(3);
+            Vec3 d_moment = dM * s_omega;
+            if (reads_attitude) d_moment += dM_dQ * s_attitude;
+            const double k = 2.0 * mu_;
+            product[0] = (d_moment[0] + (A_ - C_) * (r * s[1] + q * s[2]) +
+                          k * (x * s[3] + w * s[4] + z * s[5] + yy * s[6])) / A_;
+            product[1] = (d_moment[1] + (C_ - A_) * (r * s[0] + p * s[2]) +
+                          k * (yy * s[3] - z * s[4] + w * s[5] - x * s[6])) / A_;
+            product[2] = d_moment[2] / C_;
+            product.template segment<4>(3) = quaternion_rate(s_attitude, omega) + quaternion_rate(attitude, s_omega);
+        }
+        return true;
+    }
+
     // --- Splitting (integrate/splitting.hpp) ---------------------------------------------------
     // f = f_free + f_pert with
     //   f_free: A ṗ = (A − C) q r,  A q̇ = (C − A) p r,  C ṙ = 0,  Q̇ = ½ Q ⊗ (0, ω)

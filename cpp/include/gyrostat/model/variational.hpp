@@ -83,14 +83,13 @@ public:
             if (!together) model_.jacobian(t, y, jacobian);
         for (std::size_t j = 0; j < columns_.size(); ++j) {
             const Eigen::Index at = dim * static_cast<Eigen::Index>(1 + j);
-            const State s = Y.template segment<dim>(at);
             State rate;
             if (together) {
                 rate = dY.template segment<dim>(at);
             } else if constexpr (system::has_jacobian<M>::value) {
-                rate.noalias() = jacobian * s;
+                rate.noalias() = jacobian * Y.template segment<dim>(at);
             } else {
-                rate = directional(t, y, s);
+                rate = directional(t, y, Y.template segment<dim>(at));
             }
             const Varied<M>& column = columns_[j];
             if (column.analytic >= 0) {
