@@ -120,3 +120,46 @@ def test_slopes_towards_the_separatrix_match_mpmath(theta):
     bound = 1e-13 / one_minus_m
     assert np.all(errors < bound), f"1 - m = {one_minus_m:.3g}: slopes {want}, relative errors {errors} (bound {bound:.2g})"
     assert abs(want[1]) > 1.0 / (10.0 * np.sqrt(one_minus_m))  # dv/dH does grow towards it (4.9, 896, 4.9e4)
+
+
+def roots_reference(A, C, mu, G_z, H, r):
+    """The nutation cubic's three roots at 50 digits, ascending (real parts: a double root's pair)."""
+    A, C, mu, G_z, H, r = map(mp.mpf, (A, C, mu, G_z, H, r))
+    a = 2 * H - C * r * r
+    coefficients = [A * a - G_z * G_z, -2 * mu * A + 2 * G_z * C * r, -A * a - C * C * r * r, 2 * mu * A]
+    with mp.workdps(50):
+        return sorted(mp.re(x) for x in mp.polyroots(coefficients, maxsteps=400, extraprec=400, asc=True))
+
+
+@pytest.mark.parametrize("state, u3_bound, apart_bound", [
+    ((0.3, -0.2, 1.2, 0.7), 4e-16, 1e-14),     # generic
+    ((1.1, 0.4, -0.7, 1.75), 4e-16, 1e-14),    # hanging below the horizontal
+    ((0.0, 0.0, 9.0, 0.3), 4e-16, 2e-12),      # fast spin, small nutation: u2 - u1 = 2.3e-3 (measured 4.3e-13)
+    ((0.02, 0.0, 0.1, 2.5), 4e-16, 1e-14),     # slow: u3 far above 1
+    ((0.0, 0.0, 3.0, 0.0), 4e-16, 3e-8),       # the fast sleeping top: u1 = u2 = 1, a double root (m = 0)
+    ((1e-7, 0.0, 1.0, 0.0), 3e-8, 3e-8),       # next to the slow sleeping top: u2, u3 -> 1 (m = 1 - 1.8e-14)
+])
+def test_roots_against_mpmath(state, u3_bound, apart_bound):
+    """u3 by Newton's iteration from above and regula falsi (model::nutation, 2026-11-29; bisection
+    before) against the cubic's roots at 50 digits: a simple u3 to 4e-16 relative (2 ulps: the cubic
+    is evaluated in doubles; measured 2.5e-17 … 2.5e-16), u1 and u2 to 1e-14 (deflated from u3: their
+    error grows as ε |s1| / (u2 − u1), 2e-12 where they are 2.3e-3 apart); at a double root, where a
+    root moves as the square root of the rounding (√ε ~ 1.5e-8), to 3e-8. Then v (symmetric in u1, u2:
+    their errors cancel to first order) to 1e-14 absolute and the period to 1e-12 relative, against
+    the reference roots with mpmath's K and E, the period next to the separatrix too (m = 1 − 1.8e-14:
+    m1 taken from the roots)."""
+    p, q, r, theta = state
+    integrals = first_integrals(p, q, r, theta)
+    n = _core.lagrange_nutation(*integrals)
+    u1, u2, u3 = roots_reference(*integrals)
+    assert abs(n.u3 - u3) <= u3_bound * u3, f"u3 {n.u3!r} against {mp.nstr(u3, 20)} (bound {u3_bound:g} relative)"
+    for name, mine, ref in (("u1", n.u1, u1), ("u2", n.u2, u2)):
+        assert abs(mine - ref) <= apart_bound, f"{name} {mine!r} against {mp.nstr(ref, 20)} (bound {apart_bound:g})"
+    m = (u2 - u1) / (u3 - u1)
+    with mp.workdps(50):
+        K, E = mp.ellipk(m), mp.ellipe(m)
+        v = u3 - (u3 - u1) * E / K
+        period = 2 * K / mp.sqrt(integrals[2] * (u3 - u1) / (2 * integrals[0]))
+    assert abs(n.v - v) <= 1e-14, f"v {n.v!r} against {mp.nstr(v, 20)} (bound 1e-14)"
+    if m < 1:
+        assert abs(n.period - period) <= 1e-12 * period, f"period {n.period!r} against {mp.nstr(period, 20)}"

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gyrostat/model/lagrange_top.hpp"
+#include "gyrostat/numeric/complete_elliptic.hpp"
 
 namespace gyrostat::model {
 
@@ -53,15 +54,68 @@ Nutation nutation(double A, double C, double mu, double Gz, double H, double r) 
         const double w = Gz - C * r * u;
         return A * (2.0 * H - C * r * r - 2.0 * mu * u) * (1.0 - u * u) - w * w;
     };
+    // f'(u) = −2A(μ(1 − u²) + u(2H − C r² − 2μu)) + 2 C r (G_z − C r u)
+    const auto slope = [&](double u) {
+        return -2.0 * A * (mu * (1.0 - u * u) + u * (2.0 * H - C * r * r - 2.0 * mu * u)) + 2.0 * C * r * (Gz - C * r * u);
+    };
     // u3 = the last sign change on [1, hi]: f ≤ 0 on [1, u3] (u2 ≤ 1), f > 0 beyond (Cauchy bound hi).
     double lo = 1.0, hi = 2.0 + std::max({std::abs(s1), std::abs(s2), std::abs(s3)});
-    if (!(f(hi) > 0.0))
+    double f_hi = f(hi);
+    if (!(f_hi > 0.0))
         throw std::invalid_argument("nutation: the cubic has no root above 1 for (G_z, H, r) = (" + format_value(Gz) +
                                     ", " + format_value(H) + ", " + format_value(r) + ")");
+    // Newton's iteration from hi: right of its largest root the cubic rises and is convex (u3 is
+    // above the inflection s1/3, the roots' mean), so the iterates fall onto u3 from above, each
+    // one a new hi (quadratically; linearly, halving, at the sleeping top's double root u2 = u3
+    // = 1). Once a step is below 1e-8 of u3, the root lies within 8 ulps below (quadratic: the
+    // next step is ~1e-16) or within twice the step (linear: steps shrinking by less than 0.3):
+    // that point, where f ≤ 0, is lo; where f > 0, the next hi. A step that leaves (lo, hi) is a
+    // bisection. Then regula falsi (Illinois: the end kept twice has its f halved; a point off
+    // (lo, hi) a bisection) closes [lo, hi] onto adjacent doubles, as bisection alone did from
+    // [1, hi]: the same root (mean 0.56 ulp from the root in 80-bit arithmetic over 2e5 random
+    // tops, either way), in ~28 evaluations of f or f' against ~55, 2.7× faster.
+    double previous_step = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 200; ++i) {
+        const double d = slope(hi);
+        double next = d > 0.0 ? hi - f_hi / d : lo;
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (next <= lo || next >= hi) break;
+        const double f_next = f(next);
+        if (f_next <= 0.0) {
+            lo = next;
+            break;
+        }
+        const double step = hi - next;
+        hi = next, f_hi = f_next;
+        if (step < 1e-8 * hi) {
+            const double below = hi - ((step > 0.3 * previous_step ? 2.0 * step : 0.0) +
+                                       8.0 * std::numeric_limits<double>::epsilon() * hi);
+            if (below <= lo) break;
+            const double f_below = f(below);
+            if (f_below <= 0.0) {
+                lo = below;
+                break;
+            }
+            hi = below, f_hi = f_below;
+        }
+        previous_step = step;
+    }
+    double f_lo = f(lo);
+    for (int i = 0, kept = 0; i < 200; ++i) {  // kept: −1 lo moved last, +1 hi
         const double mid = 0.5 * (lo + hi);
         if (mid <= lo || mid >= hi) break;
-        (f(mid) <= 0.0 ? lo : hi) = mid;
+        double x = f_hi > f_lo ? lo - f_lo * (hi - lo) / (f_hi - f_lo) : mid;
+        if (!(x > lo && x < hi)) x = mid;
+        const double f_x = f(x);
+        if (f_x <= 0.0) {
+            lo = x, f_lo = f_x;
+            if (kept == -1) f_hi *= 0.5;
+            kept = -1;
+        } else {
+            hi = x, f_hi = f_x;
+            if (kept == 1) f_lo *= 0.5;
+            kept = 1;
+        }
     }
     const double u3 = f(lo) == 0.0 ? lo : 0.5 * (lo + hi);
     // Deflation: u1 + u2 = s1 − u3, u1 u2 = s3/u3; the larger root from the formula, the other by division.
@@ -82,10 +136,19 @@ Nutation nutation(double A, double C, double mu, double Gz, double H, double r) 
     n.u3 = u3;
     const double span = n.u3 - n.u1;
     n.m = span > 0.0 ? std::clamp((n.u2 - n.u1) / span, 0.0, 1.0) : 0.0;
+    // m1 = 1 − m from the roots themselves, (u3 − u2)/(u3 − u1): its digits kept next to the
+    // separatrix (u2 → u3), where K and ⟨sn²⟩ read m1 alone (complete_elliptic.hpp: K and ⟨sn²⟩ by
+    // polynomial pieces, a few units of rounding, where three Carlson integrals took 3× as long)
+    const double m1 = span > 0.0 ? std::clamp((n.u3 - n.u2) / span, 0.0, 1.0) : 1.0;
     n.alpha = std::sqrt(mu * span / (2.0 * A));
-    n.v = n.u1 + (n.u2 - n.u1) * mean_sn_squared(n.m);
-    n.period = (n.alpha > 0.0 && n.m < 1.0) ? 2.0 * elliptic_K(n.m) / n.alpha
-                                                     : std::numeric_limits<double>::infinity();
+    if (n.m < 1.0 && m1 > 0.0) {
+        const CompleteIntegrals integrals = complete_integrals(n.m, m1);
+        n.v = n.u1 + (n.u2 - n.u1) * integrals.mean_sn_squared;
+        n.period = n.alpha > 0.0 ? 2.0 * integrals.K / n.alpha : std::numeric_limits<double>::infinity();
+    } else {  // the separatrix: ⟨sn²⟩ = 1, K = ∞
+        n.v = n.u2;
+        n.period = std::numeric_limits<double>::infinity();
+    }
     return n;
 }
 

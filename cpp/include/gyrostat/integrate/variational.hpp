@@ -104,7 +104,7 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
     double t = t0;
     while (next < times.size() && times[next] == t0) record(t0, y);
     std::array<Eigen::VectorXd, tab::n_stages_extended> k;
-    Eigen::VectorXd f(size), y_new(size), f_new(size), stage(size), e5(size), e3(size), sum(size), value(size);
+    Eigen::VectorXd f(size), y_new(size), f_new(size), stage(size), e5(size), e3(size), value(size);
     for (Eigen::VectorXd& stage_rate : k) stage_rate.resize(size);
     std::array<Eigen::VectorXd, 7> F;  // the dense output's coefficients, then its monomials c
     std::array<Eigen::VectorXd, 8> c;
@@ -138,11 +138,24 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
         h_abs = std::min({100 * h0, h1, span});
         if (!std::isfinite(h_abs) || h_abs <= 0.0) h_abs = std::min(1e-6, span);
     }
+    // out = base + h Σ_j w_j k_j over the nonzero weights of w[0 .. count), in one pass over the
+    // components (each component's sum in the order of j, as a sum of whole vectors would take it);
+    // with `base` null, out = h Σ_j w_j k_j.
+    auto combine = [&](const double* w, int count, double h, const Eigen::VectorXd* base, Eigen::VectorXd& out) {
+        std::array<const double*, tab::n_stages_extended> rates;
+        std::array<double, tab::n_stages_extended> weights;
+        int used = 0;
+        for (int j = 0; j < count; ++j)
+            if (w[j] != 0.0) rates[used] = k[j].data(), weights[used++] = w[j];
+        double* to = out.data();
+        for (Eigen::Index i = 0; i < size; ++i) {
+            double total = weights[0] * rates[0][i];
+            for (int u = 1; u < used; ++u) total += weights[u] * rates[u][i];
+            to[i] = base ? (*base)[i] + h * total : h * total;
+        }
+    };
     auto compute_stage = [&](int s, double h) {
-        sum.noalias() = tab::a[s][0] * k[0];
-        for (int j = 1; j < s; ++j)
-            if (tab::a[s][j] != 0.0) sum.noalias() += tab::a[s][j] * k[j];
-        stage.noalias() = y + h * sum;
+        combine(tab::a[s], s, h, &y, stage);
         rhs(t + tab::c[s] * h, stage, k[s]);
     };
     Ticker ticker(control, t0, t1);
@@ -167,19 +180,12 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
 
         k[0] = f;
         for (int s = 1; s < tab::n_stages; ++s) compute_stage(s, h);
-        sum.noalias() = tab::b[0] * k[0];
-        for (int j = 1; j < tab::n_stages; ++j)
-            if (tab::b[j] != 0.0) sum.noalias() += tab::b[j] * k[j];
-        y_new.noalias() = y + h * sum;
+        combine(tab::b, tab::n_stages, h, &y, y_new);
         rhs(t_new, y_new, f_new);
         k[tab::n_stages] = f_new;
         run.stats.rhs_evals += tab::n_stages;
-        e5.setZero();
-        e3.setZero();
-        for (int j = 0; j <= tab::n_stages; ++j) {
-            if (tab::e5[j] != 0.0) e5 += tab::e5[j] * k[j];
-            if (tab::e3[j] != 0.0) e3 += tab::e3[j] * k[j];
-        }
+        combine(tab::e5, tab::n_stages + 1, 1.0, nullptr, e5);
+        combine(tab::e3, tab::n_stages + 1, 1.0, nullptr, e3);
         const double err = error_norm(e5, e3, scale_of(y, y_new), h_abs);
         if (!std::isfinite(err) || !y_new.allFinite()) {
             ++non_finite_trials, ++run.stats.rejected_steps;
@@ -207,12 +213,7 @@ VariationalRun variational_dop853(const Rhs& rhs, const Project& project, Eigen:
             F[0].noalias() = y_new - y;
             F[1].noalias() = h * k[0] - F[0];
             F[2].noalias() = 2.0 * F[0] - h * (f_new + k[0]);
-            for (int r = 0; r < 4; ++r) {
-                sum.noalias() = tab::d[r][0] * k[0];
-                for (int j = 1; j < tab::n_stages_extended; ++j)
-                    if (tab::d[r][j] != 0.0) sum.noalias() += tab::d[r][j] * k[j];
-                F[3 + r].noalias() = h * sum;
-            }
+            for (int r = 0; r < 4; ++r) combine(tab::d[r], tab::n_stages_extended, h, nullptr, F[3 + r]);
             monomials(F, y, c.data());
             if (dense) {
                 for (int r = 0; r < 8; ++r) std::copy(c[r].data(), c[r].data() + size, coefficients.data() + r * size);

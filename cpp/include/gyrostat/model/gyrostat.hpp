@@ -91,6 +91,24 @@ public:
         }
     }
 
+    /// ∂f/∂p of a parameter of the torques folded into M = M0 − D ω (constant and linear torques),
+    /// from this model moved by `step` in it (system::has_linear_rate_change): with the same body
+    /// and no other torques, f_moved − f = J⁻¹ (ΔM0 − ΔD ω), so
+    ///   ∂f/∂p = b + a y,   b_ω = J⁻¹ ΔM0 / step,   a_ωω = −J⁻¹ ΔD / step   (q̇ does not change),
+    /// exact up to the coefficients' rounding; false where the bodies differ or a torque is not folded.
+    bool linear_rate_change(const Gyrostat& moved, double step, State& b, Jacobian& a) const {
+        const Body& other = moved.body();
+        if (!torques_.is_affine() || !moved.torques().is_affine() || body_.moments() != other.moments() ||
+            body_.rotor() != other.rotor() || body_.principal_axes() != other.principal_axes())
+            return false;
+        b.setZero();
+        a.setZero();
+        const Vec3 to_rate = body_.inverse_moments() / step;
+        b.template head<3>() = to_rate.cwiseProduct(moved.torques().constant_part() - torques_.constant_part());
+        a.template topLeftCorner<3, 3>() = -(to_rate.asDiagonal() * (moved.torques().damping_part() - torques_.damping_part()));
+        return true;
+    }
+
     /// f and ∂f/∂y · s_j for every column s_j at once (system::has_rate_with_products: the
     /// variational equations, model/variational.hpp): the torques, their ∂M/∂ω and the attitude
     /// torques' ∂M/∂q once, then each column's product from the same derivatives,
@@ -103,10 +121,12 @@ public:
         const Vec3 momentum = body_.moments().cwiseProduct(omega) + body_.rotor();
         Eigen::Vector4d q;
         const auto* attitude = system::attitude_of<Gyrostat>(y, q);
-        const Vec3 torque = torques_.total(t, omega, body_.moments(), attitude);
+        // the folded torques alone (constant and linear): M = M0 − D ω and ∂M/∂ω = −D, inline
+        const bool folded = torques_.is_affine();
+        const Vec3 torque = folded ? torques_.folded_total(omega) : torques_.total(t, omega, body_.moments(), attitude);
         f.template head<3>() = body_.inverse_moments().cwiseProduct(torque - omega.cross(momentum));
         if constexpr (WithAttitude) f.template segment<4>(3) = quaternion_rate(y.template segment<4>(3), omega);
-        const Mat3 d_torque = torques_.jacobian(t, omega, body_.moments(), attitude);
+        const Mat3 d_torque = folded ? Mat3(-torques_.damping_part()) : torques_.jacobian(t, omega, body_.moments(), attitude);
         [[maybe_unused]] Eigen::Matrix<double, 3, 4> d_attitude = Eigen::Matrix<double, 3, 4>::Zero();
         [[maybe_unused]] bool reads_attitude = false;
         if constexpr (WithAttitude) reads_attitude = torques_.add_attitude_jacobian(t, omega, body_.moments(), q, d_attitude);

@@ -33,8 +33,9 @@ struct Nutation {
     double period = 0.0;  ///< 2K(m)/α (+∞ at the separatrix m = 1 or at the triple root α = 0)
 };
 
-/// Roots of the cubic, k², α, v from (G_z, H, r): u3 by bisection on [1, 2 + max|s_i|] of the
-/// factored f (f(1) = −(G_z − C r)² ≤ 0 exactly), then deflation u1 + u2 = s1 − u3,
+/// Roots of the cubic, k², α, v from (G_z, H, r): u3 by Newton's iteration from 2 + max|s_i|
+/// down onto the last sign change on [1, 2 + max|s_i|] of the factored f (f(1) = −(G_z − C r)² ≤ 0
+/// exactly), closed by regula falsi onto adjacent doubles, then deflation u1 + u2 = s1 − u3,
 /// u1 u2 = s3/u3 (u3 ≥ 1). Throws std::invalid_argument for non-finite input or no root.
 Nutation nutation(double A, double C, double mu, double Gz, double H, double r);
 

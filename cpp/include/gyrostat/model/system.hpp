@@ -174,6 +174,19 @@ struct has_parameter_rate<S, std::void_t<decltype(S::analytic_in), decltype(std:
                                                                        std::declval<typename S::State&>()))>>
     : std::true_type {};
 
+/// A model that gives ∂f/∂p from itself moved in p, where f's change is linear in the state
+/// (`bool linear_rate_change(const S& moved, double step, State& b, Jacobian& a) const`:
+/// f_moved − f = step · (b + a y) exactly, as the gyrostat's under torques constant and linear
+/// in ω, whose parameters move only those coefficients; false where it is not so): the
+/// variational equations' parameter column then takes b + a y, without a moved right-hand side.
+template <class S, class = void>
+struct has_linear_rate_change : std::false_type {};
+template <class S>
+struct has_linear_rate_change<S, std::void_t<decltype(std::declval<const S&>().linear_rate_change(
+                                     std::declval<const S&>(), 0.0, std::declval<typename S::State&>(),
+                                     std::declval<Jacobian<S>&>()))>>
+    : std::true_type {};
+
 /// The names of has_parameter_rate's numbers (none for a model without them).
 template <class S>
 std::vector<std::string> analytic_in() {

@@ -17,8 +17,10 @@
 //   rounding where f is affine in p_j, as in every torque's gain; there, where the torque or the
 //   model declares it (affine_in), the one-sided (f(t, y; p_j + H_j) − f(t, y; p_j)) / H_j with
 //   H_j = |p_j| (the parameter's size: the difference far above f's rounding, whose noise would
-//   otherwise hold the steps at tight tolerances) costs one moved right-hand side instead of two).
-//   A column for an initial
+//   otherwise hold the steps at tight tolerances) costs one moved right-hand side instead of two;
+//   where the model gives that difference as linear in y (system::has_linear_rate_change: the
+//   gyrostat's folded torques, f_far − f = J⁻¹ (ΔM0 − ΔD ω)), b + a y with b, a taken once, and
+//   no moved right-hand side at all). A column for an initial
 //   component has no such term. A body's parameter moved (an inertia tensor's entry) turns the
 //   principal axes the moved model runs in: its f is taken through the user's frame,
 //   U⁻¹ U_± f_±(U_±⁻¹ U y) (model/frame.hpp: reframe), so that the difference is the user frame's
@@ -63,7 +65,14 @@ public:
     using State = typename M::State;
     static constexpr int dim = M::dim;
 
-    Variational(const M& model, std::vector<Varied<M>> columns) : model_(model), columns_(std::move(columns)) {}
+    Variational(const M& model, std::vector<Varied<M>> columns) : model_(model), columns_(std::move(columns)) {
+        if constexpr (system::has_linear_rate_change<M>::value) {
+            linear_.resize(columns_.size());
+            for (std::size_t j = 0; j < columns_.size(); ++j)
+                if (columns_[j].analytic < 0 && columns_[j].far)
+                    linear_[j].given = model_.linear_rate_change(*columns_[j].far, columns_[j].far_step, linear_[j].b, linear_[j].a);
+        }
+    }
 
     const std::vector<Varied<M>>& columns() const { return columns_; }
 
@@ -98,6 +107,9 @@ public:
                     model_.parameter_rate(static_cast<std::size_t>(column.analytic), t, y, parameter_rate);
                     rate += parameter_rate;
                 }
+            } else if (!linear_.empty() && linear_[j].given) {
+                rate += linear_[j].b;
+                rate.noalias() += linear_[j].a * y;
             } else if (column.far)
                 rate += (moved_rate(*column.far, t, y) - f) / column.far_step;
             else if (column.plus)
@@ -145,8 +157,16 @@ private:
         return (f_plus - f_minus) / (2.0 * delta);
     }
 
+    /// A far column's ∂f/∂p = b + a y where the model gives it so (system::has_linear_rate_change).
+    struct LinearChange {
+        bool given = false;
+        State b = State::Zero();
+        system::Jacobian<M> a = system::Jacobian<M>::Zero();
+    };
+
     const M& model_;
     std::vector<Varied<M>> columns_;
+    std::vector<LinearChange> linear_;
 };
 
 }  // namespace gyrostat::model

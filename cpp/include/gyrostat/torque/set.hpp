@@ -399,10 +399,12 @@ public:
     /// Σ M_i(t, ω) (q: the attitude, for the torques that need it; a model without the attitude
     /// refused them at construction with require_no_attitude).
     Vec3 total(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* attitude = nullptr) const {
-        Vec3 m = has_damping_ ? Vec3(constant_ - damping_ * omega) : constant_;
+        Vec3 m = folded_total(omega);
         for (const auto& part : others_) m += evaluate(part, t, omega, moments, attitude);
         return m;
     }
+    /// The folded torques' M0 − D ω: total()'s first term, and all of it where is_affine().
+    Vec3 folded_total(const Vec3& omega) const { return has_damping_ ? Vec3(constant_ - damping_ * omega) : constant_; }
     /// Σ ∂M_i/∂ω (at the attitude, for the torques that read it).
     Mat3 jacobian(double t, const Vec3& omega, const Vec3& moments, const Eigen::Vector4d* attitude = nullptr) const {
         Mat3 d = -damping_;
