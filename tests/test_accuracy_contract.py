@@ -343,6 +343,33 @@ def test_averaged_symmetric_model(kw):
                                         f"(issue 41, item 1); per quantity {errors}")
 
 
+@pytest.mark.parametrize("span, rtol", [(30.0, 1e-6), (45.0, 1e-6), (60.0, 1e-4)])
+def test_a_window_of_a_few_steps_grows_its_error_linearly(span, rtol):
+    # The averaged (a, r) system at an explicit rtol takes 4-6 steps over these spans (found by
+    # bench/contract_sweep.py --explicit): its window's differences are a staircase of one or two
+    # steps, whose running maxima fitted k = 2 although the error is set in the first steps and then
+    # stays (true error at the window's end = at the horizon), and the estimate read 75, 101 and 85
+    # times the true error. Below 8 companion steps over the window k is now 1, not fitted: the
+    # estimate is the window's error x 5 (a fifth of the span) x 3 (the safety factor) x 4/3, ~20
+    # times a true error that no longer grows. Against SciPy's DOP853 at rtol 1e-14 on the (a, r)
+    # right-hand side written above.
+    t = np.linspace(0.0, span, N_OUT)
+    ref = Reference(averaged_rhs, [1.0, 1.0], t, [slice(0, 1), slice(1, 2)])
+    model = g.AveragedModel(g.Body([AV_A, AV_A, AV_C]), [g.ViscousCavity(1260, 1000, 0.48),
+                                                         g.ConstantTorque([0, 0, -AV_EPS * AV_M3])])
+    sol = quiet_solve(model, [1.0, 1.0], (0.0, span), n_out=N_OUT, rtol=rtol, atol=rtol * 1e-3, check_validity=False)
+    assert sol.success and sol.stats["steps"] <= 8, sol.stats  # the premise: a run of a few steps
+    a, r = ref.y[:, 0], ref.y[:, 1]
+    errors = {"a": _scalar_error(sol.y[:, 0], a), "r": _scalar_error(sol.y[:, 1], r),  # |G| and T as above
+              "angular_momentum_norm": _scalar_error(sol["angular_momentum_norm"],
+                                                     np.sqrt(AV_A**2 * a * a + AV_C**2 * r * r)),
+              "kinetic_energy": _scalar_error(sol["kinetic_energy"], 0.5 * (AV_A * a * a + AV_C * r * r))}
+    assert "grown as t^1 (not fitted: the window's companion took fewer than 8 steps)" in sol.error_basis, \
+        sol.error_basis
+    true, _ = check_band(sol, errors, ref.own_error, f"averaged (a, r) over {span}, rtol {rtol:g}")
+    assert true > 1e3 * ref.own_error, (true, ref.own_error)  # the band is judged, not the reference's noise
+
+
 # ------------------------------------------------------------------------------------ closed form
 @pytest.mark.parametrize("kw", [dict(), dict(accuracy=1e-8)], ids=["default", "accuracy=1e-8"])
 def test_torque_free_closed_form(kw):

@@ -254,7 +254,8 @@ def test_the_basis_is_written_when_read_in_its_place_among_the_notes():
                                               for name in g.options.OPTION_NAMES))
     companion, gain, _ = accuracy.companion_of(shared)
     made = g._core.window_estimate(DAMPED._core, sol._result, 0.0, w0, 500.0, companion, accuracy._rule(gain))
-    values, k, grown, window, count, failure, _, _ = made
+    values, k, grown, window, count, failure, _, _, fitted = made
+    assert fitted, "a run of many steps: its growth is fitted"
     assert estimate.basis == (f"measured over the first 20% of the span ([0, {window:.6g}], {count} times) against a run "
                               f"with rtol and atol / 4 (difference x 1.33), grown as t^{k:.2g} to t = 500, times 3")
     sol.doubt("a doubt added after the run")

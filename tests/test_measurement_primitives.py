@@ -161,8 +161,9 @@ def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
     core, answer = model._core, run(model, y0, t1, rtol, n_out=201)
     companion = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4)
     gain = 4.0 / 3.0
-    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=gain)
-    values, k, grown, end, count, failure, stats, _ = _core.window_estimate(core, answer, 0.0, y0, t1, companion, rule)
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=gain, fit_steps=8)
+    values, k, grown, end, count, failure, stats, _, fitted = _core.window_estimate(core, answer, 0.0, y0, t1, companion,
+                                                                                    rule)
     times = np.asarray(answer.t)
     inside = int(np.sum(times <= 0.2 * t1))
     window_options = make_options(rtol=rtol / 4, atol=rtol * 1e-3 / 4, t_eval=times[:inside])
@@ -170,12 +171,14 @@ def test_the_engines_window_estimate_is_the_rule_computed_here(case, rtol):
     apart = numpy_differences(core, other, answer, slice(None), slice(0, inside))
     middle = inside // 2
     expected, ks = [], []
+    fit = other.stats.steps >= 8  # (fewer companion steps over the window: k = 1, not fitted)
     for row in apart:
-        value, k_row = python_grow(row.max() * gain, row[:middle + 1].max() * gain, times[inside - 1],
+        value, k_row = python_grow(row.max() * gain, row[:middle + 1].max() * gain if fit else 0.0, times[inside - 1],
                                    times[middle], t1)
         expected.append(max(3.0 * value, 1e-16))
         ks.append(k_row)
     assert failure == "" and grown and count == inside and end == times[inside - 1], (failure, grown, count, end)
+    assert fitted == fit, (fitted, other.stats.steps)
     assert stats.rhs_evals == other.stats.rhs_evals and stats.steps == other.stats.steps, "the window's companion's statistics"
     assert np.allclose(values, expected, rtol=1e-14, atol=0.0), f"{case}: engine {values}, rule {expected}"
     assert k == pytest.approx(max(ks), rel=1e-14), (k, ks)
@@ -194,7 +197,7 @@ def test_a_run_and_its_estimate_in_one_call_are_the_two_calls(case, whole_span):
     y0 = np.asarray(y0, float)
     options = make_options(rtol=1e-8, atol=1e-11, n_out=201)
     companion = make_options(rtol=2.5e-9, atol=2.5e-12)
-    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0, fit_steps=8)
     answer, made = _core.solve_measured(model._core, y0, 0.0, t1, options, companion, rule, None, whole_span)
     alone = _core.solve(model._core, y0, 0.0, t1, options, None)
     apart = _core.window_estimate(model._core, alone, 0.0, y0, t1, companion, rule, None, whole_span)
@@ -214,7 +217,7 @@ def test_the_engines_window_leaves_what_it_cannot_measure_to_python():
     than 16 output times in the window, or crosses a separatrix after the window's first half;
     a companion that stops is named."""
     core = CAVITY._core
-    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0, fit_steps=8)
     tighter = make_options(rtol=2.5e-9, atol=2.5e-12)
     few = run(CAVITY, W0, 50.0, 1e-8, n_out=11)
     assert _core.window_estimate(core, few, 0.0, W0, 50.0, tighter, rule) is None
@@ -223,9 +226,9 @@ def test_the_engines_window_leaves_what_it_cannot_measure_to_python():
     assert _core.window_estimate(core, crossing, 0.0, W0, T1, tighter, rule) is None
     short = run(CAVITY, W0, 50.0, 1e-8, n_out=201)
     starved = make_options(rtol=2.5e-9, atol=2.5e-12, max_steps=3)
-    values, *_, failure, stats, _ = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
+    values, *_, failure, stats, _, _ = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule)
     assert failure.startswith("max_steps_reached") and values == [] and stats.steps == 3, (failure, stats.steps)
-    *_, failure, companion, _ = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule, whole_span=True)
+    *_, failure, companion, _, _ = _core.window_estimate(core, short, 0.0, W0, 50.0, starved, rule, whole_span=True)
     assert failure.startswith("max_steps_reached") and companion.status == "max_steps_reached", failure
     estimate = g.accuracy._window_estimate((values, 1.0, False, 10.0, 0, failure), ["omega"], 0.0, 50.0, 0.2, "x",
                                             4 / 3)
@@ -355,7 +358,7 @@ def test_every_familys_ensemble_estimates_in_the_engine_equal_the_general_path(c
 def test_the_engines_window_refuses_mismatched_inputs_by_name():
     """Differences at a number of times other than the times given, and an ensemble's initial
     states or models not one per answer: a ValueError with the counts."""
-    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0, fit_steps=8)
     with pytest.raises(ValueError, match="3 differences at 2 times"):
         _core.window_from_differences(np.zeros((2, 3)), [0.0, 1.0], 0.0, 10.0, rule)
     core = CAVITY._core
@@ -407,7 +410,7 @@ def test_a_run_that_measures_itself_is_left_to_python():
     span, and Python takes their own measures (``Solution.error_estimate`` still set)."""
     body = g.Body([1.0, 1.4, 2.1])
     y0 = np.array([0.15, 0.3, 1.0])
-    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0)
+    rule = _core.WindowRule(fraction=0.2, least_times=16, safety=3.0, floor=1e-16, gain=4.0 / 3.0, fit_steps=8)
     tighter = make_options(rtol=2.5e-9, atol=2.5e-12)
     for model, method in ((g.Model(body, [g.LinearDamping(diagonal=[1e-3, 2e-3, 5e-4])]), "splitting"),
                           (g.TorqueFreeModel(body), None)):

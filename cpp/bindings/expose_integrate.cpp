@@ -395,21 +395,23 @@ Examples
         py::arg("interval") = 0.1);
 
     py::class_<WindowRule>(m, "WindowRule", "The numbers a window estimate is made with (gyrostat/measure.hpp).")
-        .def(py::init([](double fraction, std::size_t least_times, double safety, double floor, double gain) {
-                 return WindowRule{fraction, least_times, safety, floor, gain};
-             }),
-             py::arg("fraction"), py::arg("least_times"), py::arg("safety"), py::arg("floor"), py::arg("gain"))
+        .def(py::init([](double fraction, std::size_t least_times, double safety, double floor, double gain,
+                         long fit_steps) { return WindowRule{fraction, least_times, safety, floor, gain, fit_steps}; }),
+             py::arg("fraction"), py::arg("least_times"), py::arg("safety"), py::arg("floor"), py::arg("gain"),
+             py::arg("fit_steps"))
         .def_readonly("fraction", &WindowRule::fraction)
         .def_readonly("gain", &WindowRule::gain);
     // (values per quantity, largest k, grown, window's end, times compared, failure[, the companion: a whole
-    // span's Result, which the contract may take as the answer; a window's statistics alone, ~0.5 µs less])
+    // span's Result, which the contract may take as the answer; a window's statistics alone, ~0.5 µs less, and
+    // the companion's step limit], whether k was fitted)
     auto window_tuple = [](WindowEstimate& w, bool with_companion, bool whole_span) -> py::tuple {
-        if (!with_companion) return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure);
+        if (!with_companion)
+            return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, w.fitted);
         if (!whole_span)
             return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, w.companion.stats,
-                                  w.companion_max_step);
+                                  w.companion_max_step, w.fitted);
         return py::make_tuple(w.per_quantity, w.k, w.grown, w.window_end, w.times, w.failure, std::move(w.companion),
-                              w.companion_max_step);
+                              w.companion_max_step, w.fitted);
     };
     m.def(
         "window_estimate",
@@ -489,13 +491,16 @@ Examples
     m.def(
         "window_from_differences",
         [window_tuple](const Eigen::Ref<const Eigen::MatrixXd>& apart, const std::vector<double>& times, double t0,
-                       double horizon, const WindowRule& rule, bool to_horizon) {
-            WindowEstimate made = window_from_differences(apart, times, t0, horizon, rule, to_horizon);
+                       double horizon, const WindowRule& rule, bool to_horizon, std::optional<long> companion_steps) {
+            WindowEstimate made = window_from_differences(apart, times, t0, horizon, rule, to_horizon,
+                                                          companion_steps.value_or(std::numeric_limits<long>::max()));
             return window_tuple(made, false, false);
         },
         py::arg("apart"), py::arg("times"), py::arg("t0"), py::arg("horizon"), py::arg("rule"), py::arg("to_horizon") = true,
+        py::arg("companion_steps") = py::none(),
         "A window estimate from the quantities' differences (quantities x times) at the window's times, as "
-        "window_estimate's tuple.");
+        "window_estimate's tuple without the companion; ``companion_steps``: the companion's steps over the window "
+        "(fewer than ``rule``'s fit_steps: k = 1, not fitted; None: fitted).");
     m.def(
         "grow",
         [](double last, double half, double end, double middle, double far, double least) {

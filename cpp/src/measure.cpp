@@ -18,7 +18,8 @@ Grown grow(double last, double half, double end, double middle, double far, doub
 }
 
 WindowEstimate window_from_differences(const Eigen::Ref<const Eigen::MatrixXd>& apart, const std::vector<double>& times,
-                                       double t0, double horizon, const WindowRule& rule, bool to_horizon) {
+                                       double t0, double horizon, const WindowRule& rule, bool to_horizon,
+                                       long companion_steps) {
     const Eigen::Index n = apart.cols();
     if (n == 0 || static_cast<std::size_t>(n) != times.size())
         throw std::invalid_argument("window_from_differences: " + std::to_string(n) + " differences at " +
@@ -30,6 +31,7 @@ WindowEstimate window_from_differences(const Eigen::Ref<const Eigen::MatrixXd>& 
     const std::size_t middle_row = times.size() / 2;
     const double end = std::abs(times.back() - t0), middle = std::abs(times[middle_row] - t0), far = std::abs(horizon - t0);
     made.grown = to_horizon && far > end;
+    made.fitted = companion_steps >= rule.fit_steps;  // (else k = 1: a staircase of a few steps, the header)
     for (Eigen::Index q = 0; q < apart.rows(); ++q) {
         // the running maxima at the window's end and at its middle output time (NaN stays NaN)
         double last = 0.0, half = 0.0;
@@ -41,7 +43,7 @@ WindowEstimate window_from_differences(const Eigen::Ref<const Eigen::MatrixXd>& 
         }
         Grown value{last * rule.gain, 1.0};
         if (made.grown) {
-            value = grow(last * rule.gain, half * rule.gain, end, middle, far);
+            value = grow(last * rule.gain, made.fitted ? half * rule.gain : 0.0, end, middle, far);
             value.value *= rule.safety;
         }
         made.per_quantity.push_back(std::isnan(value.value) ? value.value : std::max(value.value, rule.floor));
@@ -122,7 +124,7 @@ WindowEstimate measured_against(const AnyModel& model, const integrate::Result& 
     const Eigen::MatrixXd apart = whole_span ? measured_differences(model, answer, other, {}, {})
                                              : measured_differences(model, other, answer, {}, rows);
     const std::vector<double> times(answer.t.begin(), answer.t.begin() + static_cast<std::ptrdiff_t>(count));
-    made = window_from_differences(apart, times, t0, horizon_of(answer), rule, !whole_span);
+    made = window_from_differences(apart, times, t0, horizon_of(answer), rule, !whole_span, other.stats.steps);
     made.companion = std::move(other);
     return made;
 }

@@ -2518,7 +2518,7 @@ class WindowRule:
     """
     The numbers a window estimate is made with (gyrostat/measure.hpp).
     """
-    def __init__(self, fraction: typing.SupportsFloat | typing.SupportsIndex, least_times: typing.SupportsInt | typing.SupportsIndex, safety: typing.SupportsFloat | typing.SupportsIndex, floor: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def __init__(self, fraction: typing.SupportsFloat | typing.SupportsIndex, least_times: typing.SupportsInt | typing.SupportsIndex, safety: typing.SupportsFloat | typing.SupportsIndex, floor: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex, fit_steps: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def fraction(self) -> float:
@@ -2777,9 +2777,9 @@ def window_estimates(models: collections.abc.Sequence[Model], answers: collectio
     """
     Each member's window_estimate (or whole-span measurement), the companions run as one ensemble (gyrostat/measure.hpp): a list of window_estimate's tuples, None for a member left to the caller.
     """
-def window_from_differences(apart: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.f_contiguous"], times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], t0: typing.SupportsFloat | typing.SupportsIndex, horizon: typing.SupportsFloat | typing.SupportsIndex, rule: WindowRule, to_horizon: bool = True) -> tuple:
+def window_from_differences(apart: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.f_contiguous"], times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], t0: typing.SupportsFloat | typing.SupportsIndex, horizon: typing.SupportsFloat | typing.SupportsIndex, rule: WindowRule, to_horizon: bool = True, companion_steps: typing.SupportsInt | typing.SupportsIndex | None = None) -> tuple:
     """
-    A window estimate from the quantities' differences (quantities x times) at the window's times, as window_estimate's tuple.
+    A window estimate from the quantities' differences (quantities x times) at the window's times, as window_estimate's tuple without the companion; ``companion_steps``: the companion's steps over the window (fewer than ``rule``'s fit_steps: k = 1, not fitted; None: fitted).
     """
 __version__: str = '0.1.0'
 large: float = 10.0
