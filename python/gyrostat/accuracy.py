@@ -21,7 +21,8 @@ How it is measured (the basis, in words, is ``Solution.error_basis`` and a line 
   run's own error, under tolerance proportionality). Its running maximum, grown to the end of the
   span as t^k with k fitted over the window's second half (between 1 and 2: linear drift of the
   invariants, quadratic growth of a phase error whose frequency error itself drifts; k = 1 where the
-  companion took fewer than :data:`WINDOW_FIT_STEPS` steps over the window), is the estimate. Cost: ~0.3× the run (dop853), ``error_estimate=False`` turns it off. A run that
+  companion took fewer than :data:`WINDOW_FIT_STEPS` steps over the window), is the estimate.
+  Cost: ~0.3× the run (dop853), ``error_estimate=False`` turns it off. A run that
   crosses a separatrix of its model after the first half of the window (the sign of the model's
   ``separatrix``, declared in C++, changes: the body's rotation moves to another axis) is measured
   over the whole span instead, as with ``"full"``: the error jumps at the crossing, which the
